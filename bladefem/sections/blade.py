@@ -1,0 +1,110 @@
+"""A blade: its section table plus rotor geometry, tip mass and root condition.
+
+Blade frame (used everywhere inside bladefem): ``x`` along the pitch axis from the blade root (the root sits at
+``hub_radius`` from the rotor apex along the preconed axis), ``y`` in the rotor plane (edgewise, lead-lag, positive
+toward the leading edge), ``z`` out of the rotor plane (flapwise, positive downwind). With precone ``beta`` the
+shaft (rotation) axis in this frame is ``(sin beta, 0, cos beta)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from .table import SectionTable
+
+Root = Literal["cantilever", "hinged"]
+ROOTS: tuple[str, ...] = ("cantilever", "hinged")
+
+
+@dataclass(frozen=True)
+class TipMass:
+    """A rigid body attached to the blade tip (or tower top).
+
+    Attributes
+    ----------
+    mass : kg
+    offset : position of its centre of mass relative to the tip of the reference axis, in the blade frame
+        (x axial beyond the tip, y chordwise/in-plane, z out-of-plane), m. The chordwise offset is given along the
+        chord of the tip section by :meth:`with_chordwise_offset`.
+    inertia : 3x3 inertia tensor about its centre of mass in the blade frame, kg m^2
+    """
+
+    mass: float
+    offset: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
+    inertia: NDArray[np.float64] = field(default_factory=lambda: np.zeros((3, 3)))
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "offset", np.asarray(self.offset, dtype=float).reshape(3))
+        inertia = np.asarray(self.inertia, dtype=float)
+        if inertia.shape == (3,):
+            inertia = np.diag(inertia)
+        object.__setattr__(self, "inertia", inertia.reshape(3, 3))
+        if not np.isfinite(self.mass) or self.mass < 0:
+            raise InputError(f"tip mass must be a non-negative number, got {self.mass}", field="tip_mass")
+        if not np.allclose(self.inertia, self.inertia.T) or np.any(np.linalg.eigvalsh(self.inertia) < -1e-12):
+            raise InputError("tip inertia must be a symmetric positive semi-definite tensor", field="tip_inertia")
+
+    @property
+    def second_moment(self) -> NDArray[np.float64]:
+        """int rho s s^T dV about the attachment point, kg m^2 (from the inertia tensor and the offset)."""
+        about_cm = 0.5 * np.trace(self.inertia) * np.eye(3) - self.inertia
+        return about_cm + self.mass * np.outer(self.offset, self.offset)
+
+
+@dataclass(frozen=True)
+class Blade:
+    """A rotating blade.
+
+    Attributes
+    ----------
+    sections : section properties along the flexible length
+    hub_radius : distance from the rotor apex to the blade root along the preconed pitch axis, m
+    precone : precone angle, rad (positive tilts the blade downwind, out of the rotor plane)
+    pitch : blade pitch angle, rad (positive to feather); it adds to the structural twist
+    tip_mass : optional rigid body at the tip
+    root : ``"cantilever"`` (clamped) or ``"hinged"`` (pinned in flap and edge, torsion and axial held)
+    name : a label for reports
+    notes : statements about the modelling assumptions made while reading the input (printed by the CLI)
+    """
+
+    sections: SectionTable
+    hub_radius: float = 0.0
+    precone: float = 0.0
+    pitch: float = 0.0
+    tip_mass: TipMass | None = None
+    root: Root = "cantilever"
+    name: str = "blade"
+    notes: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.root not in ROOTS:
+            raise InputError(f"unknown root condition '{self.root}' (choose from {', '.join(ROOTS)})", field="root")
+        for name in ("hub_radius", "precone", "pitch"):
+            if not np.isfinite(getattr(self, name)):
+                raise InputError(f"must be a finite number, got {getattr(self, name)}", field=name)
+        if self.hub_radius < 0:
+            raise InputError(f"must not be negative, got {self.hub_radius}", field="hub_radius")
+
+    @property
+    def length(self) -> float:
+        """Flexible length L = tip radius - hub radius, m."""
+        return self.sections.length
+
+    @property
+    def tip_radius(self) -> float:
+        """Distance from the apex to the blade tip along the pitch axis, m."""
+        return self.hub_radius + self.length
+
+    @property
+    def shaft_axis(self) -> NDArray[np.float64]:
+        """Unit rotation axis in the blade frame."""
+        return np.array([np.sin(self.precone), 0.0, np.cos(self.precone)])
+
+    def with_(self, **changes: object) -> Blade:
+        """A copy with some fields changed (e.g. ``blade.with_(pitch=0.1)``)."""
+        return replace(self, **changes)

@@ -1,0 +1,90 @@
+"""Section mass moments and stiffness matrices in the blade frame, at any span positions.
+
+A section point at chord coordinate ``eta`` and thickness coordinate ``zeta`` sits, for a total angle
+``theta`` = structural twist + pitch, at ``y = eta cos(theta) + zeta sin(theta)`` (in-plane) and
+``z = -eta sin(theta) + zeta cos(theta)`` (out-of-plane): positive twist turns the leading edge upwind.
+
+Mass moments per unit length about the reference axis:
+``m``, ``S = int rho (0, y, z) dA`` and ``J = int rho s s^T dA`` (3x3, zero x row and column).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .table import SectionTable
+
+
+def chord_direction(theta: NDArray) -> tuple[NDArray, NDArray]:
+    """(y, z) components of the unit vector along the chord toward the leading edge."""
+    return np.cos(theta), -np.sin(theta)
+
+
+@dataclass(frozen=True)
+class MassMoments:
+    """Mass moments per length at a set of points (arrays of the points' shape; S: (3, ...), J: (3, 3, ...))."""
+
+    m: NDArray
+    S: NDArray
+    J: NDArray
+
+
+def total_angle(sections: SectionTable, x: NDArray, pitch: float) -> NDArray:
+    """Structural twist plus pitch at span positions ``x``, rad."""
+    return sections.at(x, "twist") + pitch
+
+
+def mass_moments(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> MassMoments:
+    """Mass per length (kg/m), first moments (kg) and second moments (kg m) about the reference axis."""
+    theta = total_angle(sections, x, pitch)
+    c, s = np.cos(theta), np.sin(theta)
+    m = sections.at(x, "mass")
+    e = sections.at(x, "cm_offset")
+    i_chord = sections.at(x, "edge_inertia")   # int rho eta^2 about the centre of mass
+    i_thick = sections.at(x, "flap_inertia")   # int rho zeta^2 about the centre of mass
+    cy, cz = chord_direction(theta)
+    zero = np.zeros_like(m)
+    S = np.stack([zero, m * e * cy, m * e * cz])
+    J = np.zeros((3, 3) + m.shape)
+    J[1, 1] = i_chord * c**2 + i_thick * s**2 + m * (e * cy) ** 2
+    J[2, 2] = i_chord * s**2 + i_thick * c**2 + m * (e * cz) ** 2
+    J[1, 2] = J[2, 1] = (i_thick - i_chord) * s * c + m * e**2 * cy * cz
+    return MassMoments(m=m, S=S, J=J)
+
+
+def bending_stiffness(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> NDArray:
+    """2x2 bending stiffness about the tension centre for curvatures (v'', w''), N m^2, shape (2, 2, ...).
+
+    The principal stiffnesses (edge about the thickness axis, flap about the chord axis) are rotated by the
+    structural twist plus pitch: this is what couples flap and edge bending in a twisted blade.
+    """
+    theta = total_angle(sections, x, pitch)
+    c, s = np.cos(theta), np.sin(theta)
+    flap = sections.at(x, "flap_stiffness")
+    edge = sections.at(x, "edge_stiffness")
+    D = np.empty((2, 2) + flap.shape)
+    D[0, 0] = edge * c**2 + flap * s**2
+    D[1, 1] = edge * s**2 + flap * c**2
+    D[0, 1] = D[1, 0] = (flap - edge) * s * c
+    return D
+
+
+def extension_bending_stiffness(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> NDArray:
+    """3x3 stiffness for the strains (u', v'', w'') of the reference axis, with the tension-centre offset.
+
+    The axial strain of a fibre at (y, z) is ``u' - y v'' - z w''``; integrating ``E`` times its square over the
+    section about the reference axis gives EA, the offset coupling ``-EA y_t`` and the parallel-axis terms.
+    """
+    theta = total_angle(sections, x, pitch)
+    EA = sections.at(x, "axial_stiffness")
+    e_t = sections.at(x, "tension_centre_offset")
+    cy, cz = chord_direction(theta)
+    offset = np.stack([-e_t * cy, -e_t * cz])          # d(strain)/d(v'', w'') at the tension centre
+    D = np.empty((3, 3) + EA.shape)
+    D[0, 0] = EA
+    D[0, 1:] = D[1:, 0] = EA * offset
+    D[1:, 1:] = bending_stiffness(sections, x, pitch) + EA * offset[:, None] * offset[None, :]
+    return D
