@@ -1,0 +1,108 @@
+"""Assemble the blade's matrices K0, K2 (per Omega^2) and M once: K(Omega) = K0 + Omega^2 K2."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from skfem import Basis, BilinearForm
+
+from ..elements import beam_element, projected_inertia, rotation_second_order, section_motion
+from ..sections import Blade
+from . import terms
+from .dofs import DofMap
+from .mesh import span_mesh, span_nodes
+from .parameters import SectionParameters, plane_of_rotation, section_parameters
+
+Term = Callable[..., NDArray]
+
+#: Gauss rule degree: cubic x cubic x linear property x smooth twist
+QUADRATURE_ORDER = 9
+
+
+@dataclass(frozen=True)
+class BladeMatrices:
+    """Global matrices over all DOFs (before root conditions) and the DOF map.
+
+    K0 : elastic stiffness, N/m-type units
+    K2 : stiffness per Omega^2 (centrifugal tension, spin softening, rotation second order), kg-type units
+    M : mass matrix
+    free : DOFs left free by the root condition
+    """
+
+    K0: sp.csr_matrix
+    K2: sp.csr_matrix
+    M: sp.csr_matrix
+    dofs: DofMap
+    free: NDArray[np.int64]
+    blade: Blade
+
+    def reduced(self, rotor_speed: float) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s)."""
+        K = self.K0 + rotor_speed**2 * self.K2
+        return K[self.free][:, self.free].tocsc(), self.M[self.free][:, self.free].tocsc()
+
+
+def model_fields(blade: Blade) -> tuple[str, ...]:
+    """Fields present in the model: bending always, twist if GJ is given, axial if EA is given."""
+    fields = ["v", "w"]
+    if blade.sections.torsion_stiffness is not None:
+        fields.append("phi")
+    if blade.sections.axial_stiffness is not None:
+        fields.append("u")
+    return tuple(fields)
+
+
+def assemble_terms(basis: Basis, fields: tuple[str, ...], parameters: SectionParameters,
+                   parts: Sequence[Term]) -> sp.csr_matrix:
+    """Assemble the sum of weak-form terms into one sparse matrix."""
+    n = len(fields)
+
+    def integrand(*args: object) -> NDArray:
+        trial = section_motion(fields, args[:n])
+        test = section_motion(fields, args[n:2 * n])
+        return sum(part(trial, test, parameters) for part in parts)
+
+    return BilinearForm(integrand).assemble(basis).tocsr()
+
+
+def elastic_terms(fields: tuple[str, ...]) -> list[Term]:
+    parts: list[Term] = [terms.extension_bending_stiffness if "u" in fields else terms.bending_stiffness]
+    if "phi" in fields:
+        parts.append(terms.torsion_stiffness)
+    return parts
+
+
+def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """Mass matrix and K2 share of the tip mass: the rigid-body terms at the tip node (its centrifugal force is in
+    the tension)."""
+    tip = blade.tip_mass
+    T = dofs.kinematic_selector(len(dofs.nodes) - 1)
+    if tip is None or tip.mass == 0.0 and not tip.inertia.any():
+        zero = sp.csr_matrix((dofs.size, dofs.size))
+        return zero, zero
+    S, J = tip.mass * tip.offset, tip.second_moment
+    P = plane_of_rotation(blade)
+    inertia = projected_inertia(np.eye(3), np.float64(tip.mass), S, J)
+    K2 = -projected_inertia(P, np.float64(tip.mass), S, J)
+    K2[3:, 3:] -= rotation_second_order(P, np.array([blade.tip_radius, 0.0, 0.0]), S, J)
+    return (T.T @ sp.csr_matrix(inertia) @ T).tocsr(), (T.T @ sp.csr_matrix(K2) @ T).tocsr()
+
+
+def assemble_blade(blade: Blade, elements: int = 60) -> BladeMatrices:
+    """Assemble K0, K2 and M for ``blade`` on a mesh with about ``elements`` elements (stations are nodes)."""
+    fields = model_fields(blade)
+    mesh = span_mesh(span_nodes(blade.sections.span, elements))
+    basis = Basis(mesh, beam_element(fields), intorder=QUADRATURE_ORDER)
+    parameters = section_parameters(blade, basis.global_coordinates().value[0])
+    dofs = DofMap.from_basis(basis, fields)
+    M_tip, K2_tip = tip_body_matrices(blade, dofs)
+    K0 = assemble_terms(basis, fields, parameters, elastic_terms(fields))
+    K2 = assemble_terms(basis, fields, parameters, [terms.centrifugal_tension, terms.spin_softening,
+                                                    terms.rotation_second_order]) + K2_tip
+    M = assemble_terms(basis, fields, parameters, [terms.inertia]) + M_tip
+    free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
+    return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade)

@@ -1,0 +1,63 @@
+"""Named views of the global DOFs: field values and slopes at each mesh node, root conditions."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from skfem import CellBasis
+
+from ..elements import BENDING_FIELDS
+
+
+@dataclass(frozen=True)
+class DofMap:
+    """Global DOF numbers by name.
+
+    nodes : node positions along the span, m (increasing)
+    value : field -> DOF of the field's value at each node
+    slope : field -> DOF of the field's span derivative at each node (Hermite fields only)
+    field_dofs : field -> every DOF of the field (including element-interior ones)
+    size : total number of DOFs
+    """
+
+    fields: tuple[str, ...]
+    nodes: NDArray[np.float64]
+    value: dict[str, NDArray[np.int64]]
+    slope: dict[str, NDArray[np.int64]]
+    field_dofs: dict[str, NDArray[np.int64]]
+    size: int
+
+    @classmethod
+    def from_basis(cls, basis: CellBasis, fields: tuple[str, ...]) -> DofMap:
+        order = np.argsort(basis.mesh.p[0])
+        value, slope, row = {}, {}, 0
+        for name in fields:
+            value[name] = basis.nodal_dofs[row][order]
+            row += 1
+            if name in BENDING_FIELDS:
+                slope[name] = basis.nodal_dofs[row][order]
+                row += 1
+        field_dofs = dict(zip(fields, basis.split_indices()))
+        return cls(fields, basis.mesh.p[0][order], value, slope, field_dofs, basis.N)
+
+    def root_dofs(self, root: str) -> NDArray[np.int64]:
+        """DOFs held at the root: all for a cantilever; values only (slopes free) for a hinge."""
+        held = [self.value[name][0] for name in self.fields]
+        if root == "cantilever":
+            held += [self.slope[name][0] for name in self.slope]
+        return np.array(sorted(held), dtype=np.int64)
+
+    def kinematic_selector(self, node: int) -> sp.csr_matrix:
+        """6 x size matrix T with T x = (u, v, w, phi, -w', v') at ``node`` (zeros for absent fields)."""
+        entries = [("u", self.value, 0, 1.0), ("v", self.value, 1, 1.0), ("w", self.value, 2, 1.0),
+                   ("phi", self.value, 3, 1.0), ("w", self.slope, 4, -1.0), ("v", self.slope, 5, 1.0)]
+        rows, cols, signs = [], [], []
+        for name, table, row, sign in entries:
+            if name in table:
+                rows.append(row)
+                cols.append(table[name][node])
+                signs.append(sign)
+        return sp.csr_matrix((signs, (rows, cols)), shape=(6, self.size))

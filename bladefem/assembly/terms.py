@@ -1,0 +1,55 @@
+"""Weak forms of the rotating beam: one physical effect per function.
+
+Each term maps a trial and a test :class:`~bladefem.elements.SectionMotion` and the section parameters at the
+quadrature points (:class:`~bladefem.assembly.parameters.SectionParameters`) to the integrand of a bilinear form.
+Stiffness terms proportional to Omega^2 are written per unit Omega^2 (they build K2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..elements import SectionMotion
+from .parameters import SectionParameters
+
+
+def quadratic(a: NDArray, G: NDArray, b: NDArray) -> NDArray:
+    """a^T G b over the leading axes, keeping the quadrature axes."""
+    return np.einsum("i...,ij...,j...->...", a, G, b)
+
+
+def bending_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """EI about the tension centre, principal axes turned by twist and pitch: v''EIv'' coupled with w''."""
+    return quadratic(test.curvatures, p.bending, trial.curvatures)
+
+
+def extension_bending_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """EA with the tension-centre offset coupling extension u' and the curvatures (replaces bending_stiffness)."""
+    return quadratic(test.extension_curvatures, p.extension_bending, trial.extension_curvatures)
+
+
+def torsion_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """St-Venant torsion GJ phi' phi'."""
+    return p.torsion * test.phi_x * trial.phi_x
+
+
+def inertia(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Kinetic energy of the section slice: translation, centre-of-mass offset and rotary inertia."""
+    return quadratic(test.kinematic, p.inertia, trial.kinematic)
+
+
+def centrifugal_tension(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Geometric stiffness of the centrifugal tension N(x) (per Omega^2) acting on the bending slopes."""
+    return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x)
+
+
+def spin_softening(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Centrifugal softening of motion in the plane of rotation: -int rho |P dr1|^2 (per Omega^2)."""
+    return -quadratic(test.kinematic, p.spin, trial.kinematic)
+
+
+def rotation_second_order(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Centrifugal work on the second-order displacement of rotated section points (per Omega^2): the propeller
+    moment in torsion and the centre-of-mass-offset coupling of twist with the bending slopes."""
+    return -quadratic(test.rotation, p.rotation, trial.rotation)

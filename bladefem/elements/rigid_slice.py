@@ -1,0 +1,52 @@
+"""Inertial and centrifugal terms of a rigid body (a section slice or the tip mass) moving with a beam node.
+
+The body's points ``s`` (relative to the node) move by ``dr1 = t + Theta x s`` to first order and
+``dr2 = 1/2 Theta x (Theta x s)`` to second order, with ``d = (t, Theta)`` the node's kinematic vector. Everything
+needed is the body's mass ``m``, first moment ``S = int rho s`` and second moment ``J = int rho s s^T``. Arrays may
+carry trailing dimensions (elements, quadrature points).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: Levi-Civita symbol
+EPS = np.zeros((3, 3, 3))
+EPS[0, 1, 2] = EPS[1, 2, 0] = EPS[2, 0, 1] = 1.0
+EPS[0, 2, 1] = EPS[2, 1, 0] = EPS[1, 0, 2] = -1.0
+
+
+def skew(a: NDArray) -> NDArray:
+    """Cross-product matrix [a]x with [a]x b = a x b; a has shape (3, ...)."""
+    return -np.einsum("ijk,k...->ij...", EPS, a)
+
+
+def projected_inertia(Q: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArray:
+    """6x6 matrix G with ``int rho (dr1^T Q dr1) = d^T G d`` for a constant symmetric 3x3 ``Q``.
+
+    ``Q = I`` gives the mass matrix; ``Q = P = I - a a^T`` gives the spin-softening matrix (divided by -Omega^2).
+    """
+    shape = np.shape(m)
+    G = np.zeros((6, 6) + shape)
+    G[:3, :3] = np.einsum("ij,...->ij...", Q, m)
+    coupling = -np.einsum("ij,jk...->ik...", Q, skew(S))          # Q (-[S]x)
+    G[:3, 3:] = coupling
+    G[3:, :3] = np.swapaxes(coupling, 0, 1)
+    # int rho [s]x^T Q [s]x = eps_bac eps_edf Q_be J_cf
+    G[3:, 3:] = np.einsum("bac,edf,be,cf...->ad...", EPS, EPS, Q, J)
+    return G
+
+
+def rotation_second_order(Q: NDArray, r: NDArray, S: NDArray, J: NDArray) -> NDArray:
+    """3x3 matrix H with ``int rho (Q r0) . dr2 = 1/2 Theta^T H Theta``, the body at node position ``r``.
+
+    ``r0 = r + s`` is a point's position; ``dr2 = 1/2 Theta x (Theta x s) = 1/2 (Theta (Theta.s) - |Theta|^2 s)``.
+    ``r`` has shape (3, ...). The centrifugal potential's share is ``-Omega^2 / 2 Theta^T H Theta``.
+    """
+    QrS = np.einsum("ij,j...,k...->ik...", Q, r, S)
+    QJ = np.einsum("ij,jk...->ik...", Q, J)
+    outer = QrS + QJ
+    symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
+    trace = np.einsum("i...,ij,j...->...", r, Q, S) + np.einsum("ij,ji...->...", Q, J)
+    return symmetric - np.einsum("ij,...->ij...", np.eye(3), trace)

@@ -1,0 +1,57 @@
+"""Modal solve and results: ``modes`` at one rotor speed and ``campbell`` sweeps over rotor speed."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..assembly import BladeMatrices, assemble_blade
+from ..sections import Blade
+from .campbell import campbell_sweep, mac_matrix, track_families
+from .results import KINDS, CampbellResult, ModalResult, Mode, ModeFamily, ModeShape
+from .solve import solve_modes
+
+#: default relative frequency change accepted by the automatic mesh refinement
+MESH_RTOL = 1e-6
+
+
+def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
+                       start: int | None = None, max_elements: int = 2000) -> BladeMatrices:
+    """Assemble on meshes doubled from ``start`` elements until the lowest ``n_modes`` non-rotating frequencies
+    change by less than ``rtol`` (relative); returns the matrices of the finer mesh."""
+    elements = start or max(32, 2 * (blade.sections.stations - 1))
+    coarse = assemble_blade(blade, elements)
+    previous = solve_modes(coarse, 0.0, n_modes).frequencies_hz
+    while True:
+        elements *= 2
+        fine = assemble_blade(blade, elements)
+        current = solve_modes(fine, 0.0, n_modes).frequencies_hz
+        change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300))
+        if change < rtol or elements >= max_elements:
+            return fine
+        previous = current
+
+
+def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10) -> BladeMatrices:
+    """Matrices on a mesh of about ``elements`` elements, or on an automatically converged mesh (None)."""
+    return converged_matrices(blade, n_modes) if elements is None else assemble_blade(blade, elements)
+
+
+def modes(blade: Blade, rpm: float = 0.0, n_modes: int = 10, elements: int | None = None) -> ModalResult:
+    """Natural frequencies and mode shapes of ``blade`` at rotor speed ``rpm`` (rpm).
+
+    ``elements``: target number of elements over the span (stations are always nodes), or None for a mesh refined
+    until the frequencies converge to 1e-6.
+    """
+    return solve_modes(blade_matrices(blade, elements, n_modes), rpm, n_modes, blade.notes)
+
+
+def campbell(blade: Blade, rpm: Sequence[float], n_modes: int = 6, elements: int | None = None) -> CampbellResult:
+    """Modes over rotor speeds ``rpm`` (rpm), families tracked by MAC; the matrices are assembled once."""
+    return campbell_sweep(blade_matrices(blade, elements, n_modes), rpm, n_modes, blade.notes)
+
+
+__all__ = ["KINDS", "BladeMatrices", "CampbellResult", "ModalResult", "Mode", "ModeFamily", "ModeShape",
+           "blade_matrices", "campbell", "campbell_sweep", "converged_matrices", "mac_matrix", "modes",
+           "solve_modes", "track_families"]

@@ -1,0 +1,96 @@
+"""Generalized symmetric eigenproblem K x = omega^2 M x: dense for small systems, sparse shift-invert for large."""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as la
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..assembly import BladeMatrices
+from ..elements import FIELD_KINDS
+from .results import KINDS, Mode, ModalResult, ModeShape
+
+#: Systems up to this many free DOFs are solved with dense LAPACK (faster there than ARPACK)
+DENSE_LIMIT = 400
+
+
+def rpm_to_rad_s(rpm: float) -> float:
+    return float(rpm) * np.pi / 30.0
+
+
+def eigen_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray, NDArray]:
+    """Lowest ``n_modes`` eigenvalues (omega^2) and M-normalised eigenvectors of K x = lambda M x."""
+    n = K.shape[0]
+    n_modes = min(n_modes, n)
+    if n <= DENSE_LIMIT or n_modes >= n // 2:
+        values, vectors = la.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n_modes - 1],
+                                  check_finite=False)
+        return values, vectors
+    # shift below the lowest eigenvalue estimate so K - sigma M stays non-singular for rigid or slow modes
+    diagonal_ratio = np.min(K.diagonal() / np.maximum(M.diagonal(), 1e-300))
+    sigma = -abs(diagonal_ratio) * 1e-3 - 1e-6
+    values, vectors = spla.eigsh(K, k=n_modes, M=M, sigma=sigma, which="LM")
+    order = np.argsort(values)
+    values, vectors = values[order], vectors[:, order]
+    vectors /= np.sqrt(np.einsum("ij,ij->j", vectors, M @ vectors))
+    return values, vectors
+
+
+def relative_residuals(K: sp.spmatrix, M: sp.spmatrix, values: NDArray, vectors: NDArray) -> NDArray:
+    """||K x - lambda M x|| / ||K x|| for each eigenpair."""
+    Kx = K @ vectors
+    return np.linalg.norm(Kx - (M @ vectors) * values, axis=0) / np.maximum(np.linalg.norm(Kx, axis=0), 1e-300)
+
+
+def energy_fractions(matrices: BladeMatrices, M: sp.spmatrix, vectors: NDArray) -> list[dict[str, float]]:
+    """Kinetic-energy share of each field (flap, edge, torsion, axial) in each mode (diagonal field blocks)."""
+    position = np.full(matrices.dofs.size, -1)
+    position[matrices.free] = np.arange(len(matrices.free))
+    shares = {}
+    for name, dofs in matrices.dofs.field_dofs.items():
+        local = position[dofs]
+        local = local[local >= 0]
+        block = M[local][:, local]
+        part = vectors[local]
+        shares[FIELD_KINDS[name]] = np.einsum("ij,ij->j", part, block @ part)
+    total = sum(shares.values())
+    return [{kind: float(shares[kind][j] / total[j]) if kind in shares else 0.0 for kind in KINDS}
+            for j in range(vectors.shape[1])]
+
+
+def mode_shape(matrices: BladeMatrices, vector: NDArray) -> ModeShape:
+    """Nodal mode shape from a free-DOF eigenvector, scaled to a largest displacement of +1."""
+    full = np.zeros(matrices.dofs.size)
+    full[matrices.free] = vector
+    dofs = matrices.dofs
+
+    def take(table: dict[str, NDArray], name: str) -> NDArray:
+        return full[table[name]] if name in table else np.zeros(len(dofs.nodes))
+
+    shape = {"flap": take(dofs.value, "w"), "flap_slope": take(dofs.slope, "w"), "edge": take(dofs.value, "v"),
+             "edge_slope": take(dofs.slope, "v"), "twist": take(dofs.value, "phi"), "axial": take(dofs.value, "u")}
+    translations = np.concatenate([shape["flap"], shape["edge"], shape["axial"]])
+    reference = translations if np.abs(translations).max() > 1e-12 * np.abs(full).max() else shape["twist"]
+    scale = reference[np.argmax(np.abs(reference))]
+    return ModeShape(x=dofs.nodes, **{key: value / scale for key, value in shape.items()})
+
+
+def solve_modes(matrices: BladeMatrices, rpm: float = 0.0, n_modes: int = 10,
+                notes: tuple[str, ...] = ()) -> ModalResult:
+    """Natural modes of the assembled blade at ``rpm`` (rotor speed, rpm)."""
+    if n_modes < 1:
+        raise ValueError("n_modes must be at least 1")
+    K, M = matrices.reduced(rpm_to_rad_s(rpm))
+    values, vectors = eigen_pairs(K, M, n_modes)
+    residuals = relative_residuals(K, M, values, vectors)
+    fractions = energy_fractions(matrices, M, vectors)
+    modes = []
+    for j, value in enumerate(values):
+        kind = max(fractions[j], key=fractions[j].get)
+        frequency = np.sign(value) * np.sqrt(abs(value)) / (2 * np.pi)   # negative: statically unstable
+        modes.append(Mode(frequency_hz=float(frequency), kind=kind, energy_fractions=fractions[j],
+                          residual=float(residuals[j]), shape=mode_shape(matrices, vectors[:, j])))
+    return ModalResult(rotor_speed_rpm=float(rpm), modes=modes, stations=matrices.blade.sections.span.copy(),
+                       vectors=vectors, n_dofs=len(matrices.free), notes=notes)
