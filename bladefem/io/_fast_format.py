@@ -1,0 +1,235 @@
+"""Line parser shared by the FAST-style ("value  Key  - description") input files of ElastoDyn and BModes.
+
+A FAST input file is a sequence of lines; most hold one value followed by its key name and a comment:
+``     63   TipRad      - The distance from the rotor apex to the blade tip (meters)``. Tables are blocks of rows
+of numbers. This module finds keys wherever they are (the files are read by key, not by position, so reordered or
+commented files still read) and reports every problem as an :class:`InputError` naming the file, the 1-based line
+and the field.
+
+The raw text is kept (:class:`FastText`) so that writers can change a value in place and leave every other byte of
+the file as it was.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import InputError
+
+#: A value (quoted string or a token without blanks) followed by a key name such as ``TipRad`` or ``PreCone(1)``.
+KEY_LINE = re.compile(r"""^(?P<lead>\s*)(?P<value>"[^"]*"|'[^']*'|[^\s"',]+)(?P<gap>\s+)"""
+                      r"""(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?)(?=\s|$)""")
+TRUE_WORDS = ("true", "t", ".true.")
+FALSE_WORDS = ("false", "f", ".false.")
+
+
+@dataclass(frozen=True)
+class KeyValue:
+    """One ``value key`` line: the value's text, its 1-based line number, and its character span in the line."""
+
+    text: str
+    line: int
+    start: int
+    end: int
+
+
+@dataclass
+class FastText:
+    """The lines of an input file (line endings kept) and an index of its ``value key`` lines."""
+
+    path: str
+    lines: list[str]
+    keys: dict[str, KeyValue] = field(default_factory=dict)
+
+    @classmethod
+    def read(cls, path: str | os.PathLike) -> FastText:
+        """Read a file as text; a missing or unreadable file is an :class:`InputError`."""
+        path = str(path)
+        try:
+            raw = Path(path).read_bytes()
+        except OSError as error:
+            raise InputError(f"cannot read file ({error.strerror or error})", file=path) from None
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError:
+            text = raw.decode("latin-1")
+        if "\x00" in text:
+            raise InputError("not a text file (contains NUL bytes)", file=path, line=text[:text.index("\x00")].count("\n") + 1)
+        return cls.parse(path, text)
+
+    @classmethod
+    def parse(cls, path: str, text: str) -> FastText:
+        lines = text.splitlines(keepends=True)
+        keys: dict[str, KeyValue] = {}
+        for number, line in enumerate(lines, start=1):
+            match = KEY_LINE.match(line)
+            if match is None or match["key"] in keys:
+                continue
+            value = match["value"]
+            if value[0] in "\"'":
+                value = value[1:-1]
+            keys[match["key"]] = KeyValue(value, number, match.start("value"), match.end("value"))
+        return cls(path, lines, keys)
+
+    # -- errors -------------------------------------------------------------------------------------------------
+    def error(self, message: str, line: int | None = None, field: str | None = None) -> InputError:
+        return InputError(message, file=self.path, line=line, field=field)
+
+    def find(self, key: str) -> KeyValue:
+        try:
+            return self.keys[key]
+        except KeyError:
+            raise self.error("missing key", line=len(self.lines) or None, field=key) from None
+
+    def has(self, key: str) -> bool:
+        return key in self.keys
+
+    # -- typed values -------------------------------------------------------------------------------------------
+    def float(self, key: str, *, positive: bool = False, non_negative: bool = False) -> float:
+        entry = self.find(key)
+        value = to_float(entry.text, self.error, entry.line, key)
+        if positive and value <= 0:
+            raise self.error(f"must be positive, got {entry.text}", entry.line, key)
+        if non_negative and value < 0:
+            raise self.error(f"must not be negative, got {entry.text}", entry.line, key)
+        return value
+
+    def int(self, key: str, *, minimum: int | None = None) -> int:
+        entry = self.find(key)
+        value = to_int(entry.text, self.error, entry.line, key)
+        if minimum is not None and value < minimum:
+            raise self.error(f"must be at least {minimum}, got {value}", entry.line, key)
+        return value
+
+    def bool(self, key: str) -> bool:
+        entry = self.find(key)
+        word = entry.text.strip().lower()
+        if word in TRUE_WORDS:
+            return True
+        if word in FALSE_WORDS:
+            return False
+        raise self.error(f"expected True or False, got '{entry.text}'", entry.line, key)
+
+    def string(self, key: str) -> str:
+        return self.find(key).text
+
+    def line_of(self, key: str) -> int:
+        return self.find(key).line
+
+    # -- tables -------------------------------------------------------------------------------------------------
+    def header_line(self, first_column: str, after: int = 0) -> int:
+        """1-based number of the first line after line ``after`` whose first word is ``first_column``."""
+        for number in range(after + 1, len(self.lines) + 1):
+            words = self.lines[number - 1].split()
+            if words and words[0].lower() == first_column.lower():
+                return number
+        raise self.error(f"table header starting with '{first_column}' not found", len(self.lines) or None,
+                         first_column)
+
+    def table(self, first_line: int, rows: int, columns: tuple[str, ...]) -> list[list[float]]:
+        """Read ``rows`` rows of numbers starting at 1-based line ``first_line``, one value per column name."""
+        table = []
+        for number in range(first_line, first_line + rows):
+            if number > len(self.lines):
+                raise self.error(f"table ends early: expected {rows} rows, found {number - first_line}", number - 1,
+                                 columns[0])
+            table.append(self.row(number, columns))
+        return table
+
+    def row(self, number: int, columns: tuple[str, ...]) -> list[float]:
+        words = self.lines[number - 1].split()
+        values = []
+        for i, name in enumerate(columns):
+            if i >= len(words):
+                raise self.error(f"expected {len(columns)} columns, found {len(words)}", number, name)
+            values.append(to_float(words[i], self.error, number, name))
+        return values
+
+    # -- in-place editing ---------------------------------------------------------------------------------------
+    def replaced(self, values: dict[str, str]) -> str:
+        """The file's text with the value of each given key replaced, right-aligned in its old field when it fits;
+        every other byte is kept."""
+        lines = list(self.lines)
+        for key, new in values.items():
+            entry = self.find(key)
+            line = lines[entry.line - 1]
+            lead = KEY_LINE.match(line)["lead"]  # type: ignore[index]
+            width = entry.end
+            text = new.rjust(width) if len(new) < width else (lead[:1] + new if lead else new)
+            lines[entry.line - 1] = text + line[entry.end:]
+        return "".join(lines)
+
+
+def to_float(text: str, error, line: int | None, key: str) -> float:
+    """A finite float from Fortran-style text (``1.0D+3`` and ``1.0d3`` accepted)."""
+    try:
+        value = float(text.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        raise error(f"expected a number, got '{text}'", line, key) from None
+    if not math.isfinite(value):
+        raise error(f"value is not a finite number ({text})", line, key)
+    return value
+
+
+def to_int(text: str, error, line: int | None, key: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    value = to_float(text, error, line, key)
+    if value != int(value):
+        raise error(f"expected an integer, got '{text}'", line, key)
+    return int(value)
+
+
+def format_number(value: float) -> str:
+    """Shortest text that reads back as exactly the same float."""
+    return repr(float(value))
+
+
+def exact_inverse(value: float, to_file, from_file) -> float:
+    """A number ``y`` within a few ulps of ``to_file(value)`` with ``from_file(y) == value`` exactly, so that a file
+    written from SI values (e.g. radians written as degrees) reads back bit for bit."""
+    guess = to_file(value)
+    up = down = guess
+    candidates = [guess]
+    for _ in range(16):
+        up, down = math.nextafter(up, math.inf), math.nextafter(down, -math.inf)
+        candidates += [up, down]
+    for candidate in candidates:
+        if from_file(candidate) == value:
+            return candidate
+    return guess
+
+
+def degrees_exact(radians: float) -> float:
+    """Degrees that :func:`math.radians` maps back to exactly ``radians``."""
+    return exact_inverse(float(radians), math.degrees, math.radians)
+
+
+def rpm_to_rad_per_s(rpm: float) -> float:
+    return rpm * math.pi / 30.0
+
+
+def rpm_exact(rad_per_s: float) -> float:
+    """rpm that :func:`rpm_to_rad_per_s` maps back to exactly ``rad_per_s``."""
+    return exact_inverse(float(rad_per_s), lambda w: w * 30.0 / math.pi, rpm_to_rad_per_s)
+
+
+def write_atomically(path: str | os.PathLike, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same folder and :func:`os.replace`."""
+    path = Path(path)
+    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8", newline="") as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+        raise
