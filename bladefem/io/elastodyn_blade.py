@@ -24,6 +24,7 @@ from ..errors import InputError
 from ..sections import Blade, SectionTable, TipMass
 from ._fast_format import FastText, degrees_exact, format_number, write_atomically
 from ._modeshape_blocks import block_lines, block_values, read_block
+from .elastodyn_main import read_elastodyn_main
 
 #: Mode name -> ElastoDyn block prefix.
 BLADE_BLOCKS = {"flap1": "BldFl1Sh", "flap2": "BldFl2Sh", "edge1": "BldEdgSh"}
@@ -178,7 +179,6 @@ def blade_from_elastodyn(blade_file: ElastoDynBladeFile, *, tip_radius: float, h
 def blade_from_elastodyn_main(main_path: str | Path, pitch: float = 0.0) -> Blade:
     """A :class:`Blade` from an ElastoDyn main file: BldFile(1), TipRad, HubRad, PreCone(1), TipMass(1).
     ``pitch`` in rad."""
-    from .elastodyn_main import read_elastodyn_main
     main = read_elastodyn_main(main_path)
     blade = blade_from_elastodyn(read_elastodyn_blade(main.blade_files[0]), tip_radius=main.tip_radius,
                                  hub_radius=main.hub_radius, precone=main.precone[0], pitch=pitch,

@@ -41,6 +41,8 @@ SCALARS = {
     "drivetrain_damper": ("DTTorDmp", "mass"),
     "rotor_speed": ("RotSpeed", "rpm"),
 }
+#: ElastoDyn's own analysis nodes: attribute -> key.
+NODE_COUNTS = {"blade_nodes": "BldNodes", "tower_nodes": "TwrNodes"}
 NACELLE_CM_KEYS = ("NacCMxn", "NacCMyn", "NacCMzn")
 
 
@@ -61,6 +63,7 @@ class ElastoDynMain:
     yaw_bearing_mass : YawBrMass, kg
     drivetrain_spring : DTTorSpr, N m/rad; drivetrain_damper : DTTorDmp, N m s/rad
     rotor_speed : RotSpeed, rad/s
+    blade_nodes, tower_nodes : BldNodes, TwrNodes, ElastoDyn's numbers of analysis nodes (equal elements)
     dofs : DOF switch name -> flag
     blade_files : BldFile(1..NumBl), resolved against the main file's folder
     tower_file : TwrFile, resolved likewise
@@ -88,6 +91,8 @@ class ElastoDynMain:
     drivetrain_spring: float
     drivetrain_damper: float
     rotor_speed: float
+    blade_nodes: int
+    tower_nodes: int
     dofs: dict[str, bool]
     blade_files: tuple[Path, ...]
     tower_file: Path
@@ -117,7 +122,8 @@ def read_elastodyn_main(path: str | Path) -> ElastoDynMain:
     tip_radius, hub_radius = values["tip_radius"], values["hub_radius"]
     if tip_radius <= hub_radius:
         raise text.error(f"must exceed HubRad ({hub_radius}), got {tip_radius}", text.line_of("TipRad"), "TipRad")
-    key_names = ["NumBl", *(key for key, _ in SCALARS.values()), *NACELLE_CM_KEYS, "TwrFile"]
+    values.update({name: text.int(key, minimum=1) for name, key in NODE_COUNTS.items()})
+    key_names = ["NumBl", *NODE_COUNTS.values(), *(key for key, _ in SCALARS.values()), *NACELLE_CM_KEYS, "TwrFile"]
     key_names += [f"{key}({i})" for key in ("PreCone", "TipMass", "BldFile") for i in blades]
     key_names += [key for key in DOF_KEYS if text.has(key)]
     return ElastoDynMain(
@@ -164,6 +170,7 @@ def elastodyn_main_text(main: ElastoDynMain, path: str | Path | None = None) -> 
             value = degrees_exact(value) if kind == "deg" else rpm_exact(value) if kind == "rpm" else value
             values[key] = format_number(value)
     values["NumBl"] = str(main.num_blades)
+    values.update({key: str(getattr(main, name)) for name, key in NODE_COUNTS.items()})
     for i in range(main.num_blades):
         values[f"PreCone({i + 1})"] = format_number(degrees_exact(main.precone[i]))
         values[f"TipMass({i + 1})"] = format_number(main.tip_mass[i])

@@ -14,13 +14,16 @@ from .solve import solve_modes
 
 #: default relative frequency change accepted by the automatic mesh refinement
 MESH_RTOL = 1e-6
+#: error ratio of a mesh and its halving for h^4 convergence, minus one
+RICHARDSON = 15.0
 
 
 def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
                        start: int | None = None, max_elements: int = 2000) -> BladeMatrices:
     """Assemble on meshes doubled from ``start`` elements until the lowest ``n_modes`` non-rotating frequencies
-    change by less than ``rtol`` (relative); returns the matrices of the finer mesh."""
-    elements = start or max(32, 2 * (blade.sections.stations - 1))
+    are converged to ``rtol`` (relative): the error of the finer mesh is estimated as the change / 15 (Richardson
+    for errors falling as h^4). Returns the matrices of the finer mesh."""
+    elements = start or max(24, blade.sections.stations - 1)
     coarse = assemble_blade(blade, elements)
     previous = solve_modes(coarse, 0.0, n_modes).frequencies_hz
     while True:
@@ -28,7 +31,7 @@ def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
         fine = assemble_blade(blade, elements)
         current = solve_modes(fine, 0.0, n_modes).frequencies_hz
         change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300))
-        if change < rtol or elements >= max_elements:
+        if change / RICHARDSON < rtol or elements >= max_elements:
             return fine
         previous = current
 

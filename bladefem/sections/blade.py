@@ -108,3 +108,20 @@ class Blade:
     def with_(self, **changes: object) -> Blade:
         """A copy with some fields changed (e.g. ``blade.with_(pitch=0.1)``)."""
         return replace(self, **changes)
+
+
+def tip_mass_at_section(mass: float, theta: float, axial_offset: float = 0.0, chordwise_offset: float = 0.0,
+                        flap_inertia: float = 0.0, edge_inertia: float = 0.0,
+                        torsion_inertia: float = 0.0) -> TipMass:
+    """A tip mass described in the tip section's frame, turned by the total angle ``theta`` (twist + pitch, rad).
+
+    Offsets in m (axial beyond the tip, chordwise toward the leading edge); inertias about its centre of mass in
+    kg m^2: ``flap_inertia`` about the chord axis, ``edge_inertia`` about the thickness axis, ``torsion_inertia``
+    about the span axis.
+    """
+    chord = np.array([0.0, np.cos(theta), -np.sin(theta)])
+    thickness = np.array([0.0, np.sin(theta), np.cos(theta)])
+    span = np.array([1.0, 0.0, 0.0])
+    inertia = (torsion_inertia * np.outer(span, span) + flap_inertia * np.outer(chord, chord)
+               + edge_inertia * np.outer(thickness, thickness))
+    return TipMass(mass=mass, offset=axial_offset * span + chordwise_offset * chord, inertia=inertia)

@@ -1,0 +1,174 @@
+"""bladefem's own case file (YAML): a blade's geometry, root, tip mass and section table.
+
+Example (every unit is in the key name; see the README for all keys)::
+
+    kind: blade
+    name: NREL 5MW blade
+    hub_radius_m: 1.5
+    tip_radius_m: 63.0          # needed when the table gives span_fraction
+    precone_deg: -2.5
+    pitch_deg: 0.0
+    root: cantilever            # or hinged
+    tip_mass: {mass_kg: 0, axial_offset_m: 0, chordwise_offset_m: 0,
+               flap_inertia_kg_m2: 0, edge_inertia_kg_m2: 0, torsion_inertia_kg_m2: 0}
+    sections:
+      columns: [span_fraction, twist_deg, mass_kg_per_m, flap_stiffness_N_m2, edge_stiffness_N_m2]
+      rows:
+        - [0.0, 13.308, 678.935, 1.811e10, 1.811e10]
+        - ...
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..sections import ROOTS, Blade, SectionTable, tip_mass_at_section
+from .yamlnodes import Key, load_yaml
+
+#: case-file column -> (SectionTable field, factor to SI)
+COLUMNS: dict[str, tuple[str, float]] = {
+    "span_m": ("span", 1.0),
+    "span_fraction": ("span", 1.0),
+    "mass_kg_per_m": ("mass", 1.0),
+    "flap_stiffness_N_m2": ("flap_stiffness", 1.0),
+    "edge_stiffness_N_m2": ("edge_stiffness", 1.0),
+    "torsion_stiffness_N_m2": ("torsion_stiffness", 1.0),
+    "axial_stiffness_N": ("axial_stiffness", 1.0),
+    "twist_deg": ("twist", math.pi / 180),
+    "flap_inertia_kg_m": ("flap_inertia", 1.0),
+    "edge_inertia_kg_m": ("edge_inertia", 1.0),
+    "cm_offset_m": ("cm_offset", 1.0),
+    "shear_centre_offset_m": ("shear_centre_offset", 1.0),
+    "tension_centre_offset_m": ("tension_centre_offset", 1.0),
+}
+REQUIRED_COLUMNS = ("mass_kg_per_m", "flap_stiffness_N_m2", "edge_stiffness_N_m2")
+TOP_KEYS = {"kind", "name", "source", "hub_radius_m", "tip_radius_m", "precone_deg", "pitch_deg", "root",
+            "tip_mass", "sections", "chord_m", "notes"}
+TIP_KEYS = {"mass_kg": "mass", "axial_offset_m": "axial_offset", "chordwise_offset_m": "chordwise_offset",
+            "flap_inertia_kg_m2": "flap_inertia", "edge_inertia_kg_m2": "edge_inertia",
+            "torsion_inertia_kg_m2": "torsion_inertia"}
+
+
+class _Case:
+    """Reads values out of the parsed YAML with errors that name file, line and field."""
+
+    def __init__(self, path: Path, data: Any, lines: dict[Key, int]) -> None:
+        self.path, self.data, self.lines = path, data, lines
+
+    def error(self, message: str, key: Key, field: str | None = None) -> InputError:
+        line = None
+        for n in range(len(key), -1, -1):
+            if key[:n] in self.lines:
+                line = self.lines[key[:n]]
+                break
+        return InputError(message, file=str(self.path), line=line, field=field or ".".join(map(str, key)))
+
+    def get(self, key: Key) -> Any:
+        value = self.data
+        for part in key:
+            if not isinstance(value, dict) or part not in value:
+                return None
+            value = value[part]
+        return value
+
+    def number(self, key: Key, default: float | None = None, field: str | None = None) -> float:
+        value = self.get(key)
+        if value is None:
+            if default is None:
+                raise self.error("missing value", key, field)
+            return default
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise self.error(f"expected a finite number, got {value!r}", key, field)
+        return float(value)
+
+
+def _section_table(case: _Case, hub_radius: float) -> SectionTable:
+    key: Key = ("sections",)
+    sections = case.get(key)
+    if not isinstance(sections, dict):
+        raise case.error("missing 'sections' mapping with 'columns' and 'rows'", key)
+    columns, rows = sections.get("columns"), sections.get("rows")
+    if not isinstance(columns, list) or not columns:
+        raise case.error("expected a list of column names", key + ("columns",))
+    for i, name in enumerate(columns):
+        if name not in COLUMNS:
+            raise case.error(f"unknown column '{name}' (known: {', '.join(COLUMNS)})", key + ("columns", i), str(name))
+    if len(set(columns)) != len(columns):
+        raise case.error("a column is named twice", key + ("columns",))
+    spans = [c for c in columns if COLUMNS[c][0] == "span"]
+    if len(spans) != 1:
+        raise case.error("give exactly one of span_m or span_fraction", key + ("columns",))
+    for name in REQUIRED_COLUMNS:
+        if name not in columns:
+            raise case.error(f"required column '{name}' is missing", key + ("columns",))
+    if not isinstance(rows, list) or len(rows) < 2:
+        raise case.error("expected at least two rows", key + ("rows",))
+    values = np.empty((len(rows), len(columns)))
+    for i, row in enumerate(rows):
+        if not isinstance(row, list) or len(row) != len(columns):
+            count = len(row) if isinstance(row, list) else 1
+            raise case.error(f"row has {count} values, expected {len(columns)} ({', '.join(columns)})",
+                             key + ("rows", i), "rows")
+        for j, value in enumerate(row):
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise case.error(f"expected a number, got {value!r}", key + ("rows", i, j), columns[j])
+            values[i, j] = value
+    table = {COLUMNS[name][0]: values[:, j] * COLUMNS[name][1] for j, name in enumerate(columns)}
+    if "span_fraction" in columns:
+        tip = case.number(("tip_radius_m",), field="tip_radius_m")
+        if tip <= hub_radius:
+            raise case.error("tip_radius_m must exceed hub_radius_m", ("tip_radius_m",))
+        table["span"] = table["span"] * (tip - hub_radius)
+    lines = tuple(case.lines.get(key + ("rows", i), 0) for i in range(len(rows)))
+    return SectionTable(**table, source=str(case.path), lines=lines)
+
+
+def read_case(path: str | Path) -> Blade:
+    """Read a bladefem YAML case file into a :class:`~bladefem.sections.Blade`."""
+    path = Path(path)
+    data, lines = load_yaml(path)
+    case = _Case(path, data, lines)
+    if not isinstance(data, dict):
+        raise case.error("expected a mapping of keys at the top level", ())
+    for key in data:
+        if key not in TOP_KEYS:
+            raise case.error(f"unknown key (known: {', '.join(sorted(TOP_KEYS))})", (key,), str(key))
+    kind = data.get("kind", "blade")
+    if kind != "blade":
+        raise case.error(f"unknown kind '{kind}' (this reader takes 'blade')", ("kind",))
+    hub_radius = case.number(("hub_radius_m",), 0.0)
+    if hub_radius < 0:
+        raise case.error("must not be negative", ("hub_radius_m",))
+    pitch = math.radians(case.number(("pitch_deg",), 0.0))
+    root = data.get("root", "cantilever")
+    if root not in ROOTS:
+        raise case.error(f"unknown root condition '{root}' (choose from {', '.join(ROOTS)})", ("root",))
+    sections = _section_table(case, hub_radius)
+    tip_mass = None
+    if data.get("tip_mass") is not None:
+        tip = data["tip_mass"]
+        if not isinstance(tip, dict):
+            raise case.error("expected a mapping", ("tip_mass",))
+        for key in tip:
+            if key not in TIP_KEYS:
+                raise case.error(f"unknown key (known: {', '.join(TIP_KEYS)})", ("tip_mass", key), str(key))
+        values = {TIP_KEYS[k]: case.number(("tip_mass", k), 0.0) for k in TIP_KEYS}
+        for name, value in values.items():
+            if value < 0 and "offset" not in name:
+                raise case.error("must not be negative", ("tip_mass", next(k for k, v in TIP_KEYS.items()
+                                                                              if v == name)))
+        theta = float(sections.twist[-1]) + pitch
+        tip_mass = tip_mass_at_section(theta=theta, **values)
+    notes = [str(note) for note in data.get("notes", []) or []]
+    if sections.torsion_stiffness is None:
+        notes.append("no torsion_stiffness column: torsion is rigid (the twist DOF is removed)")
+    if sections.axial_stiffness is None:
+        notes.append("no axial_stiffness column: the blade is inextensible (the axial DOF is removed)")
+    return Blade(sections=sections, hub_radius=hub_radius, precone=math.radians(case.number(("precone_deg",), 0.0)),
+                 pitch=pitch, tip_mass=tip_mass, root=root, name=str(data.get("name", path.stem)),
+                 notes=tuple(notes))

@@ -1,0 +1,63 @@
+"""Results as plain data (the CLI's ``--json``) and atomic file writing."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..modal import CampbellResult, ModalResult
+
+
+def _floats(values: np.ndarray) -> list[float]:
+    return [float(v) for v in np.asarray(values).ravel()]
+
+
+def modal_to_dict(result: ModalResult, method: str = "fe") -> dict[str, Any]:
+    """``{"frequencies_hz": [...], "modes": [{"frequency_hz", "kind", ...}], ...}``; shapes at the stations."""
+    modes = []
+    for mode in result.modes:
+        shape = mode.shape.at(result.stations)
+        modes.append({
+            "frequency_hz": mode.frequency_hz,
+            "kind": mode.kind,
+            "energy_fractions": mode.energy_fractions,
+            "residual": mode.residual,
+            "shape": {"x_m": _floats(result.stations), "flap": _floats(shape["flap"]),
+                      "flap_slope": _floats(shape["flap_slope"]), "edge": _floats(shape["edge"]),
+                      "edge_slope": _floats(shape["edge_slope"]), "twist_rad": _floats(shape["twist"]),
+                      "axial": _floats(shape["axial"])},
+        })
+    return {"method": method, "rotor_speed_rpm": result.rotor_speed_rpm,
+            "frequencies_hz": _floats(result.frequencies_hz), "modes": modes, "n_dofs": result.n_dofs,
+            "notes": list(result.notes)}
+
+
+def campbell_to_dict(result: CampbellResult) -> dict[str, Any]:
+    """``{"rpm": [...], "families": [{"kind", "frequencies_hz": [...], "min_mac"}], "notes": [...]}``."""
+    return {"rpm": _floats(result.rpm),
+            "families": [{"kind": family.kind, "frequencies_hz": _floats(family.frequencies_hz),
+                          "min_mac": float(family.mac.min())} for family in result.families],
+            "notes": list(result.notes)}
+
+
+def write_atomic(path: str | os.PathLike, data: bytes | str) -> None:
+    """Write a whole file or nothing: write a temporary file in the same folder, then rename it."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(data.encode() if isinstance(data, str) else data)
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def dumps(data: dict[str, Any]) -> str:
+    return json.dumps(data, indent=2)

@@ -1,0 +1,1 @@
+"""Independent structural models that share only the section-property input with the finite elements."""

@@ -1,0 +1,1 @@
+"""Figures: Campbell diagrams (matplotlib) and mode pictures."""
