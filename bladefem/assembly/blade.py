@@ -101,7 +101,7 @@ def assemble_blade(blade: Blade, elements: int = 60) -> BladeMatrices:
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(basis, fields, parameters, elastic_terms(fields))
-    K2 = assemble_terms(basis, fields, parameters, [terms.centrifugal_tension, terms.spin_softening,
+    K2 = assemble_terms(basis, fields, parameters, [terms.axial_force_stiffness, terms.spin_softening,
                                                     terms.rotation_second_order]) + K2_tip
     M = assemble_terms(basis, fields, parameters, [terms.inertia]) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))

@@ -39,8 +39,9 @@ def inertia(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> 
     return quadratic(test.kinematic, p.inertia, trial.kinematic)
 
 
-def centrifugal_tension(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
-    """Geometric stiffness of the centrifugal tension N(x) (per Omega^2) acting on the bending slopes."""
+def axial_force_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Geometric stiffness N(x) v'v' + N(x) w'w' of an axial force acting on the bending slopes: for a blade the
+    centrifugal tension per Omega^2 (:func:`~bladefem.assembly.parameters.centrifugal_tension`)."""
     return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x)
 
 

@@ -45,10 +45,12 @@ COLUMNS: dict[str, tuple[str, float]] = {
     "cm_offset_m": ("cm_offset", 1.0),
     "shear_centre_offset_m": ("shear_centre_offset", 1.0),
     "tension_centre_offset_m": ("tension_centre_offset", 1.0),
+    "chord_m": ("chord", 1.0),
+    "pitch_axis_fraction": ("pitch_axis", 1.0),
 }
 REQUIRED_COLUMNS = ("mass_kg_per_m", "flap_stiffness_N_m2", "edge_stiffness_N_m2")
 TOP_KEYS = {"kind", "name", "source", "hub_radius_m", "tip_radius_m", "precone_deg", "pitch_deg", "root",
-            "tip_mass", "sections", "chord_m", "notes"}
+            "tip_mass", "sections", "notes"}
 TIP_KEYS = {"mass_kg": "mass", "axial_offset_m": "axial_offset", "chordwise_offset_m": "chordwise_offset",
             "flap_inertia_kg_m2": "flap_inertia", "edge_inertia_kg_m2": "edge_inertia",
             "torsion_inertia_kg_m2": "torsion_inertia"}

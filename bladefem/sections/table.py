@@ -22,6 +22,8 @@ from ..errors import InputError
 POSITIVE = ("mass", "flap_stiffness", "edge_stiffness")
 #: Optional stiffness columns; ``None`` means rigid (the DOF is removed from the model).
 OPTIONAL_STIFFNESS = ("torsion_stiffness", "axial_stiffness")
+#: Optional planform geometry (not used by the mechanics)
+GEOMETRY = ("chord", "pitch_axis")
 #: Columns that default to zero.
 ZERO_DEFAULT = ("twist", "flap_inertia", "edge_inertia", "cm_offset", "shear_centre_offset",
                 "tension_centre_offset")
@@ -48,6 +50,9 @@ class SectionTable:
     shear_centre_offset : chordwise offset of the shear centre, m (kept for reference: in Euler-Bernoulli bending
         with St-Venant torsion the strain energy does not depend on it)
     tension_centre_offset : chordwise offset of the tension (elastic) centre, m
+    chord : chord length, m (geometry only: for drawing the planform; None if unknown)
+    pitch_axis : chordwise position of the reference (pitch) axis as a fraction of the chord from the leading
+        edge (geometry only; None if unknown)
     """
 
     span: NDArray[np.float64]
@@ -62,6 +67,8 @@ class SectionTable:
     cm_offset: NDArray[np.float64] | None = None
     shear_centre_offset: NDArray[np.float64] | None = None
     tension_centre_offset: NDArray[np.float64] | None = None
+    chord: NDArray[np.float64] | None = None
+    pitch_axis: NDArray[np.float64] | None = None
     source: str = field(default="", compare=False)
     #: 1-based line number of each station in ``source`` (for error messages), if known
     lines: tuple[int, ...] | None = field(default=None, compare=False)
@@ -69,7 +76,7 @@ class SectionTable:
     def __post_init__(self) -> None:
         span = np.asarray(self.span, dtype=float)
         object.__setattr__(self, "span", span)
-        for name in POSITIVE + OPTIONAL_STIFFNESS + ZERO_DEFAULT:
+        for name in POSITIVE + OPTIONAL_STIFFNESS + ZERO_DEFAULT + GEOMETRY:
             value = getattr(self, name)
             if value is None:
                 if name in ZERO_DEFAULT:
@@ -111,7 +118,7 @@ class SectionTable:
         if steps.size:
             i = int(steps[0]) + 1
             raise self._error(f"stations must increase strictly ({self.span[i - 1]} then {self.span[i]})", i, "span")
-        for name in POSITIVE + OPTIONAL_STIFFNESS:
+        for name in POSITIVE + OPTIONAL_STIFFNESS + ("chord",):
             value = getattr(self, name)
             if value is None:
                 continue
