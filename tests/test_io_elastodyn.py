@@ -221,3 +221,51 @@ def test_missing_blade_file_names_the_main_file_key(tmp_path):
     with pytest.raises(InputError) as info:
         blade_from_elastodyn_main(path)
     assert "nowhere.dat" in str(info.value)
+
+
+# -- tower file --------------------------------------------------------------------------------------------------
+
+TOWER = DATA / "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"
+
+
+def test_tower_file_matches_the_published_table():
+    from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
+    tower_file = read_elastodyn_tower(TOWER)
+    assert tower_file.stations == 11 and tower_file.station_lines == tuple(range(20, 31))
+    assert tower_file.mass[0] == 5590.87 and tower_file.fa_stiffness[-1] == 1.1582e11
+    assert tower_file.modes["fa2"].tolist() == [-70.5319, -63.7623, 289.737, -176.513, 22.0706]
+    tower = tower_from_elastodyn(tower_file, height=87.6, top_mass=350000.0)
+    # NREL/TP-500-38060 Table 6-1: tower mass 347,460 kg (the report integrates the same linear distribution)
+    assert tower.sections.mass_moments()[0] == pytest.approx(347460, rel=1e-5)
+    assert tower.as_beam().tip_mass.mass == 350000.0
+
+
+def test_tower_round_trip_and_in_place_update(tmp_path):
+    from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_with_mode_shapes, write_elastodyn_tower
+    original = read_elastodyn_tower(TOWER)
+    write_elastodyn_tower(original, tmp_path / "tower.dat")
+    again = read_elastodyn_tower(tmp_path / "tower.dat")
+    for name in ("fraction", "mass", "fa_stiffness", "ss_stiffness"):
+        assert np.array_equal(getattr(again, name), getattr(original, name)), name
+    for name in ("adj_mass", "adj_fa_stiffness", "adj_ss_stiffness", "fa_tuners", "ss_tuners", "fa_damping_percent",
+                 "ss_damping_percent", "title"):
+        assert getattr(again, name) == getattr(original, name), name
+    assert all(np.array_equal(again.modes[k], original.modes[k]) for k in original.modes)
+    old, new = tower_with_mode_shapes(TOWER, {"ss1": np.array([1.0, 0.0, 0.0, 0.0, 0.0])})
+    changed = [i + 1 for i, (a, b) in enumerate(zip(old.splitlines(), new.splitlines())) if a != b]
+    assert changed == [43, 44, 45, 46, 47] and len(old) - len(new) < 40
+
+
+@pytest.mark.parametrize(("line", "new", "field"), [
+    (22, "2.0000000E-01  4.8857600E+03  4.6326700E+11", "TwSSStif"),
+    (22, "2.0000000E-01  -4.8857600E+03  4.6326700E+11  4.6326700E+11", "TMassDen"),
+    (22, "0.05  4.8857600E+03  4.6326700E+11  4.6326700E+11", "HtFract"),
+    (14, "        abc   AdjTwMa     - Factor", "AdjTwMa"),
+    (18, "  HtFract       TMassDen         TwFAStif", "TwSSStif"),
+])
+def test_malformed_tower_file(tmp_path, line, new, field):
+    from bladefem.io.elastodyn_tower import read_elastodyn_tower
+    path = edited(tmp_path, TOWER, line, new)
+    with pytest.raises(InputError) as info:
+        read_elastodyn_tower(path)
+    assert info.value.field == field and info.value.line == line and info.value.file == str(path)

@@ -1,7 +1,8 @@
 """ElastoDyn's polynomial mode-shape blocks: five coefficients ``c_2 .. c_6`` of ``phi(x) = sum c_i x^i``.
 
-ElastoDyn normalises each shape to 1 at the tip (``sum c_i = 1``) and refuses a block that does not add up to 1
-within 0.001; the readers apply the same rule.
+ElastoDyn normalises each shape to 1 at the tip (``sum c_i = 1``) and refuses a block whose sum is off by more
+than 0.001 (a single-precision check). Shipped files round large coefficients to six digits and miss by about that
+much (the NREL 5MW tower's TwSSM2Sh adds up to 0.999), so the readers accept up to 0.01 and reject beyond.
 """
 
 from __future__ import annotations
@@ -12,8 +13,8 @@ from numpy.typing import NDArray
 from ._fast_format import FastText, format_number
 
 POWERS = (2, 3, 4, 5, 6)
-#: ElastoDyn's own tolerance on the sum of a block's coefficients.
-SUM_TOLERANCE = 1e-3
+#: Accepted deviation of a block's sum from 1 (ElastoDyn's own check is 0.001 in single precision).
+SUM_TOLERANCE = 1e-2
 
 
 def block_keys(prefix: str) -> tuple[str, ...]:
