@@ -1,0 +1,209 @@
+"""VTK export of mode shapes (meshio): the blade as a line along its reference axis and, when the chord is known,
+as a surface ribbon of its planform; one collection (``.pvd``) indexed by rotor speed plus a JSON sidecar.
+
+Layout written into a directory, for a stem ``S`` (meshio's VTU writer drops field data, so the numbers that are
+not per point or per cell live in the ``.pvd`` and the sidecar):
+
+- ``S_NNN_axis.vtu`` for each rotor speed ``NNN`` (0-based): line cells between the mesh nodes; point data
+  ``modeKK_displacement`` (rotor-frame vector, m per unit modal amplitude) and ``modeKK_twist_rad`` for every mode
+  ``KK`` (1-based), ``span_m``; cell data: section properties at the cell midpoints (SI, unit in the name).
+- ``S_NNN_surface.vtu`` when the chord is known: quads between leading and trailing edges, the same arrays
+  (displacements of the edge points by the rigid-section kinematics).
+- ``S.pvd``: the collection; ParaView's time is the rotor speed in rpm, part 0 the axis and part 1 the surface.
+- ``S.json``: frequencies (Hz), kinds and energy shares of every mode at every speed, the frame, units, notes.
+
+For a Campbell sweep, mode ``KK`` at every speed is the mode family ``KK`` tracked by MAC, so one array name
+follows one family through the collection. Coordinates and frame: :mod:`bladefem.io.vtk_geometry`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..modal import CampbellResult, ModalResult
+from ..modal.results import Mode
+from ..sections import Blade
+from .results import campbell_to_dict, dumps, write_atomic
+from .vtk_geometry import ModeDisplacement, axis_positions, has_planform, mode_displacement, surface_positions
+
+FORMAT = "bladefem-vtk-1"
+FRAME = ("rotor frame: origin at the rotor apex; z along the shaft axis, downwind; x radial through the blade "
+         "(azimuth zero) in the plane of rotation; y = z cross x, toward the leading edge. A tower keeps its own "
+         "frame: x up, z fore-aft, y side-side.")
+#: section-table column -> cell-data name (SI unit in the name)
+SECTION_ARRAYS: dict[str, str] = {
+    "mass": "mass_kg_per_m", "flap_stiffness": "flap_stiffness_N_m2", "edge_stiffness": "edge_stiffness_N_m2",
+    "torsion_stiffness": "torsion_stiffness_N_m2", "axial_stiffness": "axial_stiffness_N",
+    "twist": "structural_twist_rad", "flap_inertia": "flap_inertia_kg_m", "edge_inertia": "edge_inertia_kg_m",
+    "cm_offset": "cm_offset_m", "tension_centre_offset": "tension_centre_offset_m", "chord": "chord_m",
+    "pitch_axis": "pitch_axis_fraction",
+}
+
+Progress = Callable[[Iterable[Any]], Iterable[Any]]
+
+
+@dataclass(frozen=True)
+class SpeedModes:
+    """The modes exported at one rotor speed (rpm), in array order (``mode01``, ``mode02``, ...)."""
+
+    rotor_speed_rpm: float
+    modes: tuple[Mode, ...]
+
+
+def speeds_of(result: ModalResult | CampbellResult, n_modes: int | None = None) -> list[SpeedModes]:
+    """The modes of a single-speed result (the lowest ``n_modes``) or of a sweep (one per family, MAC order)."""
+    if isinstance(result, ModalResult):
+        return [SpeedModes(result.rotor_speed_rpm, tuple(result.modes[:n_modes]))]
+    return [SpeedModes(float(rpm), tuple(sweep.modes[family.indices[k]] for family in result.families))
+            for k, (rpm, sweep) in enumerate(zip(result.rpm, result.results))]
+
+
+def array_name(number: int) -> str:
+    """Point-data prefix of mode ``number`` (1-based): ``mode01``."""
+    return f"mode{number:02d}"
+
+
+def section_cell_data(blade: Blade, x: NDArray) -> dict[str, NDArray]:
+    """Section properties at the midpoints of the cells between span positions ``x`` (columns that are given)."""
+    middle = 0.5 * (x[:-1] + x[1:])
+    return {name: blade.sections.at(middle, column) for column, name in SECTION_ARRAYS.items()
+            if getattr(blade.sections, column) is not None}
+
+
+def mode_point_data(displacements: list[NDArray], twists: list[NDArray]) -> dict[str, NDArray]:
+    """``modeKK_displacement`` (n, 3) and ``modeKK_twist_rad`` (n,) point arrays."""
+    data = {}
+    for k, (displacement, twist) in enumerate(zip(displacements, twists), 1):
+        data[f"{array_name(k)}_displacement"] = np.ascontiguousarray(displacement, dtype=float)
+        data[f"{array_name(k)}_twist_rad"] = np.ascontiguousarray(twist, dtype=float)
+    return data
+
+
+def axis_mesh(blade: Blade, x: NDArray, modes: list[ModeDisplacement]):
+    """meshio line mesh of the reference axis with the modes' point data and the section cell data."""
+    import meshio
+
+    n = len(x)
+    lines = np.stack([np.arange(n - 1), np.arange(1, n)], axis=-1)
+    point_data = {"span_m": np.asarray(x, dtype=float)}
+    point_data.update(mode_point_data([m.axis for m in modes], [m.twist for m in modes]))
+    cells = {name: [value] for name, value in section_cell_data(blade, x).items()}
+    return meshio.Mesh(axis_positions(blade, x), [("line", lines)], point_data=point_data, cell_data=cells)
+
+
+def surface_mesh(blade: Blade, x: NDArray, modes: list[ModeDisplacement]):
+    """meshio quad mesh of the planform ribbon: points ``[LE_0 .. LE_n-1, TE_0 .. TE_n-1]``."""
+    import meshio
+
+    n = len(x)
+    i = np.arange(n - 1)
+    quads = np.stack([i, i + 1, n + i + 1, n + i], axis=-1)
+    points = surface_positions(blade, x).transpose(1, 0, 2).reshape(-1, 3)
+    point_data = {"span_m": np.concatenate([x, x]).astype(float)}
+    point_data.update(mode_point_data([m.surface.transpose(1, 0, 2).reshape(-1, 3) for m in modes],
+                                      [np.concatenate([m.twist, m.twist]) for m in modes]))
+    cells = {name: [value] for name, value in section_cell_data(blade, x).items()}
+    return meshio.Mesh(points, [("quad", quads)], point_data=point_data, cell_data=cells)
+
+
+def write_mesh_atomic(path: Path, mesh) -> None:
+    """meshio VTU (binary, zlib) written to a temporary file in the same folder, then renamed."""
+    import meshio
+
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".vtu")
+    os.close(handle)
+    try:
+        meshio.write(temporary, mesh, file_format="vtu")
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def collection_xml(entries: list[tuple[float, int, str, str]]) -> str:
+    """A ParaView ``.pvd`` collection from (rotor speed rpm, part, file, name) entries."""
+    rows = [f'    <DataSet timestep="{rpm!r}" part="{part}" name={quoteattr(name)} file={quoteattr(file)}/>'
+            for rpm, part, file, name in entries]
+    return "\n".join(['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1">', "  <Collection>",
+                      *rows, "  </Collection>", "</VTKFile>", ""])
+
+
+def mode_record(mode: Mode, number: int) -> dict[str, Any]:
+    return {"array": array_name(number), "frequency_hz": mode.frequency_hz, "kind": mode.kind,
+            "energy_fractions": mode.energy_fractions}
+
+
+@dataclass(frozen=True)
+class VtkExport:
+    """Paths written by :func:`write_vtk`."""
+
+    collection: Path
+    sidecar: Path
+    meshes: tuple[Path, ...]
+
+
+def write_vtk(blade: Blade, result: ModalResult | CampbellResult, directory: str | os.PathLike, stem: str = "modes",
+              n_modes: int | None = None, progress: Progress | None = None) -> VtkExport:
+    """Write the modes of ``result`` (one speed, or a Campbell sweep) as VTU files, a ``.pvd`` collection indexed
+    by rotor speed and a JSON sidecar (layout in the module docstring); ``progress`` wraps the loop over speeds."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    speeds = speeds_of(result, n_modes)
+    entries: list[tuple[float, int, str, str]] = []
+    records, meshes = [], []
+    for k, speed in enumerate((progress or iter)(speeds)):
+        x = speed.modes[0].shape.x
+        drawn = [mode_displacement(blade, mode.shape, x) for mode in speed.modes]
+        files = {"axis": f"{stem}_{k:03d}_axis.vtu"}
+        write_mesh_atomic(directory / files["axis"], axis_mesh(blade, x, drawn))
+        if has_planform(blade):
+            files["surface"] = f"{stem}_{k:03d}_surface.vtu"
+            write_mesh_atomic(directory / files["surface"], surface_mesh(blade, x, drawn))
+        for part, (name, file) in enumerate(files.items()):
+            entries.append((speed.rotor_speed_rpm, part, file, name))
+            meshes.append(directory / file)
+        records.append({"rotor_speed_rpm": speed.rotor_speed_rpm, "files": files,
+                        "modes": [mode_record(mode, i) for i, mode in enumerate(speed.modes, 1)]})
+    collection, sidecar = directory / f"{stem}.pvd", directory / f"{stem}.json"
+    write_atomic(collection, collection_xml(entries))
+    write_atomic(sidecar, dumps(sidecar_dict(blade, result, collection.name, records)))
+    return VtkExport(collection, sidecar, tuple(meshes))
+
+
+def sidecar_dict(blade: Blade, result: ModalResult | CampbellResult, collection: str,
+                 records: list[dict[str, Any]]) -> dict[str, Any]:
+    """The JSON sidecar: what the VTU files cannot keep."""
+    data: dict[str, Any] = {
+        "format": FORMAT, "blade": blade.name, "source": blade.sections.source, "collection": collection,
+        "frame": FRAME, "hub_radius_m": blade.hub_radius, "precone_deg": math.degrees(blade.precone),
+        "pitch_deg": math.degrees(blade.pitch),
+        "units": {"points": "m", "displacement": "m per unit modal amplitude (largest component 1)",
+                  "twist": "rad", "collection_time": "rotor speed, rpm"},
+        "speeds": records, "notes": list(result.notes)}
+    if has_planform(blade) and blade.sections.pitch_axis is None:
+        data["notes"].append("no pitch-axis position given: the surface is drawn with the axis at 25 % chord")
+    if isinstance(result, CampbellResult):
+        data["campbell"] = campbell_to_dict(result)
+    return data
+
+
+def read_vtk(sidecar: str | os.PathLike) -> dict[str, Any]:
+    """Read an export back with meshio: the sidecar dict, with each speed's ``meshes`` ({"axis": meshio.Mesh, ...})."""
+    import meshio
+
+    sidecar = Path(sidecar)
+    data = json.loads(sidecar.read_text())
+    for record in data["speeds"]:
+        record["meshes"] = {name: meshio.read(sidecar.parent / file) for name, file in record["files"].items()}
+    return data
