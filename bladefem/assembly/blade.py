@@ -97,7 +97,7 @@ def assemble_blade(blade: Blade, elements: int = 60) -> BladeMatrices:
     fields = model_fields(blade)
     mesh = span_mesh(span_nodes(blade.sections.span, elements))
     basis = Basis(mesh, beam_element(fields), intorder=QUADRATURE_ORDER)
-    parameters = section_parameters(blade, basis.global_coordinates().value[0])
+    parameters = section_parameters(blade, np.asarray(basis.global_coordinates())[0])
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(basis, fields, parameters, elastic_terms(fields))

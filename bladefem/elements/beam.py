@@ -68,10 +68,10 @@ class SectionMotion:
 def section_motion(fields: tuple[str, ...], values: tuple) -> SectionMotion:
     """Build a :class:`SectionMotion` from scikit-fem DiscreteFields given in the order of ``fields``."""
     by_name = dict(zip(fields, values))
-    zero = np.zeros_like(values[0].value)
+    zero = np.zeros(np.shape(values[0]))
 
     def value(name: str) -> NDArray:
-        return by_name[name].value if name in by_name else zero
+        return np.asarray(by_name[name]) if name in by_name else zero
 
     def slope(name: str) -> NDArray:
         return by_name[name].grad[0] if name in by_name else zero

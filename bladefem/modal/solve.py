@@ -12,8 +12,9 @@ from ..assembly import BladeMatrices
 from ..elements import FIELD_KINDS
 from .results import KINDS, Mode, ModalResult, ModeShape
 
-#: Systems up to this many free DOFs are solved with dense LAPACK (faster there than ARPACK)
-DENSE_LIMIT = 400
+#: Systems up to this many free DOFs (or asking for a third of all modes) use dense LAPACK; larger ones use
+#: ARPACK shift-invert Lanczos, which is faster there (4 ms against 70 ms for the 268-DOF 5MW blade)
+DENSE_LIMIT = 60
 
 
 def rpm_to_rad_s(rpm: float) -> float:
@@ -24,13 +25,14 @@ def eigen_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray, 
     """Lowest ``n_modes`` eigenvalues (omega^2) and M-normalised eigenvectors of K x = lambda M x."""
     n = K.shape[0]
     n_modes = min(n_modes, n)
-    if n <= DENSE_LIMIT or n_modes >= n // 2:
+    if n <= DENSE_LIMIT or 3 * n_modes >= n:
         values, vectors = la.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n_modes - 1],
                                   check_finite=False)
         return values, vectors
-    # shift below the lowest eigenvalue estimate so K - sigma M stays non-singular for rigid or slow modes
-    diagonal_ratio = np.min(K.diagonal() / np.maximum(M.diagonal(), 1e-300))
-    sigma = -abs(diagonal_ratio) * 1e-3 - 1e-6
+    # shift just below zero (relative to the matrices' scale) so K - sigma M is non-singular even with rigid-body
+    # or zero-frequency modes; the modes nearest sigma are then the lowest ones
+    scale = np.median(np.abs(K.diagonal()) / np.maximum(np.abs(M.diagonal()), 1e-300))
+    sigma = -1e-6 * scale
     values, vectors = spla.eigsh(K, k=n_modes, M=M, sigma=sigma, which="LM")
     order = np.argsort(values)
     values, vectors = values[order], vectors[:, order]
