@@ -114,14 +114,15 @@ def shortening_integrals(evaluate: Evaluator, edges: NDArray, x: NDArray) -> NDA
 
 def sample_beam(evaluate: Evaluator, edges: NDArray, mass: Callable[[NDArray], NDArray],
                 stiffness: Callable[[NDArray], NDArray], damping_ratio: NDArray | float = 0.0,
-                names: tuple[str, ...] | None = None) -> ModalBeam:
+                names: tuple[str, ...] | None = None, gauss_points: int = GAUSS_POINTS) -> ModalBeam:
     """Sample shapes given by ``evaluate(x) -> (value, slope, curvature)`` (each (n, len(x), 2)) at the Gauss
     points of the mesh ``edges`` (m; section stations should be edges so the properties are smooth inside).
 
-    mass(x) -> kg/m; stiffness(x) -> (len(x), 2, 2) N m^2.
+    mass(x) -> kg/m; stiffness(x) -> (len(x), 2, 2) N m^2; gauss_points per element (4 integrates the mass and
+    stiffness of Hermite shapes with linear properties exactly; fewer gives a lighter model for simulation).
     """
     edges = np.asarray(edges, dtype=float)
-    x, weight = gauss_rule(edges, GAUSS_POINTS)
+    x, weight = gauss_rule(edges, gauss_points)
     value, slope, curvature = evaluate(x)
     tip = np.array([edges[-1]])
     tip_value, tip_slope, _ = evaluate(tip)

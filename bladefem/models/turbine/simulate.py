@@ -1,0 +1,156 @@
+"""Time integration of the turbine's structural equations and ElastoDyn-like outputs (table and plot)."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.integrate import solve_ivp
+
+from .kane import TurbineModel
+from .system import FreeSystem
+
+RAD_S_TO_RPM = 30.0 / np.pi
+
+#: output channel -> (unit, description)
+CHANNELS = {
+    "OoPDefl1": ("m", "blade 1 tip out-of-plane deflection"),
+    "IPDefl1": ("m", "blade 1 tip in-plane deflection"),
+    "TTDspFA": ("m", "tower-top fore-aft displacement"),
+    "TTDspSS": ("m", "tower-top side-to-side displacement"),
+    "YawPzn": ("deg", "nacelle yaw angle"),
+    "Azimuth": ("deg", "rotor azimuth (blade 1 up at 0)"),
+    "RotSpeed": ("rpm", "rotor speed (low-speed shaft at the hub)"),
+    "LSSGagVxa": ("rpm", "low-speed-shaft speed at the gearbox"),
+    "GenSpeed": ("rpm", "generator (high-speed shaft) speed"),
+    "RootMOoP1": ("kN m", "blade 1 root out-of-plane bending moment"),
+    "RootMIP1": ("kN m", "blade 1 root in-plane bending moment"),
+}
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each."""
+
+    time: NDArray
+    q: NDArray
+    u: NDArray
+    dofs: tuple[str, ...]
+    free: NDArray
+    outputs: dict[str, NDArray]
+    evaluations: int
+
+
+def root_moments(model: TurbineModel, q: NDArray, u: NDArray, du: NDArray, blade: int = 0) -> tuple[float, float]:
+    """Out-of-plane and in-plane bending moments at a blade root (N m), from gravity and d'Alembert loads on the
+    blade's span nodes and tip mass: ``M = sum (r_p - r_root) x m_p (g - a_p)`` in the blade frame; out-of-plane
+    positive for downwind loads, in-plane positive for loads toward the leading edge."""
+    motion = model.motion(q, u)
+    p = model.params
+    R = motion.blade_frames.R[blade]
+    root = motion.apex.r + R[:, 0] * p.hub_radius
+    moment = np.zeros(3)
+    for points, masses in ((motion.blades, p.blade.point_mass), (motion.blade_tips, np.array([p.blade_tip_mass]))):
+        r = points.r[blade].reshape(-1, 3)
+        a = (points.J[blade].reshape(-1, 3, model.n) @ du) + points.a[blade].reshape(-1, 3)
+        loads = masses[:, None] * (model.gravity - a)
+        moment += np.sum(np.cross(r - root, loads), axis=0)
+    local = R.T @ moment
+    return float(-local[1]), float(local[2])
+
+
+def outputs_at(system: FreeSystem, q: NDArray, u: NDArray) -> dict[str, float]:
+    """ElastoDyn-like output channels at one state (SI values converted to the units of :data:`CHANNELS`)."""
+    model = system.model
+    p = model.params
+    b1 = q[model.blade_columns[0]]
+    tip = p.blade.tip_value.T @ b1
+    top = p.tower.tip_value.T @ q[model.tower_columns]
+    du = system.accelerations(q, u)
+    flap, edge = root_moments(model, q, u, du)
+    azimuth_rate = u[5] + u[6]
+    return {
+        "OoPDefl1": tip[1], "IPDefl1": tip[0], "TTDspFA": top[0], "TTDspSS": top[1],
+        "YawPzn": np.degrees(q[4]), "Azimuth": np.degrees(q[5] + q[6]) % 360.0,
+        "RotSpeed": azimuth_rate * RAD_S_TO_RPM, "LSSGagVxa": u[5] * RAD_S_TO_RPM,
+        "GenSpeed": p.gearbox_ratio * u[5] * RAD_S_TO_RPM, "RootMOoP1": flap / 1e3, "RootMIP1": edge / 1e3,
+    }
+
+
+def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol: float = 1e-6,
+             atol: float = 1e-8, method: str = "RK45") -> SimulationResult:
+    """Integrate from t = 0 to ``duration`` (s) with scipy's adaptive ``method``; outputs every ``dt_output`` s."""
+    count = [0]
+
+    def rhs(t: float, x: NDArray) -> NDArray:
+        count[0] += 1
+        return system(t, x)
+
+    times = np.linspace(0.0, duration, int(round(duration / dt_output)) + 1)
+    solution = solve_ivp(rhs, (0.0, duration), system.initial_state(), method=method, t_eval=times, rtol=rtol,
+                         atol=atol)
+    if not solution.success:
+        raise RuntimeError(f"time integration failed: {solution.message}")
+    qs, us = zip(*(system.full(t, x) for t, x in zip(solution.t, solution.y.T)))
+    q, u = np.array(qs), np.array(us)
+    rows = [outputs_at(system, qi, ui) for qi, ui in zip(q, u)]
+    outputs = {name: np.array([row[name] for row in rows]) for name in CHANNELS}
+    return SimulationResult(time=solution.t, q=q, u=u, dofs=system.model.dofs, free=system.free, outputs=outputs,
+                            evaluations=count[0])
+
+
+def write_atomically(path: str | os.PathLike, text: str) -> None:
+    """Write through a temporary file in the same folder and an atomic rename."""
+    folder = Path(path).resolve().parent
+    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=Path(path).suffix)
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def table_text(result: SimulationResult) -> str:
+    """CSV text: time and every output channel, with units in the header."""
+    names = list(CHANNELS)
+    header = "Time_s," + ",".join(f"{name}_{CHANNELS[name][0].replace(' ', '')}" for name in names)
+    data = np.column_stack([result.time] + [result.outputs[name] for name in names])
+    lines = [header] + [",".join(f"{value:.9g}" for value in row) for row in data]
+    return "\n".join(lines) + "\n"
+
+
+def write_table(result: SimulationResult, path: str | os.PathLike) -> None:
+    """Write the output table as CSV, atomically."""
+    write_atomically(path, table_text(result))
+
+
+def plot_outputs(result: SimulationResult, path: str | os.PathLike,
+                 channels: tuple[str, ...] = ("OoPDefl1", "IPDefl1", "TTDspFA", "TTDspSS", "YawPzn", "RotSpeed",
+                                               "GenSpeed", "RootMOoP1", "RootMIP1")) -> None:
+    """Plot the chosen channels against time into an image file (written atomically)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(len(channels), 1, figsize=(8, 1.6 * len(channels)), sharex=True)
+    for axis, name in zip(np.atleast_1d(axes), channels):
+        axis.plot(result.time, result.outputs[name], lw=1)
+        axis.set_ylabel(f"{name}\n[{CHANNELS[name][0]}]", fontsize=8)
+        axis.grid(alpha=0.3)
+    np.atleast_1d(axes)[-1].set_xlabel("time [s]")
+    figure.tight_layout()
+    folder = Path(path).resolve().parent
+    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=Path(path).suffix)
+    os.close(handle)
+    try:
+        figure.savefig(temporary, dpi=120)
+        os.replace(temporary, path)
+    finally:
+        Path(temporary).unlink(missing_ok=True)
+        plt.close(figure)
