@@ -105,7 +105,12 @@ def solve(blade: Blade, matrices: GalerkinMatrices, rpm: float, n_modes: int,
         raise InputError(f"need at least one mode, got {n_modes}", field="n_modes")
     K = matrices.K0 + rpm_to_rad_s(rpm) ** 2 * matrices.K2
     n_modes = min(n_modes, matrices.terms.size)
-    values, vectors = la.eigh(K, matrices.M, subset_by_index=[0, n_modes - 1])
+    try:
+        values, vectors = la.eigh(K, matrices.M, subset_by_index=[0, n_modes - 1])
+    except la.LinAlgError as error:
+        raise InputError(f"the Galerkin mass matrix is numerically singular with {matrices.terms.size} "
+                         f"'{matrices.basis}' terms ({error}); use the 'jacobi' basis or fewer terms",
+                         field="terms") from error
     Kx = K @ vectors
     residuals = np.linalg.norm(Kx - matrices.M @ vectors * values, axis=0) / np.linalg.norm(Kx, axis=0)
     fractions = energy_fractions(matrices, vectors)
