@@ -22,8 +22,9 @@ from pathlib import Path
 from ..errors import InputError
 
 #: A value (quoted string or a token without blanks) followed by a key name such as ``TipRad`` or ``PreCone(1)``.
-KEY_LINE = re.compile(r"""^(?P<lead>\s*)(?P<value>"[^"]*"|'[^']*'|[^\s"',]+)(?P<gap>\s+)"""
-                      r"""(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?)(?=\s|$)""")
+#: BModes writes ``rot_rpm:`` (a colon after the key) and sometimes ``"file" : key``; both are accepted.
+KEY_LINE = re.compile(r"""^(?P<lead>\s*)(?P<value>"[^"]*"|'[^']*'|[^\s"',]+)(?P<gap>\s+(?::\s*)?)"""
+                      r"""(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?):?(?=\s|$)""")
 TRUE_WORDS = ("true", "t", ".true.")
 FALSE_WORDS = ("false", "f", ".false.")
 

@@ -160,6 +160,7 @@ def blade_from_elastodyn(blade_file: ElastoDynBladeFile, *, tip_radius: float, h
         flap_stiffness=f.flap_stiffness * f.adj_flap_stiffness,
         edge_stiffness=f.edge_stiffness * f.adj_edge_stiffness,
         twist=f.twist,
+        pitch_axis=f.pitch_axis,
         source=f.path,
         lines=f.station_lines or None,
     )
