@@ -50,3 +50,15 @@ def rotation_second_order(Q: NDArray, r: NDArray, S: NDArray, J: NDArray) -> NDA
     symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
     trace = np.einsum("i...,ij,j...->...", r, Q, S) + np.einsum("ij,ji...->...", Q, J)
     return symmetric - np.einsum("ij,...->ij...", np.eye(3), trace)
+
+
+def uniform_field_second_order(f: NDArray, S: NDArray) -> NDArray:
+    """3x3 matrix H with ``int rho f . dr2 = 1/2 Theta^T H Theta`` for a uniform force field ``f`` per unit mass.
+
+    ``dr2 = 1/2 (Theta (Theta.s) - |Theta|^2 s)`` gives ``H = sym(f S^T) - (f.S) I``: only the first moment
+    ``S = int rho s`` enters. Gravity's potential ``int rho g x`` (``x`` up) is ``f = g e_x``: a body whose centre
+    of mass sits a height ``c`` above the node has ``H = -g m c`` for tilts, the inverted-pendulum softening.
+    """
+    outer = np.einsum("i,j...->ij...", np.asarray(f, dtype=float), S)
+    symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
+    return symmetric - np.einsum("ij,...->ij...", np.eye(3), np.einsum("i,i...->...", f, S))

@@ -1,0 +1,216 @@
+"""Tower modal analysis: natural modes of a tower with its top mass, gravity and supports.
+
+Results reuse :class:`~bladefem.modal.results.ModalResult`; for a tower the mode shape's ``flap`` is the fore-aft
+deflection ``w`` and ``edge`` the side-side deflection ``v``, and the kinds are ``fore-aft``, ``side-side``,
+``torsion``, ``axial`` and, on a floating platform, ``surge``, ``sway``, ``heave``, ``roll``, ``pitch``, ``yaw``
+(the coordinate or field with the largest share of kinetic energy; platform shares are those of the rigid-body
+motion of the whole system, beam shares those of the elastic motion relative to the platform).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as la
+from numpy.typing import NDArray
+
+from ..assembly.dofs import DofMap
+from ..assembly.supports import BASE_FIELDS, BASE_SIZE, PLATFORM_KINDS
+from ..assembly.tower import TowerMatrices, assemble_tower
+from ..modal.results import ModalResult, Mode
+from ..modal.solve import eigen_pairs, mode_shape, relative_residuals
+from ..sections.tower import Tower, as_tower
+
+#: tower kind of each beam field
+TOWER_FIELD_KINDS: dict[str, str] = {"w": "fore-aft", "v": "side-side", "phi": "torsion", "u": "axial"}
+TOWER_KINDS: tuple[str, ...] = ("fore-aft", "side-side", "torsion", "axial", "surge", "sway", "heave", "roll",
+                                "pitch", "yaw")
+#: modes whose frequencies differ by less than this (relative) form a degenerate cluster, rotated into clean
+#: fore-aft / side-side directions (a symmetric tower's pair is split only by rounding, ~1e-10)
+DEGENERATE_RTOL = 1e-5
+#: warn when the gravity load exceeds this fraction of the critical (buckling) load: the first frequency has then
+#: dropped by about 1 - sqrt(1 - 0.5) = 29 % (omega^2 falls about linearly with the load)
+BUCKLING_WARNING_FRACTION = 0.5
+#: mesh of the buckling check (the critical load factor converges like h^4: 40 elements give ~1e-7)
+BUCKLING_ELEMENTS = 40
+MESH_RTOL = 1e-6
+RICHARDSON = 15.0
+
+
+@dataclass(frozen=True)
+class _BeamView:
+    """The beam part of a full vector, in the form :func:`bladefem.modal.solve.mode_shape` reads."""
+
+    dofs: DofMap
+    free: NDArray[np.int64]
+
+
+def _frequencies(values: NDArray) -> NDArray:
+    return np.sign(values) * np.sqrt(np.abs(values)) / (2 * np.pi)
+
+
+def solve_tower(matrices: TowerMatrices, n_modes: int) -> tuple[NDArray, NDArray]:
+    """Lowest eigenvalues (omega^2) and M-normalised eigenvectors on the independent coordinates."""
+    K, M = matrices.reduced()
+    return eigen_pairs(K, M, n_modes)
+
+
+def converged_matrices(tower: Tower, n_modes: int = 10, rtol: float = MESH_RTOL,
+                       max_elements: int = 800) -> TowerMatrices:
+    """Meshes doubled from ``max(24, stations - 1)`` elements until the lowest ``n_modes`` frequencies change by less
+    than ``15 rtol`` (Richardson: errors fall as h^4); returns the finer mesh's matrices."""
+    elements = max(24, tower.sections.stations - 1)
+    coarse = assemble_tower(tower, elements)
+    previous = _frequencies(solve_tower(coarse, n_modes)[0])
+    while True:
+        elements *= 2
+        fine = assemble_tower(tower, elements)
+        current = _frequencies(solve_tower(fine, n_modes)[0])
+        floor = 1e-6 * np.max(np.abs(current))
+        change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), floor))
+        if change / RICHARDSON < rtol or elements >= max_elements:
+            return fine
+        previous = current
+
+
+def fore_aft_selection(matrices: TowerMatrices) -> NDArray[np.int64]:
+    """Full-vector indices of motion in the fore-aft plane: the w field and the base's t_z and theta_y."""
+    n = matrices.dofs.size
+    return np.concatenate([matrices.dofs.field_dofs["w"], [n + 2, n + 4]])
+
+
+def rotate_degenerate(matrices: TowerMatrices, values: NDArray, vectors: NDArray) -> tuple[NDArray, NDArray]:
+    """Within each cluster of (nearly) equal frequencies, rotate the eigenvectors so that each has extremal
+    fore-aft kinetic energy: eigenvectors of the cluster's fore-aft energy matrix ``X^T M_fa X``. The rotation is
+    orthogonal, so the vectors stay M-orthonormal; the eigenvalues become the Rayleigh quotients."""
+    values, vectors = values.copy(), vectors.copy()
+    omega = np.sqrt(np.abs(values))
+    selection = fore_aft_selection(matrices)
+    M_fa = matrices.M[selection][:, selection]
+    K, _ = matrices.reduced()
+    i = 0
+    while i < len(values):
+        j = i + 1
+        while j < len(values) and abs(omega[j] - omega[i]) <= DEGENERATE_RTOL * max(omega[i], 1e-300):
+            j += 1
+        if j - i > 1:
+            full = matrices.expand(vectors[:, i:j])[selection]
+            _, U = la.eigh(full.T @ (M_fa @ full))
+            vectors[:, i:j] = vectors[:, i:j] @ U[:, ::-1]      # the most fore-aft first
+            values[i:j] = np.einsum("ij,ij->j", vectors[:, i:j], K @ vectors[:, i:j])
+        i = j
+    return values, vectors
+
+
+def energy_shares(matrices: TowerMatrices, vectors: NDArray) -> list[dict[str, float]]:
+    """Kinetic-energy share of each tower kind in each mode (diagonal blocks; see the module docstring)."""
+    n = matrices.dofs.size
+    full = matrices.expand(vectors)
+    supports = matrices.tower.supports
+    shares = {kind: np.zeros(vectors.shape[1]) for kind in TOWER_KINDS}
+    if supports.platform is not None:
+        q = vectors[-BASE_SIZE:]
+        rigid = matrices.Z[:, -BASE_SIZE:] @ q
+        full = full - rigid
+        _, M_r = matrices.reduced()
+        diagonal = M_r.diagonal()[-BASE_SIZE:]
+        for k, kind in enumerate(PLATFORM_KINDS):
+            shares[kind] += diagonal[k] * q[k] ** 2
+    elif supports.foundation is not None:
+        diagonal = matrices.M.diagonal()[n:]
+        for k, name in enumerate(BASE_FIELDS):
+            shares[TOWER_FIELD_KINDS[name]] += diagonal[k] * full[n + k] ** 2
+    for name, dofs in matrices.dofs.field_dofs.items():
+        part = full[dofs]
+        shares[TOWER_FIELD_KINDS[name]] += np.einsum("ij,ij->j", part, matrices.M[dofs][:, dofs] @ part)
+    total = sum(shares.values())
+    total = np.where(total > 0, total, 1.0)
+    return [{kind: float(shares[kind][j] / total[j]) for kind in TOWER_KINDS} for j in range(vectors.shape[1])]
+
+
+def critical_load_factor(matrices: TowerMatrices) -> float:
+    """Smallest ``lambda > 0`` with ``K + lambda K_g`` singular: the gravity load at buckling over the actual one
+    (inf without gravity or when gravity cannot destabilise the tower)."""
+    K, M = matrices.reduced(0.0)
+    K_g = matrices.Z.T @ matrices.K_gravity @ matrices.Z
+    if K_g.nnz == 0 or not np.any(K_g.data):
+        return float("inf")
+    K, G = K.toarray(), -K_g.toarray()
+    try:
+        mu = la.eigh(0.5 * (G + G.T), K, eigvals_only=True)
+        largest = float(mu.max())
+        return 1.0 / largest if largest > 0 else float("inf")
+    except la.LinAlgError:    # K singular (a free rigid-body motion): the general problem
+        lam = la.eigvals(K, 0.5 * (G + G.T))
+        lam = lam[np.isfinite(lam) & (np.abs(lam.imag) <= 1e-9 * np.abs(lam)) & (lam.real > 0)].real
+        return float(lam.min()) if lam.size else float("inf")
+
+
+def gravity_notes(tower: Tower) -> tuple[str, ...]:
+    """Statement of the gravity load and its distance from buckling (warns when it is close)."""
+    if tower.gravity == 0:
+        return ("gravity off: no axial load, no top-mass pendulum effect",)
+    factor = critical_load_factor(assemble_tower(tower, BUCKLING_ELEMENTS))
+    note = (f"gravity {tower.gravity:g} m/s^2: self-weight and top-mass compression and the top mass's pendulum "
+            f"effect included; buckling at {factor:.4g} times this load")
+    if factor < 1:
+        message = (f"the tower buckles under its own weight and top mass (critical load factor {factor:.4g}); "
+                   "the lowest frequencies are imaginary (reported negative)")
+    elif 1 / factor > BUCKLING_WARNING_FRACTION:
+        message = (f"the gravity load is {100 / factor:.0f}% of the critical buckling load: the lowest "
+                   "frequencies are strongly reduced by the axial compression")
+    else:
+        return (note,)
+    warnings.warn(message, stacklevel=3)
+    return (note, "warning: " + message)
+
+
+def modal_result(matrices: TowerMatrices, values: NDArray, vectors: NDArray,
+                 notes: tuple[str, ...] = ()) -> ModalResult:
+    """A :class:`ModalResult` with tower kinds, relative residuals and mode shapes (shapes include base motion)."""
+    K, M = matrices.reduced()
+    residuals = relative_residuals(K, M, values, vectors)
+    fractions = energy_shares(matrices, vectors)
+    view = _BeamView(matrices.dofs, np.arange(matrices.dofs.size))
+    full = matrices.expand(vectors)
+    modes = []
+    for j, value in enumerate(values):
+        kind = max(fractions[j], key=fractions[j].get)
+        modes.append(Mode(frequency_hz=float(_frequencies(np.array([value]))[0]), kind=kind,
+                          energy_fractions=fractions[j], residual=float(residuals[j]),
+                          shape=mode_shape(view, full[:matrices.dofs.size, j])))
+    return ModalResult(rotor_speed_rpm=0.0, modes=modes, stations=matrices.tower.sections.span.copy(),
+                       vectors=vectors, n_dofs=matrices.n_free, notes=notes)
+
+
+def tower_matrices(tower: Tower, elements: int | None = None, n_modes: int = 10) -> TowerMatrices:
+    """Matrices on a mesh of about ``elements`` elements, or on a mesh refined until converged (None)."""
+    tower = as_tower(tower)
+    return converged_matrices(tower, n_modes) if elements is None else assemble_tower(tower, elements)
+
+
+def tower_modes(tower: Tower, n_modes: int = 10, elements: int | None = None) -> ModalResult:
+    """Natural modes of ``tower`` (a :class:`~bladefem.sections.tower.Tower`, or reader output with sections and a
+    top mass: clamped, standard gravity). ``elements``: target number of elements, or None to refine the mesh
+    until the frequencies converge to 1e-6."""
+    if n_modes < 1:
+        raise ValueError("n_modes must be at least 1")
+    tower = as_tower(tower)
+    matrices = tower_matrices(tower, elements, n_modes)
+    values, vectors = rotate_degenerate(matrices, *solve_tower(matrices, n_modes))
+    notes = tower.notes + gravity_notes(tower) + (
+        "tower mode shapes: 'flap' is fore-aft (w, downwind), 'edge' is side-side (v)",)
+    return modal_result(matrices, values, vectors, notes)
+
+
+def with_blade_kinds(result: ModalResult) -> ModalResult:
+    """The same result with fore-aft named 'flap' and side-side 'edge' (kinds and energy shares), for tools
+    written for blades such as :mod:`bladefem.modal.elastodyn_fit`."""
+    rename = {"fore-aft": "flap", "side-side": "edge"}
+    modes = [Mode(frequency_hz=m.frequency_hz, kind=rename.get(m.kind, m.kind),
+                  energy_fractions={rename.get(k, k): v for k, v in m.energy_fractions.items()},
+                  residual=m.residual, shape=m.shape) for m in result.modes]
+    return ModalResult(rotor_speed_rpm=result.rotor_speed_rpm, modes=modes, stations=result.stations,
+                       vectors=result.vectors, n_dofs=result.n_dofs, notes=result.notes)
