@@ -1,0 +1,274 @@
+"""windIO turbine ontology (IEA Wind Task 37, version 2.x, as used by the IEA-15MW and IEA-22MW reference turbines):
+the blade's and the tower's structural properties and the geometry bladefem needs.
+
+Read (every other entry of the file is ignored):
+
+- ``assembly``: ``number_of_blades``, ``rotor_orientation``;
+- ``components.hub``: ``diameter`` (hub radius = diameter / 2), ``cone_angle`` (deg, positive away from the tower
+  for upwind and downwind rotors alike), ``elastic_properties.mass``;
+- ``components.blade`` and ``components.tower``: ``reference_axis`` (x, y, z on normalised arc-length grids),
+  ``structure.elastic_properties.stiffness_matrix`` (``grid``, ``K11`` .. ``K66``) and ``inertia_matrix``
+  (``grid``, ``mass``, ``cm_x``, ``cm_y``, ``i_edge``, ``i_flap``, ``i_plr``, ``i_cp``); the blade's
+  ``outer_shape.twist`` (deg);
+- ``components.drivetrain.elastic_properties.mass`` and ``components.yaw.elastic_properties.mass``.
+
+windIO 1.x files (``elastic_properties_mb``) are recognised and refused with a pointer to windIO's converter.
+Every problem is an :class:`InputError` naming the file, the YAML line and the key path. When the ``windio`` package
+and ``jsonschema`` are installed, the two ``elastic_properties`` objects are also validated against windIO's own
+``beam`` schema.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from .yamlnodes import Key, load_yaml
+
+STIFFNESS_KEYS = tuple(f"K{i}{j}" for i in range(1, 7) for j in range(i, 7))
+INERTIA_KEYS = ("mass", "cm_x", "cm_y", "i_edge", "i_flap", "i_plr", "i_cp")
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """A quantity on a normalised arc-length grid (grid from 0 to 1)."""
+
+    grid: NDArray[np.float64]
+    values: NDArray[np.float64]
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Distribution) and np.array_equal(self.grid, other.grid)
+                and np.array_equal(self.values, other.values))
+
+
+@dataclass(frozen=True)
+class WindIOBeam:
+    """A blade's or tower's structural description as given in windIO (SI; twist in rad).
+
+    reference_axis : 'x', 'y', 'z' -> distributions, m
+    stiffness : K11 .. K66 present in the file -> values on ``stiffness_grid`` (N, N m^2)
+    inertia : mass (kg/m), cm_x, cm_y (m), i_edge, i_flap, i_plr, i_cp (kg m) present -> values on ``inertia_grid``
+    twist : the blade's outer_shape twist (rad), or None for a tower
+    """
+
+    reference_axis: dict[str, Distribution]
+    stiffness_grid: NDArray[np.float64]
+    stiffness: dict[str, NDArray[np.float64]]
+    inertia_grid: NDArray[np.float64]
+    inertia: dict[str, NDArray[np.float64]]
+    twist: Distribution | None = None
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, WindIOBeam):
+            return NotImplemented
+        same = lambda a, b: a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)  # noqa: E731
+        return (self.reference_axis == other.reference_axis and self.twist == other.twist
+                and np.array_equal(self.stiffness_grid, other.stiffness_grid) and same(self.stiffness, other.stiffness)
+                and np.array_equal(self.inertia_grid, other.inertia_grid) and same(self.inertia, other.inertia))
+
+    @property
+    def length(self) -> float:
+        """Arc length of the reference axis, m."""
+        return arc_length(self.reference_axis)
+
+
+@dataclass(frozen=True)
+class WindIOTurbine:
+    """The parts of a windIO turbine file that bladefem uses.
+
+    cone_angle : hub cone angle, rad, positive away from the tower (as in windIO)
+    upwind : rotor_orientation is upwind
+    """
+
+    name: str
+    number_of_blades: int
+    upwind: bool
+    hub_radius: float
+    cone_angle: float
+    hub_mass: float
+    drivetrain_mass: float
+    yaw_mass: float
+    blade: WindIOBeam | None
+    tower: WindIOBeam | None
+    path: str = field(default="", compare=False)
+    lines: dict[Key, int] = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def precone(self) -> float:
+        """bladefem's precone (rad, positive downwind): minus the cone angle for an upwind rotor."""
+        return -self.cone_angle if self.upwind else self.cone_angle
+
+
+def arc_length(axis: dict[str, Distribution]) -> float:
+    """Length of the piecewise-linear curve through the reference-axis points (on the union of the grids), m."""
+    grid = np.unique(np.concatenate([d.grid for d in axis.values()]))
+    points = np.stack([np.interp(grid, axis[c].grid, axis[c].values) for c in ("x", "y", "z")])
+    return float(np.sum(np.linalg.norm(np.diff(points, axis=1), axis=0)))
+
+
+def _as_number(value: Any) -> float | None:
+    """A finite float from a YAML scalar; YAML 1.1 reads ``1.0e9`` (no exponent sign) as a string, so numeric
+    strings are accepted too. None when not a finite number."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, str):
+        try:
+            value = float(value)
+        except ValueError:
+            return None
+    if not isinstance(value, (int, float)) or not math.isfinite(value):
+        return None
+    return float(value)
+
+
+class _Reader:
+    """Typed access to the parsed YAML, errors naming the line and the key path."""
+
+    def __init__(self, path: str, data: Any, lines: dict[Key, int]):
+        self.path, self.data, self.lines = path, data, lines
+
+    def error(self, message: str, key: Key) -> InputError:
+        line = None
+        for n in range(len(key), -1, -1):
+            if key[:n] in self.lines:
+                line = self.lines[key[:n]]
+                break
+        return InputError(message, file=self.path, line=line, field=".".join(str(k) for k in key) or None)
+
+    def get(self, key: Key, default: Any = ...) -> Any:
+        node = self.data
+        for i, k in enumerate(key):
+            if not isinstance(node, dict) or k not in node:
+                if default is not ...:
+                    return default
+                raise self.error("missing key", key[:i + 1])
+            node = node[k]
+        return node
+
+    def number(self, key: Key, default: Any = ..., minimum: float | None = None) -> float:
+        raw = self.get(key, default)
+        value = _as_number(raw)
+        if value is None:
+            raise self.error(f"expected a finite number, got {raw!r}", key)
+        if minimum is not None and value < minimum:
+            raise self.error(f"must be at least {minimum}, got {value}", key)
+        return value
+
+    def array(self, key: Key, length: int | None = None, minimum: float | None = None,
+              positive: bool = False) -> NDArray[np.float64]:
+        value = self.get(key)
+        if not isinstance(value, list) or len(value) < 2:
+            raise self.error("expected a list of at least two numbers", key)
+        numbers = [_as_number(item) for item in value]
+        for i, item in enumerate(numbers):
+            if item is None:
+                raise self.error(f"expected a finite number, got {value[i]!r}", key + (i,))
+            if positive and item <= 0:
+                raise self.error(f"must be positive, got {item}", key + (i,))
+            if minimum is not None and item < minimum:
+                raise self.error(f"must be at least {minimum}, got {item}", key + (i,))
+        if length is not None and len(value) != length:
+            raise self.error(f"expected {length} values (one per grid point), got {len(value)}", key)
+        return np.array(numbers, dtype=float)
+
+    def grid(self, key: Key) -> NDArray[np.float64]:
+        grid = self.array(key)
+        if grid[0] != 0.0 or grid[-1] != 1.0:
+            raise self.error("grid must run from 0 to 1", key)
+        steps = np.flatnonzero(np.diff(grid) <= 0)
+        if steps.size:
+            raise self.error("grid must increase strictly", key + (int(steps[0]) + 1,))
+        return grid
+
+    def distribution(self, key: Key, scale: float = 1.0) -> Distribution:
+        grid = self.grid(key + ("grid",))
+        return Distribution(grid, self.array(key + ("values",), len(grid)) * scale)
+
+
+def read_windio(path: str | Path) -> WindIOTurbine:
+    """Read the blade and tower structure of a windIO turbine file."""
+    data, lines = load_yaml(path)
+    r = _Reader(str(path), data, lines)
+    if not isinstance(data, dict) or "components" not in data:
+        raise InputError("not a windIO turbine file (no 'components')", file=str(path), line=1, field="components")
+    components = r.get(("components",))
+    if isinstance(components.get("blade"), dict) and "elastic_properties_mb" in components["blade"]:
+        raise r.error("windIO 1.x layout (elastic_properties_mb); convert it to windIO 2 with the windio package's "
+                      "converter first", ("components", "blade", "elastic_properties_mb"))
+    blade = _beam(r, ("components", "blade"), twist=True) if "blade" in components else None
+    tower = _beam(r, ("components", "tower"), twist=False) if "tower" in components else None
+    if blade is None and tower is None:
+        raise r.error("neither a blade nor a tower", ("components",))
+    orientation = str(r.get(("assembly", "rotor_orientation"), "upwind")).lower()
+    if orientation not in ("upwind", "downwind"):
+        raise r.error(f"expected upwind or downwind, got '{orientation}'", ("assembly", "rotor_orientation"))
+    blades = r.number(("assembly", "number_of_blades"), 3, minimum=1)
+    if blades != int(blades):
+        raise r.error(f"expected an integer, got {blades}", ("assembly", "number_of_blades"))
+    _validate_with_windio(r)
+    return WindIOTurbine(
+        name=str(data.get("name", Path(path).stem)),
+        number_of_blades=int(blades),
+        upwind=orientation == "upwind",
+        hub_radius=r.number(("components", "hub", "diameter"), 0.0, minimum=0) / 2,
+        cone_angle=math.radians(r.number(("components", "hub", "cone_angle"), 0.0)),
+        hub_mass=r.number(("components", "hub", "elastic_properties", "mass"), 0.0, minimum=0),
+        drivetrain_mass=r.number(("components", "drivetrain", "elastic_properties", "mass"), 0.0, minimum=0),
+        yaw_mass=r.number(("components", "yaw", "elastic_properties", "mass"), 0.0, minimum=0),
+        blade=blade, tower=tower, path=str(path), lines=lines)
+
+
+def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
+    axis = {c: r.distribution(key + ("reference_axis", c)) for c in ("x", "y", "z")}
+    elastic = key + ("structure", "elastic_properties")
+    stiffness_grid = r.grid(elastic + ("stiffness_matrix", "grid"))
+    given = r.get(elastic + ("stiffness_matrix",))
+    stiffness = {k: r.array(elastic + ("stiffness_matrix", k), len(stiffness_grid)) for k in STIFFNESS_KEYS
+                 if k in given}
+    for k in ("K44", "K55"):
+        if k not in stiffness:
+            raise r.error("missing key", elastic + ("stiffness_matrix", k))
+        r.array(elastic + ("stiffness_matrix", k), positive=True)
+    inertia_grid = r.grid(elastic + ("inertia_matrix", "grid"))
+    present = r.get(elastic + ("inertia_matrix",))
+    inertia = {k: r.array(elastic + ("inertia_matrix", k), len(inertia_grid),
+                          minimum=0.0 if k in ("i_edge", "i_flap", "i_plr") else None)
+               for k in INERTIA_KEYS if k in present}
+    if "mass" not in inertia:
+        raise r.error("missing key", elastic + ("inertia_matrix", "mass"))
+    r.array(elastic + ("inertia_matrix", "mass"), positive=True)
+    beam_twist = r.distribution(key + ("outer_shape", "twist"), math.pi / 180) if twist else None
+    beam = WindIOBeam(axis, stiffness_grid, stiffness, inertia_grid, inertia, beam_twist)
+    if not beam.length > 0:
+        raise r.error("reference axis has zero length", key + ("reference_axis",))
+    return beam
+
+
+def _validate_with_windio(r: _Reader) -> None:
+    """Validate the elastic_properties objects against windIO's 'beam' schema when windio and jsonschema exist."""
+    try:
+        import jsonschema
+        import windIO
+    except ImportError:
+        return
+    import yaml
+    schema_file = Path(windIO.__file__).parent / "schemas" / "turbine" / "turbine_schema.yaml"
+    try:
+        schema = yaml.safe_load(schema_file.read_text())
+    except (OSError, yaml.YAMLError):
+        return
+    beam = dict(schema["definitions"]["beam"], definitions=schema["definitions"])
+    for part in ("blade", "tower"):
+        key = ("components", part, "structure", "elastic_properties")
+        value = r.get(key, None)
+        if value is None:
+            continue
+        error = jsonschema.exceptions.best_match(jsonschema.Draft7Validator(beam).iter_errors(value))
+        if error is not None:
+            raise r.error(f"windIO schema: {error.message}", key + tuple(error.absolute_path))
