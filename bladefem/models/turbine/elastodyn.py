@@ -16,7 +16,7 @@ from ...io._modeshape_blocks import read_block
 from ...io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
 from ...io.elastodyn_main import read_elastodyn_main
 from ...modal.results import ModalResult
-from ...sections import Blade, bending_stiffness, total_angle
+from ...sections import Blade, SectionTable, bending_stiffness, total_angle
 from .parameters import TurbineParameters
 from .shapes import ModalBeam, hermite_evaluator, polynomial_evaluator, sample_beam, twisted_polynomial_nodes
 
@@ -79,6 +79,60 @@ def tower_beam(tower: ElastoDynTower, length: float, subdivisions: int = 2, gaus
                        lambda x: np.interp(x, stations, tower.mass), stiffness,
                        np.array(tower.damping_percent) / 100.0, ("fore-aft 1", "fore-aft 2", "side-side 1",
                                                                  "side-side 2"), gauss_points)
+
+
+def tower_sections(tower: ElastoDynTower, length: float) -> SectionTable:
+    """The tower file's properties as a section table over the flexible length (flap = fore-aft, edge =
+    side-side, as bladefem's tower model reads them)."""
+    return SectionTable(span=tower.fraction * length, mass=tower.mass, flap_stiffness=tower.fore_aft_stiffness,
+                        edge_stiffness=tower.side_side_stiffness, source=tower.path)
+
+
+def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArray]:
+    """The rotor-nacelle assembly (yaw bearing, nacelle, hub, generator, undeflected blades at zero azimuth) as
+    one rigid body: mass (kg), centre of mass relative to the tower top and inertia tensor about it (kg m^2),
+    earth components."""
+    from .kane import TurbineModel
+    model = TurbineModel(params)
+    zero = np.zeros(model.n)
+    motion = model.motion(zero, zero)
+    top = motion.tower_top.r
+    positions = np.concatenate([top[None], motion.rigid.r, motion.blades.r.reshape(-1, 3)])
+    masses = model.masses[len(params.tower.x):]
+    mass = float(masses.sum())
+    cm = masses @ (positions - top) / mass
+    relative = positions - top - cm
+    inertia = np.einsum("p,pi,pj->ij", masses, relative, relative)
+    inertia = np.trace(inertia) * np.eye(3) - inertia
+    for frame, local in model.rigid_bodies(motion):
+        inertia += frame.R @ local @ frame.R.T
+    return mass, cm, inertia
+
+
+def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_ratio: NDArray | float = 0.0,
+                  gauss_points: int = 4) -> ModalBeam:
+    """Tower modes FA1, FA2, SS1, SS2 from bladefem's tower FE with the rotor-nacelle assembly of ``params`` as
+    its rigid top body and the same gravity; the FE shapes themselves are the assumed modes."""
+    from ...models.tower import tower_modes
+    from ...sections.tower import OPENFAST_AXES, TopMass, Tower
+
+    mass, cm, inertia = rotor_nacelle_body(params)
+    top = TopMass(mass, OPENFAST_AXES @ cm, OPENFAST_AXES @ inertia @ OPENFAST_AXES.T)
+    result = tower_modes(Tower(sections, top_mass=top, gravity=params.gravity), n_modes=8)
+    chosen = [result.first(kind, number) for kind in ("fore-aft", "side-side") for number in (1, 2)]
+    nodes = chosen[0].shape.x
+    # tower frame: w fore-aft (downwind), v side-side to the right; here x downwind, y to the left
+    values = np.stack([np.stack([m.shape.flap, -m.shape.edge], axis=-1) for m in chosen])
+    slopes = np.stack([np.stack([m.shape.flap_slope, -m.shape.edge_slope], axis=-1) for m in chosen])
+
+    def stiffness(x: NDArray) -> NDArray:
+        D = np.zeros((len(x), 2, 2))
+        D[:, 0, 0] = sections.at(x, "flap_stiffness")
+        D[:, 1, 1] = sections.at(x, "edge_stiffness")
+        return D
+
+    return sample_beam(hermite_evaluator(nodes, values, slopes), nodes, lambda x: sections.at(x, "mass"), stiffness,
+                       damping_ratio, ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
 
 
 def blade_properties(blade: Blade):

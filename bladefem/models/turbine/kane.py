@@ -15,28 +15,41 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .kinematics import (FrameMotion, PointMotion, at_rest, axis_rotation, beam_deflection, carry, earth, rotate,
-                         scatter, skew, turn)
+from .kinematics import BeamNodes, FrameMotion, PointMotion, at_rest, axis_rotation, carry, earth, rotate, skew, turn
 from .parameters import TurbineParameters
+
+
+def pick(points: PointMotion, index: object) -> PointMotion:
+    """A subset of points, ``index`` applied to the leading axes."""
+    return PointMotion(r=points.r[index], v=points.v[index], J=points.J[index], a=points.a[index])
 
 
 @dataclass(frozen=True)
 class TurbineMotion:
-    """Motion of every body at one state (earth components)."""
+    """Motion of every body at one state (earth components).
 
-    tower: PointMotion          # (P_t,) tower span nodes
-    tower_top: PointMotion      # (), yaw bearing
+    tower : (P_t + 1,) tower span nodes, the last one the tower top (yaw bearing)
+    rigid : (3,) nacelle centre of mass, rotor apex, hub centre of mass
+    blades : (B, P_b + 1) blade span nodes, the last one each blade's tip
+    """
+
+    tower: PointMotion
+    rigid: PointMotion
+    blades: PointMotion
     tower_top_frame: FrameMotion
     nacelle: FrameMotion
     shaft: FrameMotion          # non-rotating, x along the shaft (downwind)
     rotor: FrameMotion          # rotates with the rotor azimuth
     generator: FrameMotion
-    nacelle_cm: PointMotion
-    apex: PointMotion
-    hub_cm: PointMotion
     blade_frames: FrameMotion   # R (B, 3, 3)
-    blades: PointMotion         # (B, P_b) span nodes
-    blade_tips: PointMotion     # (B,)
+
+    @property
+    def tower_top(self) -> PointMotion:
+        return pick(self.tower, -1)
+
+    @property
+    def apex(self) -> PointMotion:
+        return pick(self.rigid, 1)
 
 
 def cone_rotation(precone: float) -> NDArray:
@@ -74,11 +87,11 @@ class TurbineModel:
         self.tilt = axis_rotation(1, -p.shaft_tilt)
         self.blade_rotations = np.stack([axis_rotation(0, 2 * np.pi * k / p.n_blades) @ cone_rotation(p.precone)
                                          for k in range(p.n_blades)])
-        self.tower_axial = p.tower.x + 0.0
-        self.blade_axial = p.hub_radius + p.blade.x
-        self.masses = np.concatenate([
-            p.tower.point_mass, [p.yaw_bearing_mass, p.nacelle_mass, p.hub_mass],
-            np.tile(p.blade.point_mass, p.n_blades), np.full(p.n_blades, p.blade_tip_mass)])
+        self._nodes()
+        self.base = at_rest(np.array([0.0, 0.0, p.tower_base_height]), n)
+        blade = np.append(p.blade.point_mass, p.blade_tip_mass)
+        self.masses = np.concatenate([p.tower.point_mass, [p.yaw_bearing_mass, p.nacelle_mass, 0.0, p.hub_mass],
+                                      np.tile(blade, p.n_blades)])
         self.sqrt_masses = np.sqrt(self.masses)
         self.gravity = np.array([0.0, 0.0, -p.gravity])
         nacelle_own = p.nacelle_yaw_inertia - p.nacelle_mass * (p.nacelle_cm[0] ** 2 + p.nacelle_cm[1] ** 2)
@@ -98,45 +111,45 @@ class TurbineModel:
 
     # -- kinematics ---------------------------------------------------------------------------------------------
 
+    def _nodes(self) -> None:
+        """Span nodes of the tower and blades with the free end appended, and the offsets of the nacelle centre of
+        mass, rotor apex and hub centre of mass in the nacelle frame."""
+        p, unit = self.params, np.eye(self.n)
+
+        def nodes(beam, start, order, selection):
+            return BeamNodes(start + np.append(beam.x, beam.length),
+                             np.concatenate([beam.value, beam.tip_value[:, None]], axis=1),
+                             np.concatenate([beam.shortening, beam.tip_shortening[:, :, None]], axis=2),
+                             order, selection)
+
+        self.tower_nodes = nodes(p.tower, 0.0, (2, 0, 1), unit[self.tower_columns])
+        self.blade_nodes = nodes(p.blade, p.hub_radius, (0, 1, 2), unit[self.blade_columns])
+        shaft_axis = self.tilt[:, 0]
+        shaft = np.array([0.0, 0.0, p.twr2shft])
+        self.rigid_offsets = np.array([p.nacelle_cm, shaft + p.overhang * shaft_axis,
+                                       shaft + (p.overhang + p.hub_cm) * shaft_axis])
+
     def motion(self, q: NDArray, u: NDArray) -> TurbineMotion:
         """Positions, velocities, partial velocities and bias accelerations of every body at state (q, u)."""
-        p, n = self.params, self.n
-        base = at_rest(np.array([0.0, 0.0, p.tower_base_height]), n)
+        n = self.n
         ground = earth(n)
-        qt, ut = q[:4], u[:4]
-        span = beam_deflection(self.tower_axial, p.tower.value, p.tower.shortening, qt, ut, (2, 0, 1))
-        tower = carry(base, ground, span.offset, scatter(span.partials, self.tower_columns, n), span.velocity,
-                      span.bias)
-        top = beam_deflection(np.array([p.tower.length]), p.tower.tip_value[:, None, :],
-                              p.tower.tip_shortening[:, :, None], qt, ut, (2, 0, 1))
-        tower_top = carry(base, ground, top.offset[0], scatter(top.partials[0], self.tower_columns, n),
-                          top.velocity[0], top.bias[0])
+        span = self.tower_nodes.deflect(q[:4], u[:4])
+        tower = carry(self.base, ground, span.offset, span.partials, span.velocity, span.bias)
         bent = rotate(rotate(ground, 1, self.fore_aft_tilt, q, u), 0, self.side_side_tilt, q, u)
         nacelle = rotate(bent, 2, self.yaw, q, u)
-        nacelle_cm = carry(tower_top, nacelle, p.nacelle_cm)
+        rigid = carry(pick(tower, -1), nacelle, self.rigid_offsets)
         shaft = turn(nacelle, self.tilt)
-        shaft_point = carry(tower_top, nacelle, np.array([0.0, 0.0, p.twr2shft]))
-        apex = carry(shaft_point, shaft, np.array([p.overhang, 0.0, 0.0]))
-        hub_cm = carry(apex, shaft, np.array([p.hub_cm, 0.0, 0.0]))
         rotor = rotate(shaft, 0, self.azimuth, q, u)
         generator = rotate(shaft, 0, self.generator_angle, q, u)
         blade_frames = turn(rotor, self.blade_rotations)
-        qb, ub = q[self.blade_columns], u[self.blade_columns]
-        span = beam_deflection(self.blade_axial, p.blade.value, p.blade.shortening, qb, ub, (0, 1, 2))
-        blades = carry(apex, blade_frames, span.offset, scatter(span.partials, self.blade_columns, n),
-                       span.velocity, span.bias)
-        tip = beam_deflection(np.array([p.hub_radius + p.blade.length]), p.blade.tip_value[:, None, :],
-                              p.blade.tip_shortening[:, :, None], qb, ub, (0, 1, 2))
-        blade_tips = carry(apex, blade_frames, tip.offset[:, 0], scatter(tip.partials[:, 0], self.blade_columns, n),
-                           tip.velocity[:, 0], tip.bias[:, 0])
-        return TurbineMotion(tower=tower, tower_top=tower_top, tower_top_frame=bent, nacelle=nacelle, shaft=shaft,
-                             rotor=rotor, generator=generator, nacelle_cm=nacelle_cm, apex=apex, hub_cm=hub_cm,
-                             blade_frames=blade_frames, blades=blades, blade_tips=blade_tips)
+        span = self.blade_nodes.deflect(q[self.blade_columns], u[self.blade_columns])
+        blades = carry(pick(rigid, 1), blade_frames, span.offset, span.partials, span.velocity, span.bias)
+        return TurbineMotion(tower=tower, rigid=rigid, blades=blades, tower_top_frame=bent, nacelle=nacelle,
+                             shaft=shaft, rotor=rotor, generator=generator, blade_frames=blade_frames)
 
     def mass_points(self, motion: TurbineMotion) -> PointMotion:
         """All point masses stacked in the order of ``self.masses``."""
-        parts = [motion.tower, motion.tower_top, motion.nacelle_cm, motion.hub_cm, motion.blades,
-                 motion.blade_tips]
+        parts = (motion.tower, motion.rigid, motion.blades)
         return PointMotion(
             r=np.concatenate([part.r.reshape(-1, 3) for part in parts]),
             v=np.concatenate([part.v.reshape(-1, 3) for part in parts]),

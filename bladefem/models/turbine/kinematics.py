@@ -135,10 +135,9 @@ def carry(origin: PointMotion, frame: FrameMotion, offset: NDArray, partials: ND
 class BeamDeflection:
     """Deflection of a modal beam's nodes in its own frame, for given modal amplitudes and rates.
 
-    offset : (..., 3) node positions relative to the beam's origin (axial, transverse 1, transverse 2 in the
-        beam's axis order), m
-    partials : (..., 3, k) derivatives with respect to the beam's own k modal amplitudes
-    velocity : (..., 3); bias : (..., 3) second rate at zero modal accelerations
+    offset : (..., P, 3) node positions relative to the beam's origin, m
+    partials : (..., P, 3, n) derivatives with respect to all n generalized coordinates
+    velocity : (..., P, 3); bias : (..., P, 3) second rate at zero generalized accelerations
     """
 
     offset: NDArray
@@ -147,41 +146,40 @@ class BeamDeflection:
     bias: NDArray
 
 
-def beam_deflection(axial: NDArray, value: NDArray, shortening: NDArray, q: NDArray, u: NDArray,
-                    order: tuple[int, int, int]) -> BeamDeflection:
-    """Node offsets ``axial - s(x)`` along the beam axis plus the modal displacement across it.
+class BeamNodes:
+    """A modal beam's nodes: undeflected axial positions ``axial`` (P,), shapes ``value`` (k, P, 2) and
+    shortening integrals ``shortening`` (k, k, P); the node offset is ``axial - s(x)`` along the beam axis plus
+    the modal displacement across it, ``s = 1/2 q^T S q``.
 
-    axial : (P,) undeflected axial position; value : (k, P, 2) shapes; shortening : (k, k, P) S_ij;
-    q, u : (..., k) modal amplitudes and rates (leading axes e.g. blades); order : frame axes of
-    (axial, transverse 1, transverse 2).
+    order : frame axes of (axial, transverse 1, transverse 2); selection : (k, n) or (B, k, n) matrix picking the
+    beam's amplitudes out of the generalized coordinates (B beams alike, e.g. blades).
     """
-    transverse = np.einsum("...i,ipa->...pa", q, value)
-    Sq = np.einsum("ijp,...j->...pi", shortening, q)
-    s = 0.5 * np.einsum("...i,...pi->...p", q, Sq)
-    Su = np.einsum("ijp,...j->...pi", shortening, u)
-    k = value.shape[0]
-    shape = transverse.shape[:-1]
-    offset = np.empty(shape + (3,))
-    partials = np.empty(shape + (3, k))
-    axis, first, second = order
-    offset[..., axis] = axial - s
-    offset[..., first] = transverse[..., 0]
-    offset[..., second] = transverse[..., 1]
-    partials[..., axis, :] = -Sq
-    partials[..., first, :] = np.broadcast_to(np.moveaxis(value[..., 0], 0, -1), shape + (k,))
-    partials[..., second, :] = np.broadcast_to(np.moveaxis(value[..., 1], 0, -1), shape + (k,))
-    velocity = np.einsum("...ik,...k->...i", partials, u[..., None, :])
-    bias = np.zeros(shape + (3,))
-    bias[..., axis] = -np.einsum("...i,...pi->...p", u, Su)
-    return BeamDeflection(offset=offset, partials=partials, velocity=velocity, bias=bias)
 
+    def __init__(self, axial: NDArray, value: NDArray, shortening: NDArray, order: tuple[int, int, int],
+                 selection: NDArray) -> None:
+        k, P = value.shape[:2]
+        self.k, self.P = k, P
+        self.axial = axial
+        self.value_flat = value.reshape(k, P * 2)
+        self.shortening_flat = shortening.reshape(k, k * P)
+        self.permutation = np.argsort(order)          # standard (axial, t1, t2) -> frame axes
+        self.axial_axis = order[0]
+        self.value_rows = np.moveaxis(value, 0, -1)   # (P, 2, k)
+        self.selection = selection if selection.ndim == 2 else selection[:, None]
 
-def scatter(partials: NDArray, columns: NDArray, n: int) -> NDArray:
-    """Place partials over a body's own coordinates (..., 3, k) into the n global columns ``columns`` (..., k)."""
-    full = np.zeros(partials.shape[:-1] + (n,))
-    if columns.ndim == 1:
-        full[..., columns] = partials
-    else:
-        for b, cols in enumerate(columns):
-            full[b][..., cols] = partials[b]
-    return full
+    def deflect(self, q: NDArray, u: NDArray) -> BeamDeflection:
+        """Offsets, partials over all coordinates, velocities and bias accelerations for amplitudes q, rates u
+        (each (..., k))."""
+        lead = q.shape[:-1]
+        transverse = (q @ self.value_flat).reshape(lead + (self.P, 2))
+        Sq = (q @ self.shortening_flat).reshape(lead + (self.k, self.P))
+        Su = (u @ self.shortening_flat).reshape(lead + (self.k, self.P))
+        s = 0.5 * np.einsum("...i,...ip->...p", q, Sq)
+        offset = np.concatenate([(self.axial - s)[..., None], transverse], axis=-1)[..., self.permutation]
+        rows = np.concatenate([-np.swapaxes(Sq, -1, -2)[..., None, :],
+                               np.broadcast_to(self.value_rows, lead + self.value_rows.shape)], axis=-2)
+        local = rows[..., self.permutation, :]
+        velocity = local @ u[..., None, :, None]
+        bias = np.zeros(lead + (self.P, 3))
+        bias[..., self.axial_axis] = -np.einsum("...i,...ip->...p", u, Su)
+        return BeamDeflection(offset=offset, partials=local @ self.selection, velocity=velocity[..., 0], bias=bias)

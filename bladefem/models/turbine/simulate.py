@@ -53,12 +53,11 @@ def root_moments(model: TurbineModel, q: NDArray, u: NDArray, du: NDArray, blade
     p = model.params
     R = motion.blade_frames.R[blade]
     root = motion.apex.r + R[:, 0] * p.hub_radius
-    moment = np.zeros(3)
-    for points, masses in ((motion.blades, p.blade.point_mass), (motion.blade_tips, np.array([p.blade_tip_mass]))):
-        r = points.r[blade].reshape(-1, 3)
-        a = (points.J[blade].reshape(-1, 3, model.n) @ du) + points.a[blade].reshape(-1, 3)
-        loads = masses[:, None] * (model.gravity - a)
-        moment += np.sum(np.cross(r - root, loads), axis=0)
+    masses = np.append(p.blade.point_mass, p.blade_tip_mass)
+    points = motion.blades
+    a = points.J[blade] @ du + points.a[blade]
+    loads = masses[:, None] * (model.gravity - a)
+    moment = np.sum(np.cross(points.r[blade] - root, loads), axis=0)
     local = R.T @ moment
     return float(-local[1]), float(local[2])
 
