@@ -155,9 +155,19 @@ def test_in_place_update_changes_only_coefficient_lines():
     changed = [i + 1 for i, (a, b) in enumerate(zip(old_lines, new_lines)) if a != b]
     assert changed == [72, 73, 74, 75, 76]
     for number, value in zip(changed, new):
-        assert new_lines[number - 1].split()[0] == repr(float(value))
-        # the key and the description stay byte for byte
-        assert new_lines[number - 1].endswith(old_lines[number - 1][15:])
+        assert float(new_lines[number - 1].split()[0]) == value
+        # the key stays in its column and the description byte for byte
+        assert new_lines[number - 1][14:] == old_lines[number - 1][14:]
+
+
+def test_written_coefficients_add_up_to_one_in_decimal():
+    from decimal import Decimal
+    from bladefem.io._modeshape_blocks import decimal_texts
+    coefficients = np.array([-70.53191234567, -63.7623456789, 289.7371111111, -176.5130987654, 0.0])
+    coefficients[-1] = 1 - coefficients[:-1].sum()
+    texts = decimal_texts(coefficients)
+    assert sum(Decimal(t) for t in texts) == 1
+    assert np.allclose([float(t) for t in texts], coefficients, rtol=0, atol=1e-10)
 
 
 # -- errors: one InputError naming file, line and field ----------------------------------------------------------

@@ -37,6 +37,7 @@ class KeyValue:
     line: int
     start: int
     end: int
+    key_start: int = 0
 
 
 @dataclass
@@ -74,7 +75,8 @@ class FastText:
             value = match["value"]
             if value[0] in "\"'":
                 value = value[1:-1]
-            keys[match["key"]] = KeyValue(value, number, match.start("value"), match.end("value"))
+            keys[match["key"]] = KeyValue(value, number, match.start("value"), match.end("value"),
+                                          match.start("key"))
         return cls(path, lines, keys)
 
     # -- errors -------------------------------------------------------------------------------------------------
@@ -153,16 +155,19 @@ class FastText:
 
     # -- in-place editing ---------------------------------------------------------------------------------------
     def replaced(self, values: dict[str, str]) -> str:
-        """The file's text with the value of each given key replaced, right-aligned in its old field when it fits;
-        every other byte is kept."""
+        """The file's text with the value of each given key replaced; every other line is kept byte for byte.
+        The new value is right-aligned where the old one ended, or, when longer, as far as the key column allows
+        (keeping the key where it was and at least one blank before it)."""
         lines = list(self.lines)
         for key, new in values.items():
             entry = self.find(key)
             line = lines[entry.line - 1]
-            lead = KEY_LINE.match(line)["lead"]  # type: ignore[index]
-            width = entry.end
-            text = new.rjust(width) if len(new) < width else (lead[:1] + new if lead else new)
-            lines[entry.line - 1] = text + line[entry.end:]
+            if len(new) < entry.end:
+                lines[entry.line - 1] = new.rjust(entry.end) + line[entry.end:]
+            elif len(new) < entry.key_start:
+                lines[entry.line - 1] = new.rjust(entry.key_start - 1) + " " + line[entry.key_start:]
+            else:
+                lines[entry.line - 1] = new + " " + line[entry.key_start:]
         return "".join(lines)
 
 

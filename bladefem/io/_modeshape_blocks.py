@@ -7,6 +7,8 @@ much (the NREL 5MW tower's TwSSM2Sh adds up to 0.999), so the readers accept up 
 
 from __future__ import annotations
 
+from decimal import ROUND_HALF_EVEN, Decimal
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -33,15 +35,28 @@ def read_block(text: FastText, prefix: str) -> NDArray[np.float64]:
     return coefficients
 
 
+#: Decimal places of coefficients written into an existing file.
+DECIMALS = 10
+
+
+def decimal_texts(coefficients: NDArray, decimals: int = DECIMALS) -> list[str]:
+    """Coefficients as fixed-point text with ``decimals`` places whose decimal sum is exactly 1: c_2 .. c_5 are
+    rounded and c_6 = 1 - (c_2 + ... + c_5) is computed in decimal arithmetic."""
+    quantum = Decimal(1).scaleb(-decimals)
+    head = [Decimal(repr(float(c))).quantize(quantum, rounding=ROUND_HALF_EVEN) for c in coefficients[:-1]]
+    return [f"{value:.{decimals}f}" for value in head + [Decimal(1) - sum(head)]]
+
+
 def block_values(prefix: str, coefficients: NDArray) -> dict[str, str]:
-    """Key -> text of each coefficient, for an in-place update."""
-    return {key: format_number(value) for key, value in zip(block_keys(prefix), coefficients)}
+    """Key -> text of each coefficient for an in-place update (fixed point, decimal sum exactly 1)."""
+    return dict(zip(block_keys(prefix), decimal_texts(coefficients)))
 
 
-def block_lines(prefix: str, coefficients: NDArray, label: str) -> list[str]:
-    """Fresh lines of one block for a file written from scratch."""
+def block_lines(prefix: str, coefficients: NDArray, label: str, texts: list[str] | None = None) -> list[str]:
+    """Fresh lines of one block for a file written from scratch (exact shortest floats unless ``texts`` given)."""
+    texts = texts or [format_number(value) for value in coefficients]
     lines = []
-    for power, value in zip(POWERS, coefficients):
+    for power, text in zip(POWERS, texts):
         description = f"{label}, coeff of x^{power}" if power == 2 else f"coeff of x^{power}"
-        lines.append(f"{format_number(value):>24}   {prefix}({power}) - {description}\n")
+        lines.append(f"{text:>24}   {prefix}({power}) - {description}\n")
     return lines

@@ -1,0 +1,185 @@
+"""``bladefem elastodyn``: ElastoDyn mode-shape coefficients from the finite-element modes, with their quality, the
+frequencies ElastoDyn would derive from them, and an in-place update of an ElastoDyn blade or tower file."""
+
+from __future__ import annotations
+
+import argparse
+import difflib
+import math
+import sys
+from pathlib import Path
+
+from ..errors import InputError
+from ..io._fast_format import write_atomically
+from ..io._modeshape_blocks import block_lines, decimal_texts
+from ..io.detect import Geometry, detect_format, read_model
+from ..io.elastodyn_blade import BLADE_BLOCKS, blade_with_mode_shapes, read_elastodyn_blade
+from ..io.elastodyn_main import read_elastodyn_main
+from ..io.elastodyn_tower import TOWER_BLOCKS, read_elastodyn_tower, tower_with_mode_shapes
+from ..io.tower import Tower
+from ..modal.elastodyn_fit import MIN_TIP_RATIO, ElastoDynCoefficients, blade_coefficients, tower_coefficients
+
+DEFAULT_BLADE_NODES = 17
+DEFAULT_TOWER_NODES = 20
+
+
+def add_parser(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "elastodyn", help="ElastoDyn mode-shape coefficients (fit, quality, in-place update)",
+        description="Fit ElastoDyn's polynomial mode shapes (flap 1, flap 2, edge 1 of a blade at a rotor speed; "
+                    "fore-aft and side-side 1 and 2 of a tower) to the finite-element modes, report the fit quality "
+                    "and the frequencies ElastoDyn would derive from the polynomials, and optionally update an "
+                    "ElastoDyn blade or tower file in place.")
+    parser.add_argument("input", metavar="INPUT",
+                        help="ElastoDyn main, blade or tower file, BModes .bmi, windIO or bladefem case .yaml")
+    parser.add_argument("--rpm", type=float, metavar="R",
+                        help="rotor speed for blade modes, rpm (default: RotSpeed of an ElastoDyn main file, or the "
+                             "BModes deck's rotor speed)")
+    parser.add_argument("--write", metavar="FILE.dat",
+                        help="update the coefficient lines of this ElastoDyn blade or tower file in place")
+    parser.add_argument("--dry-run", action="store_true", help="with --write: show a unified diff, write nothing")
+    parser.add_argument("--part", choices=("blade", "tower"),
+                        help="blade or tower (default: from --write or INPUT; blade for files with both)")
+    parser.add_argument("--nodes", type=int, metavar="N",
+                        help="ElastoDyn analysis nodes for its own integrals (default: BldNodes/TwrNodes of the main "
+                             f"file, else {DEFAULT_BLADE_NODES} for a blade and {DEFAULT_TOWER_NODES} for a tower)")
+    parser.add_argument("--n-modes", type=int, default=12, metavar="N", help="FE modes computed (default 12)")
+    parser.add_argument("--elements", type=int, metavar="N", help="FE elements (default: refined until converged)")
+    parser.add_argument("--min-tip-ratio", type=float, default=MIN_TIP_RATIO, metavar="X",
+                        help=f"warn when |tip displacement| / max |displacement| < X (default {MIN_TIP_RATIO})")
+    geometry = parser.add_argument_group("geometry for ElastoDyn blade or tower files given alone")
+    geometry.add_argument("--elastodyn-main", metavar="FILE", help="ElastoDyn main file to take the geometry from")
+    geometry.add_argument("--tip-radius", type=float, metavar="M", help="TipRad, m")
+    geometry.add_argument("--hub-radius", type=float, metavar="M", help="HubRad, m")
+    geometry.add_argument("--tower-height", type=float, metavar="M", help="flexible tower length, m")
+    geometry.add_argument("--top-mass", type=float, metavar="KG", help="tower-top point mass, kg")
+    parser.set_defaults(run=run)
+
+
+def _check(args: argparse.Namespace) -> None:
+    for name in ("rpm", "tip_radius", "hub_radius", "tower_height", "top_mass", "min_tip_ratio"):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value >= 0):
+            raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
+    for name in ("nodes", "n_modes", "elements"):
+        value = getattr(args, name)
+        if value is not None and value < 1:
+            raise InputError(f"must be a positive integer, got {value}", field="--" + name.replace("_", "-"))
+    if args.dry_run and not args.write:
+        raise InputError("--dry-run needs --write FILE.dat", field="--dry-run")
+
+
+def _part(args: argparse.Namespace, kind: str) -> str:
+    if args.part:
+        return args.part
+    if args.write:
+        target = detect_format(args.write)
+        if target not in ("elastodyn-blade", "elastodyn-tower"):
+            raise InputError("--write needs an existing ElastoDyn blade or tower file", file=args.write,
+                             field="--write")
+        return "tower" if target == "elastodyn-tower" else "blade"
+    return "tower" if kind == "elastodyn-tower" else "blade"
+
+
+def _main_file(args: argparse.Namespace, kind: str) -> str | None:
+    return args.input if kind == "elastodyn-main" else args.elastodyn_main
+
+
+def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | None, str | None]:
+    """Coefficients already in the file to be written, or in the ElastoDyn file given as INPUT."""
+    source = args.write
+    if source is None:
+        main = _main_file(args, kind)
+        if kind == f"elastodyn-{part}":
+            source = args.input
+        elif main:
+            parsed = read_elastodyn_main(main)
+            source = str(parsed.tower_file if part == "tower" else parsed.blade_files[0])
+    if source is None:
+        return None, None
+    data = read_elastodyn_tower(source) if part == "tower" else read_elastodyn_blade(source)
+    return data.modes, source
+
+
+def run(args: argparse.Namespace) -> int:
+    _check(args)
+    kind = detect_format(args.input)
+    part = _part(args, kind)
+    geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
+                        tower_height=args.tower_height, top_mass=args.top_mass)
+    model = read_model(args.input, part, geometry)
+    if isinstance(model, Tower) != (part == "tower"):
+        raise InputError(f"INPUT describes a {'tower' if isinstance(model, Tower) else 'blade'}, not a {part}",
+                         file=args.input, field="--part")
+    main_path = _main_file(args, kind)
+    main = read_elastodyn_main(main_path) if main_path else None
+    shipped, shipped_from = _shipped(args, kind, part)
+    if isinstance(model, Tower):
+        nodes = args.nodes or (main.tower_nodes if main else DEFAULT_TOWER_NODES)
+        result = tower_coefficients(model.as_beam(), nodes=nodes, n_modes=args.n_modes, elements=args.elements,
+                                    shipped=shipped, min_tip_ratio=args.min_tip_ratio)
+        name = model.name
+    else:
+        rpm = _rpm(args, kind, main)
+        nodes = args.nodes or (main.blade_nodes if main else DEFAULT_BLADE_NODES)
+        result = blade_coefficients(model, rpm, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
+                                    shipped=shipped, min_tip_ratio=args.min_tip_ratio)
+        name = model.name
+    print(report(name, result, shipped_from))
+    if args.write:
+        _update(args.write, result, args.dry_run)
+    return 0
+
+
+def _rpm(args: argparse.Namespace, kind: str, main) -> float:
+    if args.rpm is not None:
+        return args.rpm
+    if main is not None:
+        return main.rotor_speed_rpm
+    if kind == "bmodes":
+        from ..io.bmodes import read_bmodes
+        return read_bmodes(args.input).rotor_speed_rpm
+    raise InputError("give the rotor speed with --rpm R (rpm)", file=args.input, field="--rpm")
+
+
+def report(name: str, result: ElastoDynCoefficients, shipped_from: str | None = None) -> str:
+    """The quality table, the warnings and the coefficient blocks as ElastoDyn lines."""
+    speed = "tower (non-rotating)" if result.tower else f"rotor speed {result.rpm:g} rpm"
+    lines = [f"# {name}: FE modes, {speed}; ElastoDyn frequencies from its own integrals over {result.nodes} nodes"]
+    lines += [f"# note: {note}" for note in result.notes]
+    lines += _table("fresh fit", result.fits)
+    if result.shipped:
+        lines += _table(f"coefficients in {shipped_from}", result.shipped)
+    lines += [f"# warning: {warning}" for warning in result.warnings]
+    blocks = TOWER_BLOCKS if result.tower else BLADE_BLOCKS
+    lines.append("")
+    for mode, fit in result.fits.items():
+        texts = decimal_texts(fit.fit.coefficients)
+        lines += [line.rstrip("\n") for line in block_lines(blocks[mode], fit.fit.coefficients, fit.label, texts)]
+    return "\n".join(lines)
+
+
+def _table(title: str, fits: dict) -> list[str]:
+    lines = [f"# {title}:",
+             f"# {'mode':<6} {'FE_Hz':>10} {'ElastoDyn_Hz':>13} {'diff_%':>7} {'rms_err':>9} {'tip_slope_err':>13} "
+             f"{'cond':>8} {'tip_ratio':>9} {'sum-1':>9}"]
+    for mode, f in fits.items():
+        diff = 100 * (f.elastodyn_frequency_hz / f.fe_frequency_hz - 1)
+        cond = f"{f.fit.condition_number:8.2e}" if math.isfinite(f.fit.condition_number) else f"{'-':>8}"
+        lines.append(f"  {mode:<6} {f.fe_frequency_hz:>10.5f} {f.elastodyn_frequency_hz:>13.5f} {diff:>7.2f} "
+                     f"{f.fit.rms_error:>9.2e} {f.fit.tip_slope_error:>13.2e} {cond} {f.tip_ratio:>9.3f} "
+                     f"{f.fit.coefficients.sum() - 1:>9.1e}")
+    return lines
+
+
+def _update(path: str, result: ElastoDynCoefficients, dry_run: bool) -> None:
+    updater = tower_with_mode_shapes if result.tower else blade_with_mode_shapes
+    old, new = updater(path, result.coefficients)
+    if dry_run:
+        diff = difflib.unified_diff(old.splitlines(keepends=True), new.splitlines(keepends=True),
+                                    fromfile=path, tofile=f"{path} (updated)")
+        sys.stdout.write("\n" + "".join(diff))
+        return
+    write_atomically(Path(path), new)
+    changed = sum(a != b for a, b in zip(old.splitlines(), new.splitlines()))
+    print(f"\n# updated {path}: {changed} coefficient lines changed, every other byte kept")
