@@ -29,43 +29,35 @@ BASE_FIELDS: tuple[str, ...] = ("u", "v", "w", "phi", "w", "v")
 BASE_SIZE = 6
 
 
-def base_kinematics(height: float) -> NDArray[np.float64]:
-    """6x6 ``A`` with ``d_base = A q``: a point ``height`` m above the reference point of a rigid base."""
-    A = np.eye(6)
-    A[1, 5] = height      # v = t_y + h theta_z
-    A[2, 4] = -height     # w = t_z - h theta_y
-    return A
-
-
 def base_constraint(dofs: DofMap, rigid_fields: tuple[str, ...], moving: bool, height: float) -> sp.csr_matrix:
-    """``Z`` with ``(x, q) = Z r``: the independent coordinates ``r`` are the unconstrained beam DOFs followed by
-    ``q`` (when the base moves). The bottom node follows the base; rigid fields equal their base value."""
+    """``Z`` with ``(x, q) = Z r``. The independent coordinates ``r`` are the beam's elastic DOFs relative to the
+    base (the bottom node held, rigid fields zero) followed, when the base moves, by ``q``, which moves the whole
+    tower rigidly (:func:`rigid_motion`). The total motion is the same as tying the bottom node to the base, but
+    the elastic stiffness never has to cancel on a rigid motion: it acts on the elastic columns only."""
     n = dofs.size
-    A = base_kinematics(height)
-    # beam DOF -> row of A giving it (sign for the slope of w, since d[4] = -w')
-    tied: dict[int, tuple[int, float]] = {}
-    for name, row in (("u", 0), ("v", 1), ("w", 2), ("phi", 3)):
-        tied[int(dofs.value[name][0])] = (row, 1.0)
-    tied[int(dofs.slope["w"][0])] = (4, -1.0)
-    tied[int(dofs.slope["v"][0])] = (5, 1.0)
-    for name in rigid_fields:
-        row = 0 if name == "u" else 3
-        for dof in dofs.field_dofs[name]:
-            tied[int(dof)] = (row, 1.0)
-    independent = np.setdiff1d(np.arange(n), np.fromiter(tied, dtype=np.int64))
-    rows, cols, values = list(independent), list(range(len(independent))), [1.0] * len(independent)
-    if moving:
-        first_q = len(independent)
-        for dof, (row, sign) in tied.items():
-            for k in np.flatnonzero(A[row]):
-                rows.append(dof)
-                cols.append(first_q + k)
-                values.append(sign * A[row, k])
-        rows += list(range(n, n + BASE_SIZE))
-        cols += list(range(first_q, first_q + BASE_SIZE))
-        values += [1.0] * BASE_SIZE
-    width = len(independent) + (BASE_SIZE if moving else 0)
-    return sp.csr_matrix((values, (rows, cols)), shape=(n + BASE_SIZE, width))
+    held = [dofs.value[name][0] for name in dofs.fields] + [dofs.slope[name][0] for name in dofs.slope]
+    held += [dof for name in rigid_fields for dof in dofs.field_dofs[name]]
+    independent = np.setdiff1d(np.arange(n), np.array(held, dtype=np.int64))
+    elastic = sp.csr_matrix((np.ones(len(independent)), (independent, np.arange(len(independent)))),
+                            shape=(n + BASE_SIZE, len(independent)))
+    if not moving:
+        return elastic
+    return sp.hstack([elastic, sp.csr_matrix(rigid_motion(dofs, height))]).tocsr()
+
+
+def rigid_motion(dofs: DofMap, height: float) -> NDArray[np.float64]:
+    """(size + 6) x 6 matrix: the full vector (beam DOFs, base coordinates) of the whole tower moving rigidly with
+    unit base coordinates ``q`` of a base reference point ``height`` m below the beam's bottom."""
+    R = np.zeros((dofs.size + BASE_SIZE, BASE_SIZE))
+    arm = height + dofs.nodes
+    R[dofs.field_dofs["u"], 0] = 1.0                                    # t_x
+    R[dofs.field_dofs["phi"], 3] = 1.0                                  # theta_x
+    R[dofs.value["v"], 1], R[dofs.value["v"], 5] = 1.0, arm             # v = t_y + (h + x) theta_z
+    R[dofs.slope["v"], 5] = 1.0
+    R[dofs.value["w"], 2], R[dofs.value["w"], 4] = 1.0, -arm            # w = t_z - (h + x) theta_y
+    R[dofs.slope["w"], 4] = -1.0
+    R[dofs.size:, :] = np.eye(BASE_SIZE)
+    return R
 
 
 def base_height(supports: Supports) -> float:

@@ -120,13 +120,15 @@ def _base_block(block: NDArray, size: int) -> sp.csr_matrix:
 class TowerMatrices:
     """Matrices over the beam DOFs followed by the six base coordinates, and the constraint ``(x, q) = Z r``.
 
-    K : elastic stiffness with wires, soil and base springs (hydrostatics, mooring, foundation)
+    K_elastic : the beam's elastic stiffness (zero on rigid motion, so it acts on the elastic columns of Z only)
+    K : wires, soil and base springs (hydrostatics, mooring, foundation)
     K_gravity : geometric stiffness of the gravity load (zero when ``tower.gravity`` is 0)
     M : mass matrix with top mass, base mass (platform, added mass, foundation)
     Z : constraint matrix from the independent coordinates r
     dofs : the beam's DOF map
     """
 
+    K_elastic: sp.csr_matrix
     K: sp.csr_matrix
     K_gravity: sp.csr_matrix
     M: sp.csr_matrix
@@ -142,9 +144,17 @@ class TowerMatrices:
     def n_free(self) -> int:
         return self.Z.shape[1]
 
+    @property
+    def n_elastic(self) -> int:
+        """Number of elastic coordinates (the first columns of Z; the last six move the base, if it moves)."""
+        return self.n_free - (BASE_SIZE if self.tower.supports.moving_base else 0)
+
     def reduced(self, load_factor: float = 1.0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(K, M) on the independent coordinates, with ``load_factor`` times the gravity load."""
         K = self.Z.T @ (self.K + load_factor * self.K_gravity) @ self.Z
+        elastic = self.Z[:, :self.n_elastic]
+        K = K + sp.block_diag([elastic.T @ self.K_elastic @ elastic,
+                               sp.csr_matrix((self.n_free - self.n_elastic,) * 2)])
         M = self.Z.T @ self.M @ self.Z
         return sp.csc_matrix(0.5 * (K + K.T)), sp.csc_matrix(0.5 * (M + M.T))
 
@@ -170,8 +180,8 @@ def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
     sections = section_parameters(tower, x)
     M_top, G_top = top_body_matrices(tower, dofs, size)
     base = base_matrices(tower, float(mass_above(tower, np.array([0.0]))[0]))
-    K = (_pad(assemble_terms(basis, fields, sections, elastic_terms(tower)), size)
-         + _pad(assemble_terms(basis, fields, soil_parameters(tower.supports, x), [soil_springs]), size)
+    K_elastic = _pad(assemble_terms(basis, fields, sections, elastic_terms(tower)), size)
+    K = (_pad(assemble_terms(basis, fields, soil_parameters(tower.supports, x), [soil_springs]), size)
          + wire_stiffness(tower.supports, dofs, size) + _base_block(base.stiffness, size))
     M = _pad(assemble_terms(basis, fields, sections, [terms.inertia]), size) + M_top + _base_block(base.mass, size)
     if tower.gravity > 0:
@@ -182,4 +192,4 @@ def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
     else:
         K_gravity = sp.csr_matrix((size, size))
     Z = base_constraint(dofs, rigid_fields(tower), tower.supports.moving_base, base_height(tower.supports))
-    return TowerMatrices(K=K.tocsr(), K_gravity=K_gravity.tocsr(), M=M.tocsr(), Z=Z, dofs=dofs, tower=tower)
+    return TowerMatrices(K_elastic=K_elastic, K=K.tocsr(), K_gravity=K_gravity.tocsr(), M=M.tocsr(), Z=Z, dofs=dofs, tower=tower)
