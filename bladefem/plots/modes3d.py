@@ -137,32 +137,44 @@ class ModePicture:
     scale: float
 
 
-def render(blade: Blade, mode: Mode, title: str = "", window_size: tuple[int, int] = (1400, 420),
-           fraction: float = FRACTION, amplitudes: tuple[float, ...] = (1.0,), frame: float | None = None,
-           view: View | None = None, tilt_deg: float = TILT_DEG) -> ModePicture:
-    """Render the undeformed blade (grey) and the mode (blue) at ``frame`` times the drawing scale (default 1);
-    the view frames the shape at every amplitude in ``amplitudes`` (so the frames of an animation share it)."""
+def render_frames(blade: Blade, mode: Mode, amplitudes: tuple[float, ...] = (1.0,), title: str = "",
+                  window_size: tuple[int, int] = (1400, 420), fraction: float = FRACTION,
+                  tilt_deg: float = TILT_DEG) -> list[ModePicture]:
+    """Render the undeformed blade (grey) and the mode (blue) at each of ``amplitudes`` times the drawing scale,
+    all in one view that frames every frame (the frames of an animation share it)."""
     pv = pyvista()
     x = mode.shape.x
     displacement = mode_displacement(blade, mode.shape, x)
     scale = fraction * blade.length / displacement.largest
     offset = scale * drawn_offset(displacement)
     rest = blade_mesh(blade, x)
-    if view is None:
-        extremes = np.concatenate([rest.points] + [blade_mesh(blade, x, a * offset).points for a in amplitudes])
-        largest = offset.reshape(-1, 3)[np.argmax(np.linalg.norm(offset.reshape(-1, 3), axis=1))]
-        view = fit_view(blade, extremes, largest, window_size[0] / window_size[1], np.radians(tilt_deg))
+    shapes = [blade_mesh(blade, x, a * offset).points for a in amplitudes]
+    largest = offset.reshape(-1, 3)[np.argmax(np.linalg.norm(offset.reshape(-1, 3), axis=1))]
+    view = fit_view(blade, np.concatenate([rest.points, *shapes]), largest, window_size[0] / window_size[1],
+                    np.radians(tilt_deg))
     plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
     plotter.set_background("white")
     plotter.add_mesh(rest, color=UNDEFORMED, opacity=0.55, ambient=0.4, diffuse=0.6, specular=0.0)
-    plotter.add_mesh(blade_mesh(blade, x, (1.0 if frame is None else frame) * offset), color=DEFORMED,
-                     ambient=0.4, diffuse=0.6, specular=0.0, smooth_shading=True)
+    deformed = blade_mesh(blade, x, offset)
+    plotter.add_mesh(deformed, color=DEFORMED, ambient=0.4, diffuse=0.6, specular=0.0, smooth_shading=True)
     if title:
         plotter.add_text(title, position="upper_edge", font_size=11, color="black")
     camera(plotter, view)
-    image = plotter.screenshot(return_img=True)
+    pictures = []
+    for points in shapes:
+        deformed.points = points
+        deformed.compute_normals(inplace=True)
+        plotter.render()
+        image = np.asarray(plotter.screenshot(return_img=True))[..., :3]
+        pictures.append(ModePicture(image, view, 2.0 * view.half_height / window_size[1], scale))
     plotter.close()
-    return ModePicture(np.asarray(image)[..., :3], view, 2.0 * view.half_height / window_size[1], scale)
+    return pictures
+
+
+def render(blade: Blade, mode: Mode, title: str = "", window_size: tuple[int, int] = (1400, 420),
+           fraction: float = FRACTION, tilt_deg: float = TILT_DEG) -> ModePicture:
+    """One picture of the mode at the drawing scale (see :func:`render_frames`)."""
+    return render_frames(blade, mode, (1.0,), title, window_size, fraction, tilt_deg)[0]
 
 
 def png_bytes(image: NDArray) -> bytes:
@@ -187,9 +199,8 @@ def save_mode_gif(blade: Blade, result: ModalResult, number: int, path: str | Pa
 
     mode = result.modes[number - 1]
     title = mode_title(number, mode_labels(result.modes)[number - 1], mode, result.rotor_speed_rpm)
-    first = render(blade, mode, title, window_size, amplitudes=(1.0, -1.0))
-    images = [first.image] + [render(blade, mode, title, window_size, frame=float(np.cos(2 * np.pi * k / frames)),
-                                     view=first.view).image for k in range(1, frames)]
+    amplitudes = tuple(float(np.cos(2 * np.pi * k / frames)) for k in range(frames))
+    images = [picture.image for picture in render_frames(blade, mode, amplitudes, title, window_size)]
     data = iio.imwrite("<bytes>", np.stack(images), extension=".gif", duration=1000.0 * seconds / frames, loop=0)
     write_atomic(path, data)
 

@@ -1,0 +1,259 @@
+"""An inspection report of a blade: model summary and provenance, frequency table, mode pictures, Campbell diagram
+and ElastoDyn mode-shape coefficients, written as Markdown and HTML with PNG images beside them.
+
+The report is a list of blocks (heading, paragraph, table, image) rendered twice, so the two formats always say the
+same thing. Images need matplotlib (Campbell) and pyvista (modes, optional: left out with a note without it).
+"""
+
+from __future__ import annotations
+
+import html
+import math
+import sys
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .assembly import BladeMatrices
+from .io.results import write_atomic
+from .modal import CampbellResult, ModalResult, blade_matrices, solve_modes, track_families
+from .modal.campbell import TRACKING_MARGIN
+from .plots.campbell import crossings, family_labels, save_campbell_plot
+from .plots.modes3d import mode_labels
+from .sections import Blade
+
+Progress = Callable[[Iterable[Any]], Iterable[Any]]
+
+
+# -- sweeps with a progress bar -----------------------------------------------------------------------------------
+
+def progress_bar(description: str, quiet: bool = False) -> Progress:
+    """A wrapper showing a progress bar (rich, on stderr) while iterating, or nothing when ``quiet`` or when stderr
+    is not a terminal."""
+    if quiet or not sys.stderr.isatty():
+        return lambda items: items
+    from rich.console import Console
+    from rich.progress import track
+    return lambda items: track(items, description=description, console=Console(stderr=True), transient=True)
+
+
+def sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int, notes: tuple[str, ...] = (),
+          progress: Progress | None = None) -> CampbellResult:
+    """:func:`bladefem.modal.campbell_sweep` with a progress wrapper around the loop over rotor speeds (rpm)."""
+    rpm = np.asarray(rpm, dtype=float)
+    results = [solve_modes(matrices, speed, n_modes + TRACKING_MARGIN, notes) for speed in (progress or iter)(rpm)]
+    M = matrices.M[matrices.free][:, matrices.free]
+    families = track_families(results, M, min(n_modes, len(results[0].modes)))
+    return CampbellResult(rpm=rpm, families=families, results=results, notes=notes)
+
+
+# -- blocks -------------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Heading:
+    text: str
+    level: int = 2
+
+
+@dataclass(frozen=True)
+class Paragraph:
+    text: str
+
+
+@dataclass(frozen=True)
+class Table:
+    header: tuple[str, ...]
+    rows: list[tuple[str, ...]]
+    align: str = ""          # one letter per column, 'l' or 'r' (default: first left, others right)
+
+
+@dataclass(frozen=True)
+class Image:
+    file: str
+    caption: str
+
+
+Block = Heading | Paragraph | Table | Image
+
+
+def markdown(blocks: Sequence[Block]) -> str:
+    lines: list[str] = []
+    for block in blocks:
+        if isinstance(block, Heading):
+            lines += ["#" * block.level + " " + block.text, ""]
+        elif isinstance(block, Paragraph):
+            lines += [block.text, ""]
+        elif isinstance(block, Table):
+            align = block.align or "l" + "r" * (len(block.header) - 1)
+            lines.append("| " + " | ".join(block.header) + " |")
+            lines.append("|" + "|".join("---:" if a == "r" else ":---" for a in align) + "|")
+            lines += ["| " + " | ".join(row) + " |" for row in block.rows]
+            lines.append("")
+        else:
+            lines += [f"![{block.caption}]({block.file})", "", f"*{block.caption}*", ""]
+    return "\n".join(lines)
+
+
+STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
+         "table{border-collapse:collapse;margin:1em 0}td,th{padding:.2em .7em;border-bottom:1px solid #ccc}"
+         "th{border-bottom:2px solid #444}td.r,th.r{text-align:right}figure{margin:1.5em 0}img{max-width:100%}"
+         "figcaption{font-size:90%;color:#333}")
+
+
+def html_document(title: str, blocks: Sequence[Block]) -> str:
+    e = html.escape
+    body: list[str] = []
+    for block in blocks:
+        if isinstance(block, Heading):
+            body.append(f"<h{block.level}>{e(block.text)}</h{block.level}>")
+        elif isinstance(block, Paragraph):
+            body.append(f"<p>{e(block.text)}</p>")
+        elif isinstance(block, Table):
+            align = block.align or "l" + "r" * (len(block.header) - 1)
+            head = "".join(f'<th class="{a}">{e(h)}</th>' for h, a in zip(block.header, align))
+            rows = "".join("<tr>" + "".join(f'<td class="{a}">{e(c)}</td>' for c, a in zip(row, align)) + "</tr>"
+                           for row in block.rows)
+            body.append(f"<table><tr>{head}</tr>{rows}</table>")
+        else:
+            body.append(f'<figure><img src="{e(block.file)}" alt="{e(block.caption)}">'
+                        f"<figcaption>{e(block.caption)}</figcaption></figure>")
+    return (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>{e(title)}</title>'
+            f"<style>{STYLE}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n")
+
+
+# -- content ------------------------------------------------------------------------------------------------------
+
+def g(value: float, digits: int = 5) -> str:
+    return f"{value:.{digits}g}"
+
+
+def mass_rows(blade: Blade) -> list[tuple[str, ...]]:
+    """Mass and first and second mass moments of the distributed blade about the root and about the rotor apex
+    (along the pitch axis; exact integrals of the piecewise-linear mass), plus the tip mass on its own."""
+    rows = []
+    for where, offset in (("blade root", 0.0), ("rotor apex", blade.hub_radius)):
+        _, first, second = blade.sections.mass_moments(offset)
+        rows += [(f"first mass moment about the {where}", g(first, 6), "kg m"),
+                 (f"second mass moment about the {where}", g(second, 6), "kg m^2")]
+    mass = blade.sections.mass_moments()[0]
+    rows.insert(0, ("distributed mass", g(mass, 6), "kg"))
+    if blade.tip_mass is not None and blade.tip_mass.mass > 0:
+        rows.append(("tip mass (not in the moments above)", g(blade.tip_mass.mass, 6), "kg"))
+    return rows
+
+
+def summary_blocks(blade: Blade, matrices: BladeMatrices) -> list[Block]:
+    sections = blade.sections
+    geometry = [("flexible length", g(blade.length), "m"), ("hub radius", g(blade.hub_radius), "m"),
+                ("tip radius", g(blade.tip_radius), "m"), ("precone", g(math.degrees(blade.precone)), "deg"),
+                ("pitch", g(math.degrees(blade.pitch)), "deg"), ("root", blade.root, ""),
+                ("section stations", str(sections.stations), "")]
+    provenance = (f"Input: {sections.source or 'built in code'}. Model: Euler-Bernoulli beam finite elements "
+                  f"(docs/THEORY.md), {matrices.free.size} free degrees of freedom; frequencies without Coriolis "
+                  "coupling, linearised about the undeflected blade.")
+    blocks: list[Block] = [Heading("Model"), Paragraph(provenance),
+                           Table(("quantity", "value", "unit"), geometry + mass_rows(blade), "lrl")]
+    if blade.notes:
+        blocks.append(Paragraph("Notes: " + "; ".join(blade.notes) + "."))
+    return blocks
+
+
+def frequency_blocks(result: ModalResult) -> list[Block]:
+    rows = []
+    for number, (mode, label) in enumerate(zip(result.modes, mode_labels(result.modes)), 1):
+        e = mode.energy_fractions
+        rows.append((str(number), f"{mode.frequency_hz:.4f}", label, f"{e['flap']:.2f}", f"{e['edge']:.2f}",
+                     f"{e['torsion']:.2f}", f"{mode.residual:.1e}"))
+    return [Heading(f"Natural frequencies at {result.rotor_speed_rpm:g} rpm"),
+            Table(("mode", "frequency (Hz)", "kind", "flap share", "edge share", "torsion share", "residual"),
+                  rows, "rrlrrrr"),
+            Paragraph("Shares are the fractions of kinetic energy in each field; the residual is "
+                      "||K x - omega^2 M x|| / ||K x||.")]
+
+
+def crossing_blocks(result: CampbellResult, operating_rpm: float | None) -> list[Block]:
+    labels = family_labels(result)
+    rows = [(labels[c.family], f"{c.harmonic}P", f"{c.rpm:.2f}", f"{c.frequency_hz:.4f}",
+             "" if operating_rpm is None else f"{c.rpm - operating_rpm:+.2f}") for c in crossings(result)]
+    if not rows:
+        return [Paragraph("No family crosses the 1P, 3P, 6P or 9P lines in the swept range.")]
+    return [Table(("family", "excitation", "rotor speed (rpm)", "frequency (Hz)", "from operating (rpm)"),
+                  rows, "llrrr")]
+
+
+def elastodyn_blocks(blade: Blade, rpm: float, elements: int | None) -> list[Block]:
+    """ElastoDyn polynomial coefficients of the blade modes (flap 1, flap 2, edge 1) fitted to the FE shapes."""
+    try:
+        from .modal.elastodyn_fit import blade_coefficients
+    except ImportError:                      # the fit module is optional: the report stays complete without it
+        return []
+    try:
+        fitted = blade_coefficients(blade, rpm, elements=elements)
+    except LookupError as error:             # e.g. fewer than two flap modes among those computed
+        return [Heading("ElastoDyn mode-shape coefficients"), Paragraph(f"Not available: {error}.")]
+    rows = []
+    for fit in fitted.fits.values():
+        rows.append((fit.label, *(f"{c:.6g}" for c in fit.fit.coefficients), f"{fit.fit.rms_error:.1e}",
+                     f"{fit.fe_frequency_hz:.4f}", f"{fit.elastodyn_frequency_hz:.4f}"))
+    blocks: list[Block] = [
+        Heading("ElastoDyn mode-shape coefficients"),
+        Paragraph(f"Polynomials sum c_i x^i (i = 2..6, sum c_i = 1) fitted to the finite-element shapes at {rpm:g} "
+                  f"rpm; 'ElastoDyn' is the frequency ElastoDyn derives from the polynomial with {fitted.nodes} "
+                  "nodes."),
+        Table(("mode", "x^2", "x^3", "x^4", "x^5", "x^6", "RMS error", "FE (Hz)", "ElastoDyn (Hz)"), rows,
+              "lrrrrrrrr")]
+    if fitted.warnings:
+        blocks.append(Paragraph("Warnings: " + "; ".join(fitted.warnings) + "."))
+    return blocks
+
+
+def can_render() -> bool:
+    try:
+        import pyvista  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+@dataclass(frozen=True)
+class Report:
+    """Paths written by :func:`write_report`."""
+
+    markdown: Path
+    html: Path
+    images: tuple[Path, ...] = field(default=())
+
+
+def write_report(blade: Blade, directory: str | Path, rpm: float, sweep_rpm: Sequence[float], n_modes: int = 6,
+                 elements: int | None = None, pictures: bool = True, quiet: bool = True) -> Report:
+    """Compute and write ``report.md`` and ``report.html`` (with ``campbell.png`` and ``modes.png``) for ``blade``
+    at the operating speed ``rpm`` (rpm) with a Campbell sweep over ``sweep_rpm`` (rpm)."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    matrices = blade_matrices(blade, elements, n_modes)
+    result = solve_modes(matrices, rpm, n_modes, blade.notes)
+    campbell = sweep(matrices, sweep_rpm, n_modes, blade.notes, progress_bar("Campbell sweep", quiet))
+    operating = rpm if rpm > 0 else None
+    images = [directory / "campbell.png"]
+    save_campbell_plot(campbell, images[0], title=blade.name, operating_rpm=operating)
+    blocks: list[Block] = [Heading(f"{blade.name}: modal report", 1), *summary_blocks(blade, matrices),
+                           *frequency_blocks(result)]
+    if pictures and can_render():
+        from .plots.modes3d import FRACTION, save_mode_strip
+        images.append(directory / "modes.png")
+        save_mode_strip(blade, result, images[-1], n_modes)
+        blocks.append(Image("modes.png", f"First {n_modes} modes at {rpm:g} rpm: deformed (blue) over undeformed "
+                                         f"(grey); largest displacement drawn at {FRACTION:.0%} of the length."))
+    elif pictures:
+        blocks.append(Paragraph("Mode pictures need pyvista (pip install 'bladefem[render]')."))
+    blocks += [Heading("Campbell diagram"),
+               Image("campbell.png", f"Mode families tracked by MAC over {sweep_rpm[0]:g}-{sweep_rpm[-1]:g} rpm "
+                                     "with the 1P, 3P, 6P and 9P excitation lines; circles mark crossings."),
+               *crossing_blocks(campbell, operating), *elastodyn_blocks(blade, rpm, elements)]
+    paths = Report(directory / "report.md", directory / "report.html", tuple(images))
+    write_atomic(paths.markdown, markdown(blocks))
+    write_atomic(paths.html, html_document(f"{blade.name}: modal report", blocks))
+    return paths
