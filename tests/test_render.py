@@ -113,3 +113,18 @@ def test_labels_count_each_kind(result):
     kinds = ["flap", "edge", "flap", "torsion", "flap"]
     fake = [replace(result.modes[0], kind=kind) for kind in kinds]
     assert mode_labels(fake) == ["1st flap", "1st edge", "2nd flap", "1st torsion", "3rd flap"]
+
+
+def test_title_band_is_kept_free(result):
+    """With a title the blade is framed below a free band at the top: no blue pixel there, and the scale still
+    maps the blade's root-to-tip length."""
+    from bladefem.plots.modes3d import TITLE_PIXELS
+    sections = uniform_sections(4.0, mass=80.0, flap_stiffness=3e8, edge_stiffness=9e8)
+    stubby = Blade(replace(sections, chord=2.0, pitch_axis=0.5), name="stubby")   # extent set by the height
+    mode = modes(stubby, 0.0, 1, elements=8).modes[0]
+    picture = render(stubby, mode, title="Mode 1: 1st flap", window_size=(1200, 200))
+    mask = deformed_pixels(picture.image)
+    assert not mask[:TITLE_PIXELS].any()
+    assert mask[TITLE_PIXELS:].any()
+    _, cols = extent(mask)
+    assert cols * picture.metres_per_pixel <= 4.0 + 2 * picture.metres_per_pixel

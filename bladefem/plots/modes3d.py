@@ -27,6 +27,8 @@ UNDEFORMED = "#b8b8b8"
 DEFORMED = "#1f5fa8"
 #: view turned about the blade axis away from the plane of the largest displacement, degrees
 TILT_DEG = 20.0
+#: height of the band kept free above the blade for the title, pixels
+TITLE_PIXELS = 40
 #: tube radius of a blade drawn without a chord, as a fraction of its length
 TUBE = 0.006
 
@@ -111,6 +113,12 @@ def fit_view(blade: Blade, points: NDArray, largest: NDArray, aspect: float, til
     return View(focus, right, up, half)
 
 
+def with_band_above(view: View, fraction: float) -> View:
+    """The same framing with the top ``fraction`` of the image left free (for the title)."""
+    half = view.half_height / (1.0 - fraction)
+    return View(view.focus + view.up * half * fraction, view.right, view.up, half)
+
+
 def camera(plotter, view: View) -> None:
     plotter.enable_parallel_projection()
     distance = 10.0 * view.half_height + 1.0
@@ -152,6 +160,8 @@ def render_frames(blade: Blade, mode: Mode, amplitudes: tuple[float, ...] = (1.0
     largest = offset.reshape(-1, 3)[np.argmax(np.linalg.norm(offset.reshape(-1, 3), axis=1))]
     view = fit_view(blade, np.concatenate([rest.points, *shapes]), largest, window_size[0] / window_size[1],
                     np.radians(tilt_deg))
+    if title:
+        view = with_band_above(view, TITLE_PIXELS / window_size[1])
     plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
     plotter.set_background("white")
     plotter.add_mesh(rest, color=UNDEFORMED, opacity=0.55, ambient=0.4, diffuse=0.6, specular=0.0)
