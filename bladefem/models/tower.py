@@ -43,6 +43,8 @@ DEGENERATE_RTOL = 1e-5
 BUCKLING_WARNING_FRACTION = 0.5
 #: mesh of the buckling check (the critical load factor converges like h^4: 40 elements give ~1e-7)
 BUCKLING_ELEMENTS = 40
+#: extra modes solved so that a degenerate pair straddling the last requested mode is rotated as a whole
+CLUSTER_MARGIN = 2
 MESH_RTOL = 1e-6
 RICHARDSON = 15.0
 
@@ -246,7 +248,8 @@ def tower_modes(tower: Tower, n_modes: int = 10, elements: int | None = None) ->
         raise ValueError("n_modes must be at least 1")
     tower = as_tower(tower)
     matrices = tower_matrices(tower, elements, n_modes)
-    values, vectors = rotate_degenerate(matrices, *solve_tower(matrices, n_modes))
+    values, vectors = rotate_degenerate(matrices, *solve_tower(matrices, n_modes + CLUSTER_MARGIN))
+    values, vectors = values[:n_modes], vectors[:, :n_modes]
     notes = tower.notes + gravity_notes(tower) + (
         "tower mode shapes: 'flap' is fore-aft (w, downwind), 'edge' is side-side (v)",)
     return modal_result(matrices, values, vectors, notes)

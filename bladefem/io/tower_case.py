@@ -1,0 +1,260 @@
+"""bladefem's tower case file (YAML, ``kind: tower``): sections, top mass, gravity and supports.
+
+Example (every unit is in the key name; 6x6 matrices are SI in the OpenFAST order surge, sway, heave, roll, pitch,
+yaw, see docs/tower.md)::
+
+    kind: tower
+    name: NREL 5MW land tower
+    height_m: 87.6                 # flexible length; needed when the table gives height_fraction
+    base_height_m: 0.0
+    gravity_m_s2: 9.80665          # 0 switches gravity off
+    top_mass:
+      mass_kg: 349606.5
+      cm_offset_m: [1.966, 0.0, -0.408]       # up, side-side, downwind from the tower top
+      inertia_kg_m2: [2.49e7, 2.34e7, 1.8e5]  # about the CM: [Ixx, Iyy, Izz] (x up, y side-side, z downwind)
+                                             # or a 3x3 list
+    sections:
+      columns: [height_fraction, mass_kg_per_m, fore_aft_stiffness_N_m2, side_side_stiffness_N_m2]
+      rows:
+        - [0.0, 5590.87, 6.14343e11, 6.14343e11]
+        - ...
+    supports:                      # all optional; none: clamped base
+      wires: [{count: 3, stiffness_N_per_m: 1.0e6, angle_deg: 40, height_m: 60, azimuth_deg: 0}]
+      foundation: {stiffness_SI: [[...6x6...]], mass_SI: [[...6x6...]]}
+      platform: {mass_kg: ..., cm_m: [X, Y, Z], inertia_kg_m2: [roll, pitch, yaw], added_mass_SI: ...,
+                 hydrostatic_SI: ..., mooring_SI: ..., base_height_m: ...}
+      soil: {columns: [height_m, lateral_N_per_m2, axial_N_per_m2, torsional_N_m_per_m], rows: [...]}
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..sections import SectionTable
+from ..sections.tower import STANDARD_GRAVITY, Foundation, Platform, SoilSprings, Supports, TopMass, Tower, Wires
+from .case import _Case
+from .yamlnodes import Key, load_yaml
+
+#: case-file column -> SectionTable field
+COLUMNS: dict[str, str] = {
+    "height_m": "span",
+    "height_fraction": "span",
+    "mass_kg_per_m": "mass",
+    "fore_aft_stiffness_N_m2": "flap_stiffness",
+    "side_side_stiffness_N_m2": "edge_stiffness",
+    "torsion_stiffness_N_m2": "torsion_stiffness",
+    "axial_stiffness_N": "axial_stiffness",
+    "fore_aft_inertia_kg_m": "flap_inertia",
+    "side_side_inertia_kg_m": "edge_inertia",
+}
+REQUIRED = ("mass_kg_per_m", "fore_aft_stiffness_N_m2", "side_side_stiffness_N_m2")
+TOP_KEYS = {"kind", "name", "source", "height_m", "base_height_m", "gravity_m_s2", "top_mass", "sections",
+            "supports", "notes"}
+TOP_MASS_KEYS = {"mass_kg", "cm_offset_m", "inertia_kg_m2"}
+SUPPORT_KEYS = {"wires", "foundation", "platform", "soil"}
+WIRE_KEYS = {"count": "count", "stiffness_N_per_m": "stiffness", "angle_deg": "angle", "height_m": "height",
+             "azimuth_deg": "azimuth"}
+PLATFORM_KEYS = {"mass_kg", "cm_m", "inertia_kg_m2", "added_mass_SI", "hydrostatic_SI", "mooring_SI",
+                 "base_height_m"}
+SOIL_COLUMNS = {"height_m": "height", "lateral_N_per_m2": "lateral", "axial_N_per_m2": "axial",
+                "torsional_N_m_per_m": "torsional"}
+
+
+class _TowerCase(_Case):
+    """The case reader's value access, also through list indices (for the list of wires)."""
+
+    def get(self, key: Key) -> Any:
+        value = self.data
+        for part in key:
+            if isinstance(value, dict) and part in value:
+                value = value[part]
+            elif isinstance(value, list) and isinstance(part, int) and 0 <= part < len(value):
+                value = value[part]
+            else:
+                return None
+        return value
+
+
+def _keys(case: _Case, key: Key, known: set[str] | dict[str, str]) -> dict:
+    value = case.get(key)
+    if not isinstance(value, dict):
+        raise case.error("expected a mapping", key)
+    for name in value:
+        if name not in known:
+            raise case.error(f"unknown key (known: {', '.join(sorted(known))})", key + (name,), str(name))
+    return value
+
+
+def _array(case: _Case, key: Key, shapes: tuple[tuple[int, ...], ...]) -> np.ndarray:
+    """A list (of lists) of numbers with one of the given shapes."""
+    value = case.get(key)
+    try:
+        if isinstance(value, bool) or value is None:
+            raise ValueError
+        array = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise case.error(f"expected a list of numbers of shape {' or '.join(map(str, shapes))}", key) from None
+    if array.shape not in shapes or not np.all(np.isfinite(array)):
+        raise case.error(f"expected finite numbers of shape {' or '.join(map(str, shapes))}, got shape "
+                         f"{array.shape}", key)
+    return array
+
+
+def _looks_numeric(value: object) -> bool:
+    try:
+        float(str(value))
+    except ValueError:
+        return False
+    return isinstance(value, str)
+
+
+def _table(case: _Case, key: Key, columns_map: dict[str, str], required: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """A ``columns``/``rows`` table as arrays by the mapped names; errors name the row's line."""
+    data = _keys(case, key, {"columns", "rows"})
+    columns, rows = data.get("columns"), data.get("rows")
+    if not isinstance(columns, list) or not columns:
+        raise case.error("expected a list of column names", key + ("columns",))
+    for i, name in enumerate(columns):
+        if name not in columns_map:
+            raise case.error(f"unknown column '{name}' (known: {', '.join(columns_map)})", key + ("columns", i),
+                             str(name))
+    targets = [columns_map[name] for name in columns]
+    if len(set(targets)) != len(targets):
+        raise case.error("a quantity is given twice", key + ("columns",))
+    for name in required:
+        if name not in columns:
+            raise case.error(f"required column '{name}' is missing", key + ("columns",))
+    if not isinstance(rows, list) or len(rows) < 2:
+        raise case.error("expected at least two rows", key + ("rows",))
+    values = np.empty((len(rows), len(columns)))
+    for i, row in enumerate(rows):
+        if not isinstance(row, list) or len(row) != len(columns):
+            raise case.error(f"row needs {len(columns)} values ({', '.join(columns)})", key + ("rows", i), "rows")
+        for j, value in enumerate(row):
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                hint = " (YAML reads 1e11 as text: write 1.0e+11)" if _looks_numeric(value) else ""
+                raise case.error(f"expected a finite number, got {value!r}{hint}", key + ("rows", i, j), columns[j])
+            values[i, j] = value
+    return {target: values[:, j] for j, target in enumerate(targets)} | {"_columns": np.array(columns)}
+
+
+def _sections(case: _Case) -> SectionTable:
+    key: Key = ("sections",)
+    table = _table(case, key, COLUMNS, REQUIRED)
+    columns = list(table.pop("_columns"))
+    if ("height_m" in columns) == ("height_fraction" in columns):
+        raise case.error("give exactly one of height_m or height_fraction", key + ("columns",))
+    if "height_fraction" in columns:
+        height = case.number(("height_m",), field="height_m")
+        if height <= 0:
+            raise case.error("must be positive", ("height_m",))
+        table["span"] = table["span"] * height
+    lines = tuple(case.lines.get(key + ("rows", i), 0) for i in range(len(table["span"])))
+    return SectionTable(**table, source=str(case.path), lines=lines)
+
+
+def _top_mass(case: _Case) -> TopMass | None:
+    key: Key = ("top_mass",)
+    if case.get(key) is None:
+        return None
+    data = _keys(case, key, TOP_MASS_KEYS)
+    mass = case.number(key + ("mass_kg",), field="mass_kg")
+    if mass < 0:
+        raise case.error("must not be negative", key + ("mass_kg",))
+    offset = _array(case, key + ("cm_offset_m",), ((3,),)) if "cm_offset_m" in data else np.zeros(3)
+    inertia = (_array(case, key + ("inertia_kg_m2",), ((3,), (3, 3))) if "inertia_kg_m2" in data
+               else np.zeros(3))
+    return _located(case, key + ("inertia_kg_m2",), lambda: TopMass(mass, offset, inertia))
+
+
+def _located(case: _Case, key: Key, build: Any) -> Any:
+    """Run a constructor; an InputError it raises is given this key's file and line."""
+    try:
+        return build()
+    except InputError as error:
+        raise case.error(error.message, key, error.field) from None
+
+
+def _supports(case: _Case) -> Supports:
+    key: Key = ("supports",)
+    if case.get(key) is None:
+        return Supports()
+    data = _keys(case, key, SUPPORT_KEYS)
+    wires = []
+    listed = data.get("wires") or []
+    if not isinstance(listed, list):
+        raise case.error("expected a list of wire sets", key + ("wires",))
+    for i, _ in enumerate(listed):
+        item = key + ("wires", i)
+        _keys(case, item, WIRE_KEYS)
+        values = {WIRE_KEYS[k]: case.number(item + (k,), 0.0 if k == "azimuth_deg" else None, k) for k in WIRE_KEYS}
+        values["angle"], values["azimuth"] = math.radians(values["angle"]), math.radians(values["azimuth"])
+        values["count"] = int(values["count"]) if float(values["count"]).is_integer() else values["count"]
+        wires.append(_located(case, item, lambda v=values: Wires(**v)))
+    foundation = None
+    if data.get("foundation") is not None:
+        item = key + ("foundation",)
+        f = _keys(case, item, {"stiffness_SI", "mass_SI"})
+        stiffness = _array(case, item + ("stiffness_SI",), ((6, 6),))
+        mass = _array(case, item + ("mass_SI",), ((6, 6),)) if "mass_SI" in f else np.zeros((6, 6))
+        foundation = _located(case, item, lambda: Foundation(stiffness, mass))
+    platform = None
+    if data.get("platform") is not None:
+        item = key + ("platform",)
+        p = _keys(case, item, PLATFORM_KEYS)
+        matrices = {name: _array(case, item + (name + "_SI",), ((6, 6),)) if name + "_SI" in p else None
+                    for name in ("added_mass", "hydrostatic", "mooring")}
+        platform = _located(case, item, lambda: Platform(
+            mass=case.number(item + ("mass_kg",), field="mass_kg"),
+            centre_of_mass=_array(case, item + ("cm_m",), ((3,),)),
+            inertia=_array(case, item + ("inertia_kg_m2",), ((3,), (3, 3))),
+            base_height=case.number(item + ("base_height_m",), 0.0), **matrices))
+    soil = None
+    if data.get("soil") is not None:
+        item = key + ("soil",)
+        table = _table(case, item, SOIL_COLUMNS, ("height_m", "lateral_N_per_m2"))
+        table.pop("_columns")
+        soil = _located(case, item, lambda: SoilSprings(**table))
+    return _located(case, key, lambda: Supports(wires=tuple(wires), foundation=foundation, platform=platform,
+                                                soil=soil))
+
+
+def is_tower_case(path: str | Path) -> bool:
+    """True if ``path`` is a YAML file whose top level says ``kind: tower`` (false for unreadable files)."""
+    try:
+        data, _ = load_yaml(path)
+    except Exception:        # any reading problem is reported by the reader that is chosen instead
+        return False
+    return isinstance(data, dict) and data.get("kind") == "tower"
+
+
+def read_tower_case(path: str | Path) -> Tower:
+    """Read a bladefem YAML tower case into a :class:`~bladefem.sections.tower.Tower`."""
+    path = Path(path)
+    data, lines = load_yaml(path)
+    case = _TowerCase(path, data, lines)
+    if not isinstance(data, dict):
+        raise case.error("expected a mapping of keys at the top level", ())
+    for name in data:
+        if name not in TOP_KEYS:
+            raise case.error(f"unknown key (known: {', '.join(sorted(TOP_KEYS))})", (name,), str(name))
+    if data.get("kind") != "tower":
+        raise case.error(f"expected 'kind: tower', got {data.get('kind')!r}", ("kind",))
+    gravity = case.number(("gravity_m_s2",), STANDARD_GRAVITY)
+    if gravity < 0:
+        raise case.error("must not be negative (0 switches gravity off)", ("gravity_m_s2",))
+    sections = _sections(case)
+    notes = [str(note) for note in data.get("notes", []) or []]
+    if sections.torsion_stiffness is None:
+        notes.append("no torsion_stiffness column: torsion is rigid (the tower twists only with its base)")
+    if sections.axial_stiffness is None:
+        notes.append("no axial_stiffness column: the tower is inextensible (it moves axially only with its base)")
+    top, supports = _top_mass(case), _supports(case)
+    return _located(case, ("supports",), lambda: Tower(
+        sections=sections, base_height=case.number(("base_height_m",), 0.0), top_mass=top, supports=supports,
+        gravity=gravity, name=str(data.get("name", path.stem)), notes=tuple(notes)))
