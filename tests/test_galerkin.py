@@ -143,3 +143,14 @@ def test_bad_terms_are_input_errors(text):
 
 def test_terms_parse():
     assert parse_terms(" 8, 6,2") == (8, 6, 2)
+
+
+def test_centrifugal_tension_matches_closed_form():
+    from bladefem.models.galerkin_matrices import cell_edges, centrifugal_tension
+    R, beta, tip_mass, p_x = 1.5, np.radians(-5), 4.0, 0.3
+    blade = uniform_blade(hub_radius=R, precone=beta, tip_mass=TipMass(tip_mass, offset=[p_x, 0.0, 0.0]))
+    x = np.linspace(0, L, 9)
+    # N / Omega^2 = cos^2(beta) [m (R (L - x) + (L^2 - x^2) / 2) + M_t (R + L + p_x)]: a polynomial integrand
+    expected = np.cos(beta) ** 2 * (MASS * (R * (L - x) + (L**2 - x**2) / 2) + tip_mass * (R + L + p_x))
+    computed = centrifugal_tension(blade, cell_edges(blade.sections.span), x, 8)
+    np.testing.assert_allclose(computed, expected, rtol=1e-13)
