@@ -84,7 +84,7 @@ def symbolic_equations(model: TurbineModel):
         particle(f"T{i}", (x / H) ** 2 * qt * N.x + (x - shortening(x, H, np.array([1.0, 0])) * qt**2) * N.z,
                  m * w)
     top_position = qt * N.x + (H - shortening(H, H, np.array([1.0, 0])) * qt**2) * N.z
-    top = particle("top", top_position, g["yaw_bearing_mass"])
+    particle("top", top_position, g["yaw_bearing_mass"])
     B = N.orientnew("B", "Axis", [2 / H * qt, N.y])
     B.set_ang_vel(N, (2 / H) * u[0] * N.y)
     nacelle_frame = B.orientnew("Nc", "Axis", [qy, B.z])

@@ -3,7 +3,6 @@ rotor speed) or from the ElastoDyn polynomials, and tower shapes from the tower 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
@@ -11,10 +10,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import InputError
-from ...io._fast_format import FastText
-from ...io._modeshape_blocks import read_block
 from ...io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
 from ...io.elastodyn_main import read_elastodyn_main
+from ...io.elastodyn_tower import ElastoDynTowerFile, read_elastodyn_tower, tower_from_elastodyn
 from ...modal.results import ModalResult
 from ...sections import Blade, SectionTable, bending_stiffness, total_angle
 from .parameters import TurbineParameters
@@ -23,69 +21,44 @@ from .shapes import ModalBeam, hermite_evaluator, polynomial_evaluator, sample_b
 #: NREL 5MW nacelle-yaw spring and damper (ServoDyn YawSpr, YawDamp; not in the ElastoDyn main file)
 NREL5MW_YAW_STIFFNESS = 9.02832e9
 NREL5MW_YAW_DAMPING = 1.916e7
-TOWER_BLOCKS = {"fa1": "TwFAM1Sh", "fa2": "TwFAM2Sh", "ss1": "TwSSM1Sh", "ss2": "TwSSM2Sh"}
 ShapeSource = Literal["fe", "polynomial"]
 
 
-@dataclass(frozen=True)
-class ElastoDynTower:
-    """An ElastoDyn tower file (fractions of the flexible length, SI; damping in percent of critical)."""
-
-    fraction: NDArray
-    mass: NDArray
-    fore_aft_stiffness: NDArray
-    side_side_stiffness: NDArray
-    damping_percent: tuple[float, float, float, float]
-    modes: dict[str, NDArray] = field(default_factory=dict)
-    path: str = ""
+def tower_damping(tower: ElastoDynTowerFile) -> NDArray:
+    """Damping ratios of the modes FA1, FA2, SS1, SS2 (fraction of critical)."""
+    return np.array(tower.fa_damping_percent + tower.ss_damping_percent) / 100.0
 
 
-def read_elastodyn_tower(path: str | Path) -> ElastoDynTower:
-    """Read an ElastoDyn tower file; AdjTwMa, AdjFASt and AdjSSSt are applied."""
-    text = FastText.read(path)
-    stations = text.int("NTwInpSt", minimum=2)
-    first = text.header_line("HtFract") + 2
-    rows = np.array(text.table(first, stations, ("HtFract", "TMassDen", "TwFAStif", "TwSSStif")))
-    for column, name in enumerate(("HtFract", "TMassDen", "TwFAStif", "TwSSStif")):
-        if column > 0 and np.any(rows[:, column] <= 0):
-            bad = int(np.flatnonzero(rows[:, column] <= 0)[0])
-            raise text.error(f"must be positive, got {rows[bad, column]}", first + bad, name)
-    if abs(rows[0, 0]) > 1e-9 or abs(rows[-1, 0] - 1) > 1e-9 or np.any(np.diff(rows[:, 0]) <= 0):
-        raise text.error("HtFract must increase from 0 to 1", first, "HtFract")
-    damping = tuple(text.float(key, non_negative=True) for key in
-                    ("TwrFADmp(1)", "TwrFADmp(2)", "TwrSSDmp(1)", "TwrSSDmp(2)"))
-    return ElastoDynTower(
-        fraction=rows[:, 0], mass=rows[:, 1] * text.float("AdjTwMa", positive=True),
-        fore_aft_stiffness=rows[:, 2] * text.float("AdjFASt", positive=True),
-        side_side_stiffness=rows[:, 3] * text.float("AdjSSSt", positive=True),
-        damping_percent=damping,  # type: ignore[arg-type]
-        modes={name: read_block(text, prefix) for name, prefix in TOWER_BLOCKS.items()}, path=text.path)
+def tower_sections(tower: ElastoDynTowerFile, length: float) -> SectionTable:
+    """The tower file's properties over the flexible length (flap = fore-aft, edge = side-side)."""
+    return tower_from_elastodyn(tower, height=length).sections
 
 
-def tower_beam(tower: ElastoDynTower, length: float, subdivisions: int = 2, gauss_points: int = 4) -> ModalBeam:
-    """The tower's four polynomial modes (FA1, FA2 along x; SS1, SS2 along y) on the file's stations."""
-    stations = tower.fraction * length
+def tower_beam(tower: ElastoDynTowerFile, length: float, subdivisions: int = 2, gauss_points: int = 4,
+               elements: int | None = None) -> ModalBeam:
+    """The tower's four polynomial modes (FA1, FA2 along x; SS1, SS2 along y) on the file's stations, each
+    interval subdivided, or on ``elements`` equal elements."""
+    sections = tower_sections(tower, length)
+    stations = sections.span
     edges = np.unique(np.concatenate([np.linspace(a, b, subdivisions + 1) for a, b in zip(stations, stations[1:])]))
+    if elements is not None:
+        edges = np.linspace(0.0, length, elements + 1)
     coefficients = np.array([tower.modes[name] for name in ("fa1", "fa2", "ss1", "ss2")])
     directions = np.array([[1.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
 
+    return sample_beam(polynomial_evaluator(coefficients, length, directions), edges,
+                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), tower_damping(tower),
+                       ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
+
+
+def tower_stiffness(sections: SectionTable):
+    """Bending stiffness diag(fore-aft, side-side) as a function of height, (len(x), 2, 2) N m^2."""
     def stiffness(x: NDArray) -> NDArray:
         D = np.zeros((len(x), 2, 2))
-        D[:, 0, 0] = np.interp(x, stations, tower.fore_aft_stiffness)
-        D[:, 1, 1] = np.interp(x, stations, tower.side_side_stiffness)
+        D[:, 0, 0] = sections.at(x, "flap_stiffness")
+        D[:, 1, 1] = sections.at(x, "edge_stiffness")
         return D
-
-    return sample_beam(polynomial_evaluator(coefficients, length, directions), edges,
-                       lambda x: np.interp(x, stations, tower.mass), stiffness,
-                       np.array(tower.damping_percent) / 100.0, ("fore-aft 1", "fore-aft 2", "side-side 1",
-                                                                 "side-side 2"), gauss_points)
-
-
-def tower_sections(tower: ElastoDynTower, length: float) -> SectionTable:
-    """The tower file's properties as a section table over the flexible length (flap = fore-aft, edge =
-    side-side, as bladefem's tower model reads them)."""
-    return SectionTable(span=tower.fraction * length, mass=tower.mass, flap_stiffness=tower.fore_aft_stiffness,
-                        edge_stiffness=tower.side_side_stiffness, source=tower.path)
+    return stiffness
 
 
 def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArray]:
@@ -110,7 +83,7 @@ def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArr
 
 
 def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_ratio: NDArray | float = 0.0,
-                  gauss_points: int = 4) -> ModalBeam:
+                  gauss_points: int = 4, edges: NDArray | None = None) -> ModalBeam:
     """Tower modes FA1, FA2, SS1, SS2 from bladefem's tower FE with the rotor-nacelle assembly of ``params`` as
     its rigid top body and the same gravity; the FE shapes themselves are the assumed modes."""
     from ...models.tower import tower_modes
@@ -125,14 +98,8 @@ def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_rat
     values = np.stack([np.stack([m.shape.flap, -m.shape.edge], axis=-1) for m in chosen])
     slopes = np.stack([np.stack([m.shape.flap_slope, -m.shape.edge_slope], axis=-1) for m in chosen])
 
-    def stiffness(x: NDArray) -> NDArray:
-        D = np.zeros((len(x), 2, 2))
-        D[:, 0, 0] = sections.at(x, "flap_stiffness")
-        D[:, 1, 1] = sections.at(x, "edge_stiffness")
-        return D
-
-    return sample_beam(hermite_evaluator(nodes, values, slopes), nodes, lambda x: sections.at(x, "mass"), stiffness,
-                       damping_ratio, ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
+    return sample_beam(hermite_evaluator(nodes, values, slopes), nodes if edges is None else edges,
+                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), damping_ratio, ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
 
 
 def blade_properties(blade: Blade):
@@ -158,31 +125,38 @@ def blade_beam_from_modes(blade: Blade, result: ModalResult, damping_ratio: NDAr
 
 
 def blade_beam_from_polynomials(blade: Blade, coefficients: dict[str, NDArray], damping_ratio: NDArray | float = 0.0,
-                                gauss_points: int = 4) -> ModalBeam:
-    """ElastoDyn's polynomial blade modes ('flap1', 'edge1', 'flap2'), twisted by the structural twist + pitch."""
+                                gauss_points: int = 4, edges: NDArray | None = None) -> ModalBeam:
+    """ElastoDyn's polynomial blade modes ('flap1', 'edge1', 'flap2'), twisted by the structural twist + pitch
+    (integrated between the section stations); ``edges`` sets the quadrature mesh (default: the stations)."""
     nodes = blade.sections.span
     c = np.array([coefficients["flap1"], coefficients["edge1"], coefficients["flap2"]])
     values, slopes = twisted_polynomial_nodes(c, blade.length, ("flap", "edge", "flap"), nodes,
                                               lambda x: total_angle(blade.sections, x, blade.pitch))
     mass, stiffness = blade_properties(blade)
-    return sample_beam(hermite_evaluator(nodes, values, slopes), nodes, mass, stiffness, damping_ratio,
-                       ("flap 1", "edge 1", "flap 2"), gauss_points)
+    return sample_beam(hermite_evaluator(nodes, values, slopes), nodes if edges is None else edges, mass,
+                       stiffness, damping_ratio, ("flap 1", "edge 1", "flap 2"), gauss_points)
 
 
 def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "fe", rpm: float | None = None,
                            pitch: float = 0.0, yaw_stiffness: float = NREL5MW_YAW_STIFFNESS,
-                           yaw_damping: float = NREL5MW_YAW_DAMPING, gauss_points: int = 2) -> TurbineParameters:
+                           yaw_damping: float = NREL5MW_YAW_DAMPING, gauss_points: int = 2,
+                           blade_elements: int | None = None, tower_elements: int | None = None,
+                           tower_shapes: ShapeSource = "polynomial") -> TurbineParameters:
     """The turbine of an ElastoDyn main file.
 
     blade_shapes : 'fe' (bladefem's FE modes at ``rpm``, default the file's RotSpeed) or 'polynomial' (the blade
         file's ElastoDyn polynomials, twisted); the tower uses the tower file's polynomials
     pitch : rad; yaw_stiffness, yaw_damping : N m/rad, N m s/rad (ServoDyn inputs; NREL 5MW values by default)
     gauss_points : quadrature points per element for the span nodes of the Kane model
+    blade_elements, tower_elements : equal elements for those span nodes (default: the files' stations)
+    tower_shapes : 'polynomial' (the tower file's) or 'fe' (bladefem's tower FE with this rotor-nacelle assembly
+        as a rigid top body, and gravity)
     """
     from ...modal import modes
 
-    if blade_shapes not in ("fe", "polynomial"):
-        raise InputError(f"blade shapes must be 'fe' or 'polynomial', got '{blade_shapes}'", field="shapes")
+    for name, value in (("blade shapes", blade_shapes), ("tower shapes", tower_shapes)):
+        if value not in ("fe", "polynomial"):
+            raise InputError(f"{name} must be 'fe' or 'polynomial', got '{value}'", field=name.replace(" ", "_"))
     main = read_elastodyn_main(main_path)
     blade_file = read_elastodyn_blade(main.blade_files[0])
     if len(set(main.precone)) > 1 or len(set(main.tip_mass)) > 1 or len(set(main.blade_files)) > 1:
@@ -193,17 +167,21 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
     damping = np.array([blade_file.flap_damping_percent[0], blade_file.edge_damping_percent,
                         blade_file.flap_damping_percent[1]]) / 100.0
     speed = main.rotor_speed_rpm if rpm is None else rpm
+    edges = None if blade_elements is None else np.linspace(0.0, blade.length, blade_elements + 1)
     if blade_shapes == "fe":
-        beam = blade_beam_from_modes(blade, modes(blade, rpm=speed, n_modes=6), damping, blade.sections.span,
-                                     gauss_points)
+        beam = blade_beam_from_modes(blade, modes(blade, rpm=speed, n_modes=6), damping,
+                                     blade.sections.span if edges is None else edges, gauss_points)
     else:
-        beam = blade_beam_from_polynomials(blade, blade_file.modes, damping, gauss_points)
+        beam = blade_beam_from_polynomials(blade, blade_file.modes, damping, gauss_points, edges)
     tower_length = main.tower_height - main.tower_base_height
-    tower = tower_beam(read_elastodyn_tower(main.tower_file), tower_length, gauss_points=gauss_points)
-    notes = (f"blade shapes: {'bladefem FE modes at %.4g rpm' % speed if blade_shapes == 'fe' else 'ElastoDyn polynomials (twisted)'}",
-             "tower shapes: ElastoDyn polynomials of the tower file",
+    tower_file = read_elastodyn_tower(main.tower_file)
+    tower = tower_beam(tower_file, tower_length, gauss_points=gauss_points, elements=tower_elements)
+    blade_note = f"bladefem FE modes at {speed:.4g} rpm" if blade_shapes == "fe" else "ElastoDyn polynomials (twisted)"
+    tower_note = "bladefem tower FE with the rigid rotor-nacelle on top" if tower_shapes == "fe" else \
+        "ElastoDyn polynomials of the tower file"
+    notes = (f"blade shapes: {blade_note}", f"tower shapes: {tower_note}",
              f"yaw spring {yaw_stiffness:g} N m/rad and damper {yaw_damping:g} N m s/rad (ServoDyn inputs)")
-    return TurbineParameters(
+    params = TurbineParameters(
         tower=tower, blade=beam, n_blades=main.num_blades, tower_base_height=main.tower_base_height,
         twr2shft=main.twr2shft, overhang=main.overhang, shaft_tilt=main.shaft_tilt, precone=main.precone[0],
         hub_radius=main.hub_radius, hub_cm=main.hub_cm, hub_mass=main.hub_mass, hub_inertia=main.hub_inertia,
@@ -213,3 +191,8 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
         drivetrain_stiffness=main.drivetrain_spring, drivetrain_damping=main.drivetrain_damper,
         yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping, blade_tip_mass=main.tip_mass[0], pitch=pitch,
         name=Path(main.path).stem, notes=blade.notes + notes)
+    if tower_shapes == "fe":
+        tower_edges = None if tower_elements is None else np.linspace(0.0, tower_length, tower_elements + 1)
+        params = params.with_(tower=fe_tower_beam(params, tower_sections(tower_file, tower_length), tower.damping_ratio,
+                                                  gauss_points, tower_edges))
+    return params

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .kinematics import BeamNodes, FrameMotion, PointMotion, at_rest, axis_rotation, carry, earth, rotate, skew, turn
+from .kinematics import (BeamNodes, FrameMotion, NodeGroup, PointMotion, at_rest, axis_rotation, carry, carry_nodes,
+                         earth, rotate, skew, turn)
 from .parameters import TurbineParameters
 
 
@@ -33,19 +34,16 @@ class TurbineMotion:
     blades : (B, P_b + 1) blade span nodes, the last one each blade's tip
     """
 
-    tower: PointMotion
+    tower: NodeGroup
+    tower_top: PointMotion
     rigid: PointMotion
-    blades: PointMotion
+    blades: NodeGroup
     tower_top_frame: FrameMotion
     nacelle: FrameMotion
     shaft: FrameMotion          # non-rotating, x along the shaft (downwind)
     rotor: FrameMotion          # rotates with the rotor azimuth
     generator: FrameMotion
     blade_frames: FrameMotion   # R (B, 3, 3)
-
-    @property
-    def tower_top(self) -> PointMotion:
-        return pick(self.tower, -1)
 
     @property
     def apex(self) -> PointMotion:
@@ -90,9 +88,10 @@ class TurbineModel:
         self._nodes()
         self.base = at_rest(np.array([0.0, 0.0, p.tower_base_height]), n)
         blade = np.append(p.blade.point_mass, p.blade_tip_mass)
-        self.masses = np.concatenate([p.tower.point_mass, [p.yaw_bearing_mass, p.nacelle_mass, 0.0, p.hub_mass],
-                                      np.tile(blade, p.n_blades)])
-        self.sqrt_masses = np.sqrt(self.masses)
+        self.tower_masses = np.append(p.tower.point_mass, p.yaw_bearing_mass)
+        self.rigid_masses = np.array([p.nacelle_mass, 0.0, p.hub_mass])
+        self.blade_masses = np.tile(blade, (p.n_blades, 1))
+        self.masses = np.concatenate([self.tower_masses, self.rigid_masses, self.blade_masses.ravel()])
         self.gravity = np.array([0.0, 0.0, -p.gravity])
         nacelle_own = p.nacelle_yaw_inertia - p.nacelle_mass * (p.nacelle_cm[0] ** 2 + p.nacelle_cm[1] ** 2)
         self.nacelle_inertia = np.diag([0.0, 0.0, nacelle_own])
@@ -134,27 +133,25 @@ class TurbineModel:
         n = self.n
         ground = earth(n)
         span = self.tower_nodes.deflect(q[:4], u[:4])
-        tower = carry(self.base, ground, span.offset, span.partials, span.velocity, span.bias)
+        tower = carry_nodes(self.base, ground, span.offset, span.partials, self.tower_nodes.selection,
+                            span.velocity, span.bias)
         bent = rotate(rotate(ground, 1, self.fore_aft_tilt, q, u), 0, self.side_side_tilt, q, u)
         nacelle = rotate(bent, 2, self.yaw, q, u)
-        rigid = carry(pick(tower, -1), nacelle, self.rigid_offsets)
+        top = tower.point(-1, u)
+        rigid = carry(top, nacelle, self.rigid_offsets)
         shaft = turn(nacelle, self.tilt)
         rotor = rotate(shaft, 0, self.azimuth, q, u)
         generator = rotate(shaft, 0, self.generator_angle, q, u)
         blade_frames = turn(rotor, self.blade_rotations)
         span = self.blade_nodes.deflect(q[self.blade_columns], u[self.blade_columns])
-        blades = carry(pick(rigid, 1), blade_frames, span.offset, span.partials, span.velocity, span.bias)
-        return TurbineMotion(tower=tower, rigid=rigid, blades=blades, tower_top_frame=bent, nacelle=nacelle,
+        blades = carry_nodes(pick(rigid, 1), blade_frames, span.offset, span.partials, self.blade_nodes.selection,
+                             span.velocity, span.bias)
+        return TurbineMotion(tower=tower, tower_top=top, rigid=rigid, blades=blades, tower_top_frame=bent, nacelle=nacelle,
                              shaft=shaft, rotor=rotor, generator=generator, blade_frames=blade_frames)
 
-    def mass_points(self, motion: TurbineMotion) -> PointMotion:
-        """All point masses stacked in the order of ``self.masses``."""
-        parts = (motion.tower, motion.rigid, motion.blades)
-        return PointMotion(
-            r=np.concatenate([part.r.reshape(-1, 3) for part in parts]),
-            v=np.concatenate([part.v.reshape(-1, 3) for part in parts]),
-            J=np.concatenate([part.J.reshape(-1, 3, self.n) for part in parts]),
-            a=np.concatenate([part.a.reshape(-1, 3) for part in parts]))
+    def positions(self, motion: TurbineMotion) -> NDArray:
+        """Positions of all point masses (in the order of ``self.masses``), (N, 3)."""
+        return np.concatenate([motion.tower.r, motion.rigid.r, motion.blades.r.reshape(-1, 3)])
 
     def rigid_bodies(self, motion: TurbineMotion) -> list[tuple[FrameMotion, NDArray]]:
         """(frame, inertia tensor about the centre of mass in frame components) of the bodies with rotary inertia."""
@@ -166,11 +163,15 @@ class TurbineModel:
     def equations(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
         """Mass matrix M(q) (n, n) and forcing f(q, u) (n,) with ``M du/dt = f``."""
         motion = self.motion(q, u)
-        points = self.mass_points(motion)
-        weighted = (points.J * self.sqrt_masses[:, None, None]).reshape(-1, self.n)
-        M = weighted.T @ weighted
-        loads = self.masses[:, None] * (self.gravity - points.a)
-        f = points.J.reshape(-1, self.n).T @ loads.ravel()
+        M, f = np.zeros((self.n, self.n)), np.zeros(self.n)
+        for group, masses in ((motion.tower, self.tower_masses), (motion.blades, self.blade_masses)):
+            dM, df = group.generalized(masses, masses[..., None] * (self.gravity - group.a))
+            M += dM
+            f += df
+        rigid = motion.rigid
+        weighted = rigid.J * np.sqrt(self.rigid_masses)[:, None, None]
+        M += np.einsum("pik,pil->kl", weighted, weighted)
+        f += np.einsum("pik,pi->k", rigid.J, self.rigid_masses[:, None] * (self.gravity - rigid.a))
         for frame, local in self.rigid_bodies(motion):
             inertia = frame.R @ local @ frame.R.T
             M += frame.W.T @ inertia @ frame.W
@@ -179,11 +180,12 @@ class TurbineModel:
         return M, f
 
     def energy(self, q: NDArray, u: NDArray) -> tuple[float, float]:
-        """Kinetic energy ``1/2 u^T M u`` and potential energy (gravity above the ground, strain, springs), J."""
+        """Kinetic energy and potential energy (gravity above the ground, strain, springs), J."""
         motion = self.motion(q, u)
-        points = self.mass_points(motion)
-        kinetic = 0.5 * np.sum(self.masses * np.sum(points.v**2, axis=1))
+        kinetic = 0.5 * (np.sum(self.tower_masses * np.sum(motion.tower.velocity(u) ** 2, axis=-1))
+                         + np.sum(self.rigid_masses * np.sum(motion.rigid.v**2, axis=-1))
+                         + np.sum(self.blade_masses * np.sum(motion.blades.velocity(u) ** 2, axis=-1)))
         for frame, local in self.rigid_bodies(motion):
             kinetic += 0.5 * frame.omega @ frame.R @ local @ frame.R.T @ frame.omega
-        potential = -np.sum(self.masses * (points.r @ self.gravity)) + 0.5 * q @ self.K @ q
+        potential = -np.sum(self.masses * (self.positions(motion) @ self.gravity)) + 0.5 * q @ self.K @ q
         return float(kinetic), float(potential)

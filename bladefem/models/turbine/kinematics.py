@@ -10,6 +10,7 @@ rotor -> blades by the two exact rules of rigid-body kinematics (a rotation abou
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,12 +49,12 @@ class PointMotion:
 
 def axis_rotation(axis: int, angle: float) -> NDArray:
     """Rotation matrix by ``angle`` (rad) about coordinate axis 0 (x), 1 (y) or 2 (z)."""
-    c, s = np.cos(angle), np.sin(angle)
-    i, j = [(1, 2), (2, 0), (0, 1)][axis]
-    R = np.eye(3)
-    R[i, i] = R[j, j] = c
-    R[j, i], R[i, j] = s, -s
-    return R
+    c, s = math.cos(angle), math.sin(angle)
+    if axis == 0:
+        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    if axis == 1:
+        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def earth(n: int) -> FrameMotion:
@@ -92,7 +93,7 @@ def rotate(frame: FrameMotion, axis: int, coefficients: NDArray, q: NDArray, u: 
     rate = coefficients @ u
     k = frame.R[..., axis]
     return FrameMotion(R=frame.R @ axis_rotation(axis, angle), omega=frame.omega + k * rate,
-                       W=frame.W + np.outer(k, coefficients), alpha=frame.alpha + skew(frame.omega) @ k * rate)
+                       W=frame.W + k[:, None] * coefficients, alpha=frame.alpha + skew(frame.omega) @ k * rate)
 
 
 def turn(frame: FrameMotion, rotation: NDArray) -> FrameMotion:
@@ -131,12 +132,93 @@ def carry(origin: PointMotion, frame: FrameMotion, offset: NDArray, partials: ND
     return PointMotion(r=origin.r + rho, v=v, J=J, a=a)
 
 
+def _cross_map() -> NDArray:
+    c = np.zeros((3, 3, 3))
+    c[2, 0, 1], c[1, 0, 2], c[2, 1, 0], c[0, 1, 2], c[1, 2, 0], c[0, 2, 1] = 1, -1, -1, 1, 1, -1
+    return c.reshape(3, 9)
+
+
+#: (3, 9) map with ``(r @ CROSS).reshape(3, 3) @ w = w x r`` for row vectors r
+CROSS = _cross_map()
+
+
+@dataclass(frozen=True)
+class NodeGroup:
+    """Span nodes carried by a frame, with their partial velocities factored as ``J = G @ Z``.
+
+    ``Z`` stacks the partials shared by the group (origin velocity J_o, frame angular velocity W, and the
+    selection of the beam's own coordinates), ``G`` the per-node factors ``[I, -[rho]x, R L]``; so the group's
+    contribution to Kane's equations is ``Z^T (sum_p m_p G_p^T G_p) Z``, summed over the nodes in small arrays.
+
+    r : (..., P, 3) positions; G : (..., P, 3, m); Z : (m, n) or (B, m, n) for B beams; a : (..., P, 3) bias
+    accelerations
+    """
+
+    r: NDArray
+    G: NDArray
+    Z: NDArray
+    a: NDArray
+
+    @property
+    def J(self) -> NDArray:
+        """Partial velocities (..., P, 3, n)."""
+        return self.G @ (self.Z if self.Z.ndim == 2 else self.Z[:, None])
+
+    def velocity(self, u: NDArray) -> NDArray:
+        """Velocities (..., P, 3) at rates u."""
+        shared = self.Z @ u
+        if self.Z.ndim == 2:
+            return self.G @ shared
+        return (self.G @ shared[:, None, :, None])[..., 0]
+
+    def point(self, index: int, u: NDArray) -> PointMotion:
+        """One node of an unbatched group as a point with full partial velocities."""
+        J = self.G[index] @ self.Z
+        return PointMotion(r=self.r[index], v=J @ u, J=J, a=self.a[index])
+
+    def generalized(self, masses: NDArray, loads: NDArray) -> tuple[NDArray, NDArray]:
+        """``sum_p m_p J_p^T J_p`` and ``sum_p J_p^T F_p`` for node masses (..., P) and forces (..., P, 3)."""
+        m = self.G.shape[-1]
+        lead = self.G.shape[:-3]
+        weighted = (self.G * np.sqrt(masses)[..., None, None]).reshape(lead + (-1, m))
+        flat = self.G.reshape(lead + (-1, m))
+        inner = np.swapaxes(weighted, -1, -2) @ weighted
+        force = np.swapaxes(flat, -1, -2) @ loads.reshape(lead + (-1, 1))
+        Zt = np.swapaxes(self.Z, -1, -2)
+        M = Zt @ inner @ self.Z
+        f = (Zt @ force)[..., 0]
+        if M.ndim == 3:
+            return M.sum(axis=0), f.sum(axis=0)
+        return M, f
+
+
+def carry_nodes(origin: PointMotion, frame: FrameMotion, offset: NDArray, partials: NDArray, selection: NDArray,
+                local_velocity: NDArray, local_bias: NDArray) -> NodeGroup:
+    """Beam nodes at ``offset`` (..., P, 3) from ``origin`` in ``frame`` components, moving in the frame with
+    ``partials`` (..., P, 3, k) over the beam's own k coordinates (``selection`` (k, n), or (B, k, n) for B beams
+    in B frames), velocity and bias in the frame."""
+    batched = frame.R.ndim == 3
+    R = frame.R[:, None] if batched else frame.R
+    rho = to_earth(frame.R, offset)
+    spin = skew(frame.omega).T
+    rate = to_earth(frame.R, local_velocity)
+    cross = (rho @ CROSS).reshape(rho.shape + (3,))
+    identity = np.broadcast_to(np.eye(3), rho.shape + (3,))
+    G = np.concatenate([identity, cross, R @ partials], axis=-1)
+    shared = np.concatenate([origin.J, frame.W])
+    if batched:
+        shared = np.broadcast_to(shared, (len(selection),) + shared.shape)
+    Z = np.concatenate([shared, selection], axis=-2)
+    a = origin.a + rho @ skew(frame.alpha).T + (rho @ spin) @ spin + 2.0 * rate @ spin + to_earth(frame.R, local_bias)
+    return NodeGroup(r=origin.r + rho, G=G, Z=Z, a=a)
+
+
 @dataclass(frozen=True)
 class BeamDeflection:
     """Deflection of a modal beam's nodes in its own frame, for given modal amplitudes and rates.
 
     offset : (..., P, 3) node positions relative to the beam's origin, m
-    partials : (..., P, 3, n) derivatives with respect to all n generalized coordinates
+    partials : (..., P, 3, k) derivatives with respect to the beam's own k modal amplitudes
     velocity : (..., P, 3); bias : (..., P, 3) second rate at zero generalized accelerations
     """
 
@@ -160,26 +242,29 @@ class BeamNodes:
         k, P = value.shape[:2]
         self.k, self.P = k, P
         self.axial = axial
-        self.value_flat = value.reshape(k, P * 2)
-        self.shortening_flat = shortening.reshape(k, k * P)
-        self.permutation = np.argsort(order)          # standard (axial, t1, t2) -> frame axes
         self.axial_axis = order[0]
-        self.value_rows = np.moveaxis(value, 0, -1)   # (P, 2, k)
-        self.selection = selection if selection.ndim == 2 else selection[:, None]
+        across = np.zeros((k, P, 3))                  # the shapes in the frame's axes
+        across[:, :, order[1]] = value[:, :, 0]
+        across[:, :, order[2]] = value[:, :, 1]
+        self.across_flat = across.reshape(k, P * 3)
+        self.partials_template = np.moveaxis(across, 0, -1).copy()      # (P, 3, k), axial row filled per state
+        self.shortening_flat = shortening.reshape(k, k * P)
+        self.selection = selection
 
     def deflect(self, q: NDArray, u: NDArray) -> BeamDeflection:
-        """Offsets, partials over all coordinates, velocities and bias accelerations for amplitudes q, rates u
-        (each (..., k))."""
+        """Offsets, partials over the beam's own coordinates, velocities and bias accelerations for amplitudes
+        q and rates u (each (..., k))."""
         lead = q.shape[:-1]
-        transverse = (q @ self.value_flat).reshape(lead + (self.P, 2))
+        shape = lead + (self.P, 3)
         Sq = (q @ self.shortening_flat).reshape(lead + (self.k, self.P))
         Su = (u @ self.shortening_flat).reshape(lead + (self.k, self.P))
-        s = 0.5 * np.einsum("...i,...ip->...p", q, Sq)
-        offset = np.concatenate([(self.axial - s)[..., None], transverse], axis=-1)[..., self.permutation]
-        rows = np.concatenate([-np.swapaxes(Sq, -1, -2)[..., None, :],
-                               np.broadcast_to(self.value_rows, lead + self.value_rows.shape)], axis=-2)
-        local = rows[..., self.permutation, :]
-        velocity = local @ u[..., None, :, None]
-        bias = np.zeros(lead + (self.P, 3))
-        bias[..., self.axial_axis] = -np.einsum("...i,...ip->...p", u, Su)
-        return BeamDeflection(offset=offset, partials=local @ self.selection, velocity=velocity[..., 0], bias=bias)
+        ax = self.axial_axis
+        offset = (q @ self.across_flat).reshape(shape)
+        offset[..., ax] = self.axial - 0.5 * np.einsum("...i,...ip->...p", q, Sq)
+        velocity = (u @ self.across_flat).reshape(shape)
+        velocity[..., ax] = -np.einsum("...i,...ip->...p", u, Sq)
+        partials = np.broadcast_to(self.partials_template, lead + self.partials_template.shape).copy()
+        partials[..., ax, :] = -np.swapaxes(Sq, -1, -2)
+        bias = np.zeros(shape)
+        bias[..., ax] = -np.einsum("...i,...ip->...p", u, Su)
+        return BeamDeflection(offset=offset, partials=partials, velocity=velocity, bias=bias)

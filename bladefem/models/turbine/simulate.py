@@ -54,10 +54,10 @@ def root_moments(model: TurbineModel, q: NDArray, u: NDArray, du: NDArray, blade
     R = motion.blade_frames.R[blade]
     root = motion.apex.r + R[:, 0] * p.hub_radius
     masses = np.append(p.blade.point_mass, p.blade_tip_mass)
-    points = motion.blades
-    a = points.J[blade] @ du + points.a[blade]
+    nodes = motion.blades
+    a = (nodes.G[blade] @ (nodes.Z[blade] @ du)) + nodes.a[blade]
     loads = masses[:, None] * (model.gravity - a)
-    moment = np.sum(np.cross(points.r[blade] - root, loads), axis=0)
+    moment = np.sum(np.cross(nodes.r[blade] - root, loads), axis=0)
     local = R.T @ moment
     return float(-local[1]), float(local[2])
 
