@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..modal import blade_matrices, solve_modes
+from ..modal import ModalResult, blade_matrices, solve_modes
+from ..sections import Blade
 from .inputs import add_blade_options, positive_int, read_blade
 
 
@@ -28,6 +29,20 @@ def rotor_speeds(text: str) -> np.ndarray:
     return np.array([value])
 
 
+def add_planform_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--aerodyn", metavar="FILE",
+                        help="AeroDyn blade file: chord for drawing the blade as a surface (ElastoDyn inputs)")
+
+
+def read_drawn_blade(args: argparse.Namespace) -> Blade:
+    """The blade of INPUT, with the chord of ``--aerodyn FILE`` when given."""
+    blade = read_blade(args)
+    if args.aerodyn:
+        from ..io.aerodyn import read_aerodyn_blade, with_planform
+        blade = with_planform(blade, read_aerodyn_blade(args.aerodyn))
+    return blade
+
+
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     export = subparsers.add_parser(
         "export", help="write mode shapes for inspection: VTK (ParaView), PNG pictures, animated GIFs",
@@ -35,6 +50,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                     "indexed by rotor speed plus a JSON sidecar with frequencies and kinds), PNG pictures of the "
                     "deformed blade and animated GIFs. With none of --vtk/--png/--gif, writes VTK.")
     add_blade_options(export)
+    add_planform_option(export)
     export.add_argument("--rpm", type=rotor_speeds, default=np.array([0.0]), metavar="R|START:STOP:COUNT",
                         help="rotor speed, rpm (default 0), or a sweep (VTK collection and Campbell diagram)")
     export.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
@@ -63,7 +79,7 @@ def run_export(args: argparse.Namespace) -> int:
     vtk = args.vtk or not (args.png or args.gif)
     if (args.png and len(args.rpm) == 1) or args.gif:
         require_pyvista("--gif" if args.gif else "--png")
-    blade = read_blade(args)
+    blade = read_drawn_blade(args)
     matrices = blade_matrices(blade, args.elements, args.n_modes)
     out = Path(args.output)
     written: list[Path] = []
@@ -87,7 +103,7 @@ def run_export(args: argparse.Namespace) -> int:
     return 0
 
 
-def pictures(blade, result, out: Path, args: argparse.Namespace) -> list[Path]:
+def pictures(blade: Blade, result: ModalResult, out: Path, args: argparse.Namespace) -> list[Path]:
     """PNG pictures (each mode and the strip) and GIFs of a single-speed result, as asked."""
     from ..plots.modes3d import save_mode_gif, save_mode_png, save_mode_strip
     from ..report import progress_bar

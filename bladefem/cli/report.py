@@ -9,7 +9,8 @@ import sys
 import numpy as np
 
 from ..errors import InputError
-from .inputs import add_blade_options, finite_float, positive_int, read_blade, rpm_range
+from .export import add_planform_option, read_drawn_blade
+from .inputs import add_blade_options, finite_float, positive_int, rpm_range
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
@@ -18,6 +19,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         description="Model summary (mass, first and second mass moments, provenance), frequency table, mode "
                     "pictures, Campbell diagram with crossings, and ElastoDyn mode-shape coefficients.")
     add_blade_options(report)
+    add_planform_option(report)
     report.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     report.add_argument("--rpm", type=finite_float, default=0.0, metavar="RPM",
                         help="operating rotor speed, rpm (frequency table, pictures, coefficients; default 0)")
@@ -39,7 +41,7 @@ def run_report(args: argparse.Namespace) -> int:
 
     if args.rpm < 0:
         raise InputError(f"must not be negative, got {args.rpm}", field="--rpm")
-    blade = read_blade(args)
+    blade = read_drawn_blade(args)
     speeds = args.sweep if args.sweep is not None else default_sweep(args.rpm)
     if len(speeds) < 2:
         raise InputError("a Campbell sweep needs at least two rotor speeds", field="--sweep")
