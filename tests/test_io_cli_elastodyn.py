@@ -97,3 +97,8 @@ def test_user_errors_exit_with_code_2(argv, field, capsys):
     assert code == 2 and err.startswith("bladefem: error: ") and err.count("\n") == 1
     if field:
         assert f"field '{field}'" in err
+
+
+def test_too_few_modes_is_a_user_error(capsys):
+    code, _, err = run([str(DATA / "windio_small.yaml"), "--rpm", "5", "--n-modes", "2"], capsys)
+    assert code == 2 and "field '--n-modes'" in err and "only" in err

@@ -114,21 +114,25 @@ def run(args: argparse.Namespace) -> int:
     main_path = _main_file(args, kind)
     main = read_elastodyn_main(main_path) if main_path else None
     shipped, shipped_from = _shipped(args, kind, part)
-    if isinstance(model, Tower):
-        nodes = args.nodes or (main.tower_nodes if main else DEFAULT_TOWER_NODES)
-        result = tower_coefficients(model.as_beam(), nodes=nodes, n_modes=args.n_modes, elements=args.elements,
-                                    shipped=shipped, min_tip_ratio=args.min_tip_ratio)
-        name = model.name
-    else:
-        rpm = _rpm(args, kind, main)
-        nodes = args.nodes or (main.blade_nodes if main else DEFAULT_BLADE_NODES)
-        result = blade_coefficients(model, rpm, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
-                                    shipped=shipped, min_tip_ratio=args.min_tip_ratio)
-        name = model.name
-    print(report(name, result, shipped_from))
+    try:
+        result = _coefficients(args, kind, model, main, shipped)
+    except LookupError as error:
+        raise InputError(f"{error}", file=args.input, field="--n-modes") from None
+    print(report(model.name, result, shipped_from))
     if args.write:
         _update(args.write, result, args.dry_run)
     return 0
+
+
+def _coefficients(args: argparse.Namespace, kind: str, model, main, shipped) -> ElastoDynCoefficients:
+    if isinstance(model, Tower):
+        nodes = args.nodes or (main.tower_nodes if main else DEFAULT_TOWER_NODES)
+        return tower_coefficients(model.as_beam(), nodes=nodes, n_modes=args.n_modes, elements=args.elements,
+                                  shipped=shipped, min_tip_ratio=args.min_tip_ratio)
+    rpm = _rpm(args, kind, main)
+    nodes = args.nodes or (main.blade_nodes if main else DEFAULT_BLADE_NODES)
+    return blade_coefficients(model, rpm, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
+                              shipped=shipped, min_tip_ratio=args.min_tip_ratio)
 
 
 def _rpm(args: argparse.Namespace, kind: str, main) -> float:

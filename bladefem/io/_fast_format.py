@@ -61,7 +61,8 @@ class FastText:
         except UnicodeDecodeError:
             text = raw.decode("latin-1")
         if "\x00" in text:
-            raise InputError("not a text file (contains NUL bytes)", file=path, line=text[:text.index("\x00")].count("\n") + 1)
+            raise InputError("not a text file (contains NUL bytes)", file=path,
+                             line=text[:text.index("\x00")].count("\n") + 1, field="content")
         return cls.parse(path, text)
 
     @classmethod
@@ -81,7 +82,10 @@ class FastText:
 
     # -- errors -------------------------------------------------------------------------------------------------
     def error(self, message: str, line: int | None = None, field: str | None = None) -> InputError:
-        return InputError(message, file=self.path, line=line, field=field)
+        """An :class:`InputError` in this file; without a line, the end of the file (where a missing entry was
+        looked for last)."""
+        return InputError(message, file=self.path, line=line if line is not None else max(len(self.lines), 1),
+                          field=field)
 
     def find(self, key: str) -> KeyValue:
         try:

@@ -151,6 +151,12 @@ class _Reader:
             node = node[k]
         return node
 
+    def mapping(self, key: Key) -> dict:
+        value = self.get(key)
+        if not isinstance(value, dict):
+            raise self.error(f"expected a mapping of keys, got {type(value).__name__}", key)
+        return value
+
     def number(self, key: Key, default: Any = ..., minimum: float | None = None) -> float:
         raw = self.get(key, default)
         value = _as_number(raw)
@@ -193,11 +199,15 @@ class _Reader:
 
 def read_windio(path: str | Path) -> WindIOTurbine:
     """Read the blade and tower structure of a windIO turbine file."""
-    data, lines = load_yaml(path)
+    try:
+        data, lines = load_yaml(path)
+    except InputError as error:
+        raise InputError(error.message, file=error.file, line=error.line or 1,
+                         field=error.field or "YAML syntax") from None
     r = _Reader(str(path), data, lines)
     if not isinstance(data, dict) or "components" not in data:
         raise InputError("not a windIO turbine file (no 'components')", file=str(path), line=1, field="components")
-    components = r.get(("components",))
+    components = r.mapping(("components",))
     if isinstance(components.get("blade"), dict) and "elastic_properties_mb" in components["blade"]:
         raise r.error("windIO 1.x layout (elastic_properties_mb); convert it to windIO 2 with the windio package's "
                       "converter first", ("components", "blade", "elastic_properties_mb"))
@@ -228,7 +238,7 @@ def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
     axis = {c: r.distribution(key + ("reference_axis", c)) for c in ("x", "y", "z")}
     elastic = key + ("structure", "elastic_properties")
     stiffness_grid = r.grid(elastic + ("stiffness_matrix", "grid"))
-    given = r.get(elastic + ("stiffness_matrix",))
+    given = r.mapping(elastic + ("stiffness_matrix",))
     stiffness = {k: r.array(elastic + ("stiffness_matrix", k), len(stiffness_grid)) for k in STIFFNESS_KEYS
                  if k in given}
     for k in ("K44", "K55"):
@@ -236,7 +246,7 @@ def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
             raise r.error("missing key", elastic + ("stiffness_matrix", k))
         r.array(elastic + ("stiffness_matrix", k), positive=True)
     inertia_grid = r.grid(elastic + ("inertia_matrix", "grid"))
-    present = r.get(elastic + ("inertia_matrix",))
+    present = r.mapping(elastic + ("inertia_matrix",))
     inertia = {k: r.array(elastic + ("inertia_matrix", k), len(inertia_grid),
                           minimum=0.0 if k in ("i_edge", "i_flap", "i_plr") else None)
                for k in INERTIA_KEYS if k in present}

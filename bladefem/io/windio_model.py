@@ -72,7 +72,8 @@ def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
     """A :class:`Blade` from the windIO blade; ``pitch`` in rad."""
     beam = turbine.blade
     if beam is None:
-        raise InputError("the file has no blade", file=turbine.path or None, field="components.blade")
+        raise InputError("the file has no blade", file=turbine.path or None,
+                         line=turbine.lines.get(("components",)), field="components.blade")
     x = _stations(beam)
     inertia = lambda name: np.interp(x, beam.inertia_grid, beam.inertia[name]) if name in beam.inertia else None  # noqa: E731
     stiffness = lambda name: np.interp(x, beam.stiffness_grid, beam.stiffness[name])  # noqa: E731
@@ -106,7 +107,8 @@ def tower_from_windio(turbine: WindIOTurbine, top_mass: TipMass | float | None =
     """A :class:`Tower` from the windIO tower; by default the rotor-nacelle mass as a point mass at the top."""
     beam = turbine.tower
     if beam is None:
-        raise InputError("the file has no tower", file=turbine.path or None, field="components.tower")
+        raise InputError("the file has no tower", file=turbine.path or None,
+                         line=turbine.lines.get(("components",)), field="components.tower")
     x = np.unique(np.concatenate([beam.stiffness_grid, beam.inertia_grid]))
     notes = _notes(turbine, beam, "tower")
     if top_mass is None:
