@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -88,9 +90,12 @@ def test_openfast_matrices_turn_into_the_tower_frame():
 
 # -- foundation -----------------------------------------------------------------------------------------------
 
-def base_spring_determinant(omega2: float, kt: float, kr: float, mt: float, jr: float, mu: float) -> float:
-    """w'''' = omega^2 w on [0, 1] (m = EI = L = 1); at 0: w'' = (kr - omega^2 jr) w', w''' = -(kt - omega^2 mt) w;
-    at 1 a tip mass mu: w'' = 0, -w''' = omega^2 mu w. Four independent power series (a_0 .. a_3 = unit)."""
+def base_spring_determinant(omega2: float, kt: float, kr: float, c: float, mt: float, jr: float,
+                            mu: float) -> float:
+    """w'''' = omega^2 w on [0, 1] (m = EI = L = 1) on a foundation with lateral spring kt, rocking spring kr,
+    their coupling c (energy 1/2 (kt w^2 + 2 c w p + kr p^2), p = w'(0), the pitch that moves the top downwind) and
+    masses mt, jr: at 0, w'' = (kr - omega^2 jr) w' + c w and w''' = -(kt - omega^2 mt) w - c w'; at 1 a tip mass
+    mu: w'' = 0, -w''' = omega^2 mu w. Four independent power series (a_0 .. a_3 = unit)."""
     rows = []
     for start in range(4):
         a = np.zeros(80)
@@ -98,26 +103,34 @@ def base_spring_determinant(omega2: float, kt: float, kr: float, mt: float, jr: 
         for k in range(len(a) - 4):
             a[k + 4] = omega2 * a[k] / ((k + 4) * (k + 3) * (k + 2) * (k + 1))
         n = np.arange(len(a))
-        w, w1, w2, w3 = a.sum(), (n * a).sum(), (n * (n - 1) * a).sum(), (n * (n - 1) * (n - 2) * a).sum()
-        rows.append([2 * a[2] - (kr - omega2 * jr) * a[1], 6 * a[3] + (kt - omega2 * mt) * a[0], w2,
-                     -w3 - omega2 * mu * w])
+        w, w2, w3 = a.sum(), (n * (n - 1) * a).sum(), (n * (n - 1) * (n - 2) * a).sum()
+        rows.append([2 * a[2] - (kr - omega2 * jr) * a[1] - c * a[0],
+                     6 * a[3] + (kt - omega2 * mt) * a[0] + c * a[1], w2, -w3 - omega2 * mu * w])
     return float(np.linalg.det(np.array(rows).T))
 
 
+def scan_roots(f, start: float, stop: float, count: int, points: int = 3000) -> list[float]:
+    """The first ``count`` sign changes of ``f`` on a grid, refined by Brent's method."""
+    grid = np.linspace(start, stop, points)
+    values = [f(x) for x in grid]
+    return [brentq(f, grid[i], grid[i + 1], xtol=1e-13) for i in np.flatnonzero(np.diff(np.sign(values)))][:count]
+
+
 def test_foundation_springs_and_masses_match_the_series_solution():
-    kt, kr, mt, jr, mu = 40.0, 15.0, 0.3, 0.02, 0.5
-    stiffness = np.diag([kt, 1e3, 1e3, 1e3, kr, 1e3])      # surge, sway, heave, roll, pitch, yaw
+    kt, kr, c, mt, jr, mu = 40.0, 15.0, -8.0, 0.3, 0.02, 0.5
+    stiffness = np.diag([kt, 1e3, 1e3, 1e3, kr, 1e3])      # surge, sway, heave, roll, pitch, yaw (OpenFAST)
+    stiffness[0, 4] = stiffness[4, 0] = c                  # surge-pitch coupling, as of a monopile's soil
     mass = np.diag([mt, 0.0, 0.0, 0.0, jr, 0.0])
     tower = Tower(uniform_sections(1.0, 1.0, 1.0), top_mass=TopMass(mu), gravity=0.0,
                   supports=Supports(foundation=Foundation(stiffness, mass)))
     result = tower_modes(tower, 8, elements=60)
     fore_aft = [2 * np.pi * result.first("fore-aft", n).frequency_hz for n in (1, 2)]
-    grid = np.linspace(0.05, 30.0, 3000)
-    values = [base_spring_determinant(w**2, kt, kr, mt, jr, mu) for w in grid]
-    expected = [brentq(lambda w: base_spring_determinant(w**2, kt, kr, mt, jr, mu), grid[i], grid[i + 1])
-                for i in np.flatnonzero(np.diff(np.sign(values)))][:2]
+    expected = scan_roots(lambda w: base_spring_determinant(w**2, kt, kr, c, mt, jr, mu), 0.05, 30.0, 2)
     # Hermite elements: omega converges as h^4; 60 elements give ~1e-9
     assert fore_aft == pytest.approx(expected, rel=1e-7)
+    # the coupling's sign matters (surge-pitch in OpenFAST axes): the opposite sign gives other frequencies
+    flipped = scan_roots(lambda w: base_spring_determinant(w**2, kt, kr, -c, mt, jr, mu), 0.05, 30.0, 1)
+    assert abs(flipped[0] / expected[0] - 1) > 1e-3
 
 
 def test_foundation_and_platform_exclude_each_other():
@@ -163,6 +176,46 @@ def test_wires_at_the_top_act_as_a_tip_spring():
         assert found == pytest.approx(expected, rel=1e-7)
 
 
+def transfer(lam: float, length: float) -> np.ndarray:
+    """4x4 map of (w, w', w'', w''') across a segment of w'''' = lam w (power series about its start)."""
+    T = np.zeros((4, 4))
+    n = np.arange(80)
+    falling = np.array([[math.perm(int(i), d) for d in range(4)] for i in n], dtype=float)
+    powers = length ** np.maximum(n[:, None] - np.arange(4)[None, :], 0)
+    for start in range(4):
+        a = np.zeros(len(n))
+        a[start] = 1.0 / math.factorial(start)        # unit value of the start-th derivative
+        for k in range(len(a) - 4):
+            a[k + 4] = lam * a[k] / ((k + 4) * (k + 3) * (k + 2) * (k + 1))
+        T[:, start] = (a[:, None] * falling * powers).sum(axis=0)
+    return T
+
+
+def clamped_free_determinant(segments: list[np.ndarray]) -> float:
+    """Clamped at 0 (start vectors w'' = 1 or w''' = 1), free at 1 (w'' = w''' = 0) through the given maps."""
+    state = np.eye(4)[:, 2:]
+    for T in segments:
+        state = T @ state
+    return float(np.linalg.det(state[2:]))
+
+
+def test_wires_at_mid_height_match_the_transfer_solution():
+    h, count, k_wire, angle = 0.6, 3, 30.0, np.radians(35.0)
+    tower = Tower(uniform_sections(1.0, 1.0, 1.0), gravity=0.0,
+                  supports=Supports(wires=(Wires(count=count, stiffness=k_wire, angle=angle, height=h),)))
+    result = tower_modes(tower, 4, elements=60)
+    k = count * k_wire * np.sin(angle) ** 2 / 2
+    jump = np.eye(4)
+    jump[3, 0] = -k                                   # EI [w'''] = -k w at the attachment point
+
+    def f(omega: float) -> float:
+        return clamped_free_determinant([transfer(omega**2, h), jump, transfer(omega**2, 1 - h)])
+
+    expected = scan_roots(f, 0.5, 30.0, 2, 1500)
+    found = [2 * np.pi * result.first("side-side", n).frequency_hz for n in (1, 2)]
+    assert found == pytest.approx(expected, rel=1e-7)
+
+
 # -- soil springs ---------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("rotary", [0.0, 0.2])
@@ -183,6 +236,21 @@ def test_winkler_springs_over_the_whole_length_shift_omega_squared(rotary):
         w = 2 * np.pi * held.first(kind).frequency_hz
         # same mesh, same shapes: only rounding differs
         assert w**2 == pytest.approx(w0**2 + shift, rel=1e-9)
+
+
+def test_soil_springs_along_part_of_the_length_match_the_transfer_solution():
+    embedded, k = 0.4, 50.0
+    soil = SoilSprings(height=[0.0, embedded], lateral=k)
+    tower = Tower(uniform_sections(1.0, 1.0, 1.0), gravity=0.0, supports=Supports(soil=soil))
+    result = tower_modes(tower, 4, elements=60)
+
+    def f(omega: float) -> float:     # w'''' = (omega^2 - k) w in the soil, omega^2 w above it
+        return clamped_free_determinant([transfer(omega**2 - k, embedded), transfer(omega**2, 1 - embedded)])
+
+    expected = scan_roots(f, 0.5, 30.0, 2, 1500)
+    found = [2 * np.pi * result.first("fore-aft", n).frequency_hz for n in (1, 2)]
+    # the embedded length is a mesh node, so the element integrals stay exact: h^4 convergence, ~1e-9 here
+    assert found == pytest.approx(expected, rel=1e-7)
 
 
 def test_soil_points_must_lie_on_the_tower():
