@@ -121,24 +121,31 @@ class LinearModel:
     modes: list[LinearMode]
 
 
-def mode_name(coordinate: str, used: set[str]) -> str:
+def whirl(vector: NDArray, coordinates: list[str], mode: str) -> str:
+    """'forward' or 'backward' whirl of an asymmetric blade mode: with ``q_k = q_c cos(psi_k) + q_s sin(psi_k)``
+    and the eigenvalue's positive frequency, ``q_s = -i q_c`` is a pattern turning with the rotor (forward)."""
+    ratio = vector[coordinates.index(f"sine_{mode}")] / vector[coordinates.index(f"cosine_{mode}")]
+    return "forward" if ratio.imag < 0 else "backward"
+
+
+def mode_name(coordinate: str, vector: NDArray, coordinates: list[str], used: set[str]) -> str:
     """Readable mode name from its dominant coordinate, e.g. 'tower_fa1' -> '1st tower fore-aft',
-    'collective_flap1' -> '1st blade collective flap'."""
-    if coordinate.startswith(("collective_", "cosine_", "sine_", "blade")):
-        kind, mode = coordinate.split("_", 1)
-        ordinal = ORDINALS[mode[-1]]
+    'collective_flap1' -> '1st blade collective flap', 'cosine_flap1' -> '1st blade asymmetric flap (backward
+    whirl)'; a mode led by the generator azimuth is the drivetrain torsion, one led by the drivetrain twist
+    the collective edge coupled to it."""
+    kind, _, mode = coordinate.partition("_")
+    if kind in ("collective", "cosine", "sine"):
         family = "flap" if mode.startswith("flap") else "edge"
-        group = {"collective": "collective", "cosine": "asymmetric (cosine)", "sine": "asymmetric (sine)"}.get(
-            kind, kind.replace("blade", "blade "))
-        name = f"{ordinal} blade {group} {family}" if kind in ("collective", "cosine", "sine") else \
-            f"{ordinal} {family} of {group}"
-    elif coordinate.startswith("tower"):
-        ordinal = ORDINALS[coordinate[-1]]
-        name = f"{ordinal} tower {'fore-aft' if '_fa' in coordinate else 'side-side'}"
-    elif coordinate == "drivetrain":
-        name = "1st drivetrain torsion"
+        name = f"{ORDINALS[mode[-1]]} blade collective {family}" if kind == "collective" else \
+            f"{ORDINALS[mode[-1]]} blade asymmetric {family} ({whirl(vector, coordinates, mode)} whirl)"
+    elif kind.startswith("blade"):
+        name = f"{ORDINALS[mode[-1]]} {'flap' if mode.startswith('flap') else 'edge'} of blade {kind[5:]}"
+    elif kind == "tower":
+        name = f"{ORDINALS[mode[-1]]} tower {'fore-aft' if mode.startswith('fa') else 'side-side'}"
     elif coordinate == "generator_azimuth":
-        name = "rotor rigid-body rotation"
+        name = "1st drivetrain torsion"
+    elif coordinate == "drivetrain":
+        name = "1st blade collective edge / drivetrain"
     else:
         name = DOF_LABELS.get(coordinate, coordinate)
     base, count = name, 2
@@ -149,31 +156,30 @@ def mode_name(coordinate: str, used: set[str]) -> str:
     return name
 
 
+#: below this natural frequency a mode is the rigid rotor rotation (a zero pair, split by the state's loads)
+RIGID_HZ = 0.02
+
+
 def modes_of(A: NDArray, coordinates: list[str], scale: NDArray, rpm: float) -> list[LinearMode]:
     """Eigen-analysis: one mode per complex-conjugate pair (and per real eigenvalue), named by the coordinate
     with the largest ``|z_i| scale_i`` (``scale`` = sqrt of the modal mass diagonal, so blades and tower compare
-    by kinetic energy)."""
+    by kinetic energy); the rigid rotor rotation (below :data:`RIGID_HZ`) is left out."""
     values, vectors = np.linalg.eig(A)
     m = len(coordinates)
-    keep = [i for i, lam in enumerate(values) if lam.imag > 1e-9 or abs(lam.imag) <= 1e-9]
     rows = []
-    for i in keep:
-        lam = values[i]
-        weights = np.abs(vectors[:m, i]) * scale
-        if weights.max() == 0:
-            continue
-        participation = weights / weights.max()
+    for i, lam in enumerate(values):
         frequency = abs(lam) / (2 * np.pi)
-        damping = -lam.real / abs(lam) if abs(lam) > 0 else 0.0
-        rows.append((frequency, damping, abs(lam.imag) / (2 * np.pi), participation))
+        if lam.imag < -1e-9 or frequency < RIGID_HZ:
+            continue
+        weights = np.abs(vectors[:m, i]) * scale
+        rows.append((frequency, -lam.real / abs(lam), abs(lam.imag) / (2 * np.pi), weights / weights.max(),
+                     vectors[:m, i]))
     rows.sort(key=lambda row: row[0])
     used: set[str] = set()
     result = []
-    for frequency, damping, damped, participation in rows:
-        if frequency < 1e-6:
-            continue
+    for frequency, damping, damped, participation, vector in rows:
         dominant = coordinates[int(np.argmax(participation))]
-        result.append(LinearMode(name=mode_name(dominant, used), frequency_hz=float(frequency),
+        result.append(LinearMode(name=mode_name(dominant, vector, coordinates, used), frequency_hz=float(frequency),
                                  damping_ratio=float(damping), damped_frequency_hz=float(damped),
                                  participation={c: float(p) for c, p in zip(coordinates, participation)}))
     return result

@@ -1,0 +1,86 @@
+"""Full-system Campbell diagram: the linearized turbine's modes (multi-blade coordinates, azimuth-averaged) over
+rotor speed, followed by their names."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .kane import TurbineModel
+from .linearize import LinearModel, linearize
+
+
+@dataclass(frozen=True)
+class TurbineCampbell:
+    """Modes over rotor speed.
+
+    rpm : (S,) rotor speeds, rpm
+    names : mode names (in order of first appearance, by frequency at the first speed)
+    frequencies_hz, damping_ratios : (len(names), S), NaN where a name does not occur at a speed
+    """
+
+    rpm: NDArray
+    names: list[str]
+    frequencies_hz: NDArray
+    damping_ratios: NDArray
+
+
+def campbell(model: TurbineModel, free: NDArray, rpm: Sequence[float], azimuths: int = 8) -> TurbineCampbell:
+    """Linearize at each rotor speed (rpm) and gather the modes by name."""
+    results: list[LinearModel] = [linearize(model, free, float(speed), azimuths) for speed in rpm]
+    names: list[str] = []
+    for result in results:
+        names += [mode.name for mode in result.modes if mode.name not in names]
+    frequencies = np.full((len(names), len(results)), np.nan)
+    damping = np.full_like(frequencies, np.nan)
+    for j, result in enumerate(results):
+        for mode in result.modes:
+            i = names.index(mode.name)
+            frequencies[i, j], damping[i, j] = mode.frequency_hz, mode.damping_ratio
+    return TurbineCampbell(rpm=np.asarray(rpm, dtype=float), names=names, frequencies_hz=frequencies,
+                           damping_ratios=damping)
+
+
+def campbell_text(result: TurbineCampbell) -> str:
+    """CSV: one row per rotor speed, a frequency (Hz) column per mode."""
+    header = "rpm," + ",".join(f"{name} [Hz]" for name in result.names)
+    rows = [f"{speed:.6g}," + ",".join("" if np.isnan(value) else f"{value:.6g}" for value in column)
+            for speed, column in zip(result.rpm, result.frequencies_hz.T)]
+    return "\n".join([header] + rows) + "\n"
+
+
+def plot_campbell(result: TurbineCampbell, path: str | os.PathLike, harmonics: Sequence[int] = (1, 3, 6, 9)) -> None:
+    """Frequencies against rotor speed with the per-revolution lines ``k P``, written atomically."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axis = plt.subplots(figsize=(8, 6))
+    for name, frequencies in zip(result.names, result.frequencies_hz):
+        axis.plot(result.rpm, frequencies, marker="o", ms=3, lw=1, label=name)
+    top = np.nanmax(result.frequencies_hz) * 1.05 if result.frequencies_hz.size else 1.0
+    for k in harmonics:
+        axis.plot(result.rpm, k * result.rpm / 60.0, "k--", lw=0.6)
+        if result.rpm[-1] > 0:
+            axis.annotate(f"{k}P", (result.rpm[-1], min(k * result.rpm[-1] / 60.0, top)), fontsize=7)
+    axis.set_ylim(0, top)
+    axis.set_xlabel("rotor speed [rpm]")
+    axis.set_ylabel("frequency [Hz]")
+    axis.set_title("full-system Campbell diagram (multi-blade coordinates)")
+    axis.grid(alpha=0.3)
+    axis.legend(fontsize=6, ncol=2)
+    figure.tight_layout()
+    handle, temporary = tempfile.mkstemp(dir=Path(path).resolve().parent, prefix=".tmp-", suffix=Path(path).suffix)
+    os.close(handle)
+    try:
+        figure.savefig(temporary, dpi=120)
+        os.replace(temporary, path)
+    finally:
+        Path(temporary).unlink(missing_ok=True)
+        plt.close(figure)
