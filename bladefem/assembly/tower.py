@@ -192,4 +192,5 @@ def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
     else:
         K_gravity = sp.csr_matrix((size, size))
     Z = base_constraint(dofs, rigid_fields(tower), tower.supports.moving_base, base_height(tower.supports))
-    return TowerMatrices(K_elastic=K_elastic, K=K.tocsr(), K_gravity=K_gravity.tocsr(), M=M.tocsr(), Z=Z, dofs=dofs, tower=tower)
+    return TowerMatrices(K_elastic=K_elastic, K=K.tocsr(), K_gravity=K_gravity.tocsr(), M=M.tocsr(), Z=Z,
+                         dofs=dofs, tower=tower)

@@ -18,7 +18,7 @@ from ..io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
 from ..io.results import dumps, modal_to_dict
 from ..io.tower_case import is_tower_case, read_tower_case
 from ..modal.results import ModalResult
-from ..models.tower import elastodyn_tower, tower_modes, with_blade_kinds
+from ..models.tower import elastodyn_tower, tower_modes
 from ..sections.tower import TopMass, Tower
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -71,12 +71,12 @@ def read_tower(args: argparse.Namespace) -> Tower:
     if path.suffix.lower() in YAML_SUFFIXES:
         tower = read_tower_case(path)
     elif getattr(args, "elastodyn_main", None):
-        main_path = Path(args.elastodyn_main)
-        if Path(read_elastodyn_main(main_path).tower_file).resolve() != path.resolve():
-            tower = _bare_tower(path, args, read_elastodyn_main(main_path))
-        else:
-            tower = elastodyn_tower(main_path, azimuth=math.radians(getattr(args, "rotor_azimuth_deg", 0.0)),
-                                    point_mass=getattr(args, "point_top_mass", False))
+        main = read_elastodyn_main(args.elastodyn_main)
+        if Path(main.tower_file).resolve() == path.resolve():
+            tower = elastodyn_tower(args.elastodyn_main, point_mass=getattr(args, "point_top_mass", False),
+                                    azimuth=math.radians(getattr(args, "rotor_azimuth_deg", 0.0)))
+        else:     # another tower file: its own sections, the main file's height and a point top mass
+            tower = _bare_tower(path, args, main)
     else:
         tower = _bare_tower(path, args, None)
     return tower.with_(gravity=0.0) if getattr(args, "no_gravity", False) else tower
@@ -98,13 +98,15 @@ def _bare_tower(path: Path, args: argparse.Namespace, main: Any) -> Tower:
                  notes=plain.notes + (f"tower-top point mass {top:g} kg (--tip-mass)",))
 
 
-def elastodyn_coefficients(tower: Tower, result: ModalResult, nodes: int = 20) -> dict[str, Any]:
-    """ElastoDyn coefficients of the first two fore-aft and side-side modes (the fit removes rigid base motion)."""
-    from ..modal.elastodyn_fit import TOWER_MODES, fit_modes
-    fits = fit_modes(with_blade_kinds(result), tower.as_beam(), TOWER_MODES, nodes=nodes, omega=0.0, tower=True)
+def elastodyn_coefficients(tower: Tower, n_modes: int, elements: int | None, nodes: int = 20) -> dict[str, Any]:
+    """ElastoDyn coefficients of the first two fore-aft and side-side modes (the io engineer's fit, which removes
+    rigid base motion and evaluates ElastoDyn's own frequency of each polynomial with its gravity term)."""
+    from ..modal.elastodyn_fit import tower_coefficients
+    fitted = tower_coefficients(tower, nodes=nodes, n_modes=max(n_modes, FIT_MODES), elements=elements)
     return {name: {"coefficients": [float(c) for c in fit.fit.coefficients], "rms_error": fit.fit.rms_error,
-                   "fe_frequency_hz": fit.fe_frequency_hz, "warnings": list(fit.warnings)}
-            for name, fit in fits.items()}
+                   "fe_frequency_hz": fit.fe_frequency_hz, "elastodyn_frequency_hz": fit.elastodyn_frequency_hz,
+                   "warnings": list(fit.warnings)}
+            for name, fit in fitted.fits.items()}
 
 
 def tower_table(tower: Tower, result: ModalResult) -> str:
@@ -127,12 +129,11 @@ def tower_table(tower: Tower, result: ModalResult) -> str:
 def tower_modes_command(args: argparse.Namespace) -> int:
     """``bladefem modes TOWER_INPUT``: print the tower's modes as a table or JSON; returns the exit code."""
     tower = read_tower(args)
-    n_modes = getattr(args, "n_modes", 10)
-    fit = getattr(args, "elastodyn_coefficients", False)
-    result = tower_modes(tower, max(n_modes, FIT_MODES) if fit else n_modes, getattr(args, "elements", None))
-    coefficients = elastodyn_coefficients(tower, result) if fit else None
-    shown = ModalResult(rotor_speed_rpm=0.0, modes=result.modes[:n_modes], stations=result.stations,
-                        vectors=result.vectors[:, :n_modes], n_dofs=result.n_dofs, notes=result.notes)
+    n_modes, elements = getattr(args, "n_modes", 10), getattr(args, "elements", None)
+    shown = tower_modes(tower, n_modes, elements)
+    coefficients = None
+    if getattr(args, "elastodyn_coefficients", False):
+        coefficients = elastodyn_coefficients(tower, n_modes, elements)
     if getattr(args, "json", False):
         data = {"input": args.input, "structure": "tower", **modal_to_dict(shown, "fe")}
         if coefficients is not None:
@@ -143,7 +144,8 @@ def tower_modes_command(args: argparse.Namespace) -> int:
     if coefficients is not None:
         for name, fit_data in coefficients.items():
             values = "  ".join(f"{c:.6g}" for c in fit_data["coefficients"])
-            print(f"# ElastoDyn {name} (x^2 .. x^6): {values}   rms {fit_data['rms_error']:.2e}")
+            print(f"# ElastoDyn {name} (x^2 .. x^6): {values}   rms {fit_data['rms_error']:.2e}, "
+                  f"ElastoDyn frequency {fit_data['elastodyn_frequency_hz']:.5f} Hz")
     return 0
 
 
