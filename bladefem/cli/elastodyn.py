@@ -127,7 +127,7 @@ def run(args: argparse.Namespace) -> int:
 def _coefficients(args: argparse.Namespace, kind: str, model, main, shipped) -> ElastoDynCoefficients:
     if isinstance(model, Tower):
         nodes = args.nodes or (main.tower_nodes if main else DEFAULT_TOWER_NODES)
-        return tower_coefficients(model.as_beam(), nodes=nodes, n_modes=args.n_modes, elements=args.elements,
+        return tower_coefficients(model, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
                                   shipped=shipped, min_tip_ratio=args.min_tip_ratio)
     rpm = _rpm(args, kind, main)
     nodes = args.nodes or (main.blade_nodes if main else DEFAULT_BLADE_NODES)

@@ -192,13 +192,22 @@ def centrifugal_load(sections: SectionTable, nodes: NDArray, dr: float, hub_radi
     return omega**2 * math.cos(precone) ** 2 * (outboard + own + tip)
 
 
+def gravity_load(sections: SectionTable, nodes: NDArray, dr: float, top_mass: float, gravity: float) -> NDArray:
+    """Compressive axial load (N) at each tower node: the weight of the node masses above it (the upper half of
+    its own element included) and of the top mass."""
+    element = sections.at(nodes, "mass") * dr
+    above = np.cumsum(element[::-1])[::-1] - element / 2
+    return gravity * (above + top_mass)
+
+
 def elastodyn_frequency(coefficients: NDArray, sections: SectionTable, stiffness: str, nodes: int, *,
                         tip_mass: float = 0.0, omega: float = 0.0, hub_radius: float = 0.0, precone: float = 0.0,
-                        in_plane: bool = False) -> float:
+                        in_plane: bool = False, gravity: float = 0.0) -> float:
     """Frequency (Hz) ElastoDyn derives for a polynomial mode from its generalized mass and stiffness:
-    ``M = sum m phi^2 dr + M_tip``, ``K = sum EI phi''^2 dr + sum N phi'^2 dr`` over its own ``nodes``, with
-    ``stiffness`` the EI column ('flap_stiffness' or 'edge_stiffness'), the centrifugal load ``N`` at rotor speed
-    ``omega`` (rad/s) and, for an in-plane mode, the spin softening ``- omega^2 M``."""
+    ``M = sum m phi^2 dr + M_tip``, ``K = sum EI phi''^2 dr + sum N phi'^2 dr - sum P phi'^2 dr`` over its own
+    ``nodes``, with ``stiffness`` the EI column ('flap_stiffness' or 'edge_stiffness'), the centrifugal tension
+    ``N`` at rotor speed ``omega`` (rad/s), for an in-plane blade mode the spin softening ``- omega^2 M``, and for
+    a tower the gravity load ``P`` (``gravity`` in m/s^2, 0 for none)."""
     length = sections.length
     r, dr = elastodyn_nodes(length, nodes)
     x = r / length
@@ -206,55 +215,62 @@ def elastodyn_frequency(coefficients: NDArray, sections: SectionTable, stiffness
     mass = float(np.sum(sections.at(r, "mass") * phi**2) * dr) + tip_mass
     elastic = float(np.sum(sections.at(r, stiffness) * phi2**2) * dr)
     load = centrifugal_load(sections, r, dr, hub_radius, tip_mass, omega, precone)
-    centrifugal = float(np.sum(load * phi1**2) * dr)
+    load = load - gravity_load(sections, r, dr, tip_mass, gravity)
+    geometric = float(np.sum(load * phi1**2) * dr)
     softening = omega**2 * mass if in_plane else 0.0
-    return math.sqrt(max(elastic + centrifugal - softening, 0.0) / mass) / (2 * math.pi)
+    return math.sqrt(max(elastic + geometric - softening, 0.0) / mass) / (2 * math.pi)
 
 
 # -- whole blades and towers --------------------------------------------------------------------------------------
 
-def fit_modes(result: ModalResult, beam: Blade, wanted: dict[str, tuple[str, int]], nodes: int, omega: float,
-              tower: bool, min_tip_ratio: float = MIN_TIP_RATIO) -> dict[str, ModeFit]:
-    """Fit the modes named in ``wanted`` (name -> (kind, number)) of a modal result of ``beam``."""
-    fits = {}
-    tip = beam.tip_mass.mass if beam.tip_mass is not None else 0.0
+@dataclass(frozen=True)
+class BeamIntegrals:
+    """What ElastoDyn's integrals need besides the polynomial: sections, the tip (or top) point mass, kg, the hub
+    radius, m, the precone, rad, the rotor speed, rad/s, and gravity, m/s^2 (towers)."""
+
+    sections: SectionTable
+    tip_mass: float = 0.0
+    hub_radius: float = 0.0
+    precone: float = 0.0
+    omega: float = 0.0
+    gravity: float = 0.0
+    tower: bool = False
+
+    def frequency(self, coefficients: NDArray, kind: str, nodes: int) -> float:
+        return elastodyn_frequency(coefficients, self.sections, f"{kind}_stiffness", nodes, tip_mass=self.tip_mass,
+                                   omega=self.omega, hub_radius=self.hub_radius, precone=self.precone,
+                                   in_plane=kind == "edge" and not self.tower, gravity=self.gravity)
+
+
+def _tip_warning(name: str, target: Target, fit: PolynomialFit, min_tip_ratio: float) -> tuple[str, ...]:
+    if target.tip_ratio >= min_tip_ratio:
+        return ()
+    return (f"{LABELS[name]}: tip displacement is only {target.tip_ratio:.3g} of the largest displacement; a "
+            f"tip-normalised polynomial amplifies errors (coefficients up to {np.max(np.abs(fit.coefficients)):.3g})",)
+
+
+def fit_modes(result: ModalResult, beam: BeamIntegrals, wanted: dict[str, tuple[str, int]], nodes: int,
+              shipped: dict[str, NDArray] | None = None,
+              min_tip_ratio: float = MIN_TIP_RATIO) -> tuple[dict[str, ModeFit], dict[str, ModeFit] | None]:
+    """Fit the modes named in ``wanted`` (name -> (kind, number)) of ``result``; also evaluate the ``shipped``
+    coefficients (e.g. those already in a file) against the same modes."""
     by_kind = {kind: modes_of_kind(result, kind) for kind in ("flap", "edge")}
+    fits, compared = {}, {}
     for name, (kind, number) in wanted.items():
         if len(by_kind[kind]) < number:
             raise LookupError(f"{LABELS[name]}: only {len(by_kind[kind])} {kind} modes among the "
                               f"{len(result.modes)} computed; ask for more modes")
         mode = by_kind[kind][number - 1]
-        target = fitting_target(mode, kind, beam.length, remove_base_motion=tower)
+        target = fitting_target(mode, kind, beam.sections.length, remove_base_motion=beam.tower)
         fit = fit_sextic(target.points, target.weights, target.values, target.tip_slope)
-        warnings = ()
-        if target.tip_ratio < min_tip_ratio:
-            warnings = (f"{LABELS[name]}: tip displacement is only {target.tip_ratio:.3g} of the largest "
-                        f"displacement; a tip-normalised polynomial amplifies errors (coefficients up to "
-                        f"{np.max(np.abs(fit.coefficients)):.3g})",)
-        frequency = elastodyn_frequency(fit.coefficients, beam.sections, f"{kind}_stiffness", nodes, tip_mass=tip,
-                                        omega=omega, hub_radius=beam.hub_radius, precone=beam.precone,
-                                        in_plane=kind == "edge" and not tower)
-        fits[name] = ModeFit(name, fit, mode.frequency_hz, frequency, target.tip_ratio, warnings)
-    return fits
-
-
-def shipped_quality(result: ModalResult, beam: Blade, shipped: dict[str, NDArray], wanted: dict[str, tuple[str, int]],
-                    nodes: int, omega: float, tower: bool) -> dict[str, ModeFit]:
-    """The quality of existing coefficients (e.g. those in a shipped ElastoDyn file) against the FE modes."""
-    out = {}
-    tip = beam.tip_mass.mass if beam.tip_mass is not None else 0.0
-    by_kind = {kind: modes_of_kind(result, kind) for kind in ("flap", "edge")}
-    for name, coefficients in shipped.items():
-        kind, number = wanted[name]
-        mode = by_kind[kind][number - 1]
-        target = fitting_target(mode, kind, beam.length, remove_base_motion=tower)
-        fit = quality(np.asarray(coefficients, dtype=float), target.points, target.weights, target.values,
-                      target.tip_slope)
-        frequency = elastodyn_frequency(fit.coefficients, beam.sections, f"{kind}_stiffness", nodes, tip_mass=tip,
-                                        omega=omega, hub_radius=beam.hub_radius, precone=beam.precone,
-                                        in_plane=kind == "edge" and not tower)
-        out[name] = ModeFit(name, fit, mode.frequency_hz, frequency, target.tip_ratio)
-    return out
+        fits[name] = ModeFit(name, fit, mode.frequency_hz, beam.frequency(fit.coefficients, kind, nodes),
+                             target.tip_ratio, _tip_warning(name, target, fit, min_tip_ratio))
+        if shipped and name in shipped:
+            old = quality(np.asarray(shipped[name], dtype=float), target.points, target.weights, target.values,
+                          target.tip_slope)
+            compared[name] = ModeFit(name, old, mode.frequency_hz, beam.frequency(old.coefficients, kind, nodes),
+                                     target.tip_ratio)
+    return fits, (compared or None)
 
 
 @dataclass(frozen=True)
@@ -292,19 +308,32 @@ def blade_coefficients(blade: Blade, rpm: float, *, nodes: int = 17, n_modes: in
     ElastoDyn's BldNodes; ``shipped`` coefficients, if given, are evaluated against the same modes."""
     from . import modes
     result = modes(blade, rpm, n_modes, elements)
-    omega = rpm * math.pi / 30.0
-    fits = fit_modes(result, blade, BLADE_MODES, nodes, omega, tower=False, min_tip_ratio=min_tip_ratio)
-    compared = shipped_quality(result, blade, shipped, BLADE_MODES, nodes, omega, False) if shipped else None
+    beam = BeamIntegrals(blade.sections, blade.tip_mass.mass if blade.tip_mass is not None else 0.0,
+                         blade.hub_radius, blade.precone, rpm * math.pi / 30.0)
+    fits, compared = fit_modes(result, beam, BLADE_MODES, nodes, shipped, min_tip_ratio)
     return ElastoDynCoefficients(fits, rpm, nodes, False, compared, result.notes)
 
 
-def tower_coefficients(tower: Blade, *, nodes: int = 20, n_modes: int = 12, elements: int | None = None,
+def tower_coefficients(tower: object, *, nodes: int = 20, n_modes: int = 12, elements: int | None = None,
                        shipped: dict[str, NDArray] | None = None,
                        min_tip_ratio: float = MIN_TIP_RATIO) -> ElastoDynCoefficients:
-    """ElastoDyn tower coefficients (fore-aft 1 and 2, side-side 1 and 2) of a tower given as a non-rotating beam
-    (``bladefem.io.tower.Tower.as_beam()``: flap = fore-aft, edge = side-side); ``nodes`` is TwrNodes."""
-    from . import modes
-    result = modes(tower, 0.0, n_modes, elements)
-    fits = fit_modes(result, tower, TOWER_MODES, nodes, 0.0, tower=True, min_tip_ratio=min_tip_ratio)
-    compared = shipped_quality(result, tower, shipped, TOWER_MODES, nodes, 0.0, True) if shipped else None
+    """ElastoDyn tower coefficients (fore-aft 1 and 2, side-side 1 and 2); ``nodes`` is TwrNodes.
+
+    ``tower``: a :class:`bladefem.sections.tower.Tower` (or reader output with sections and a top mass), solved by
+    the tower model (gravity, supports; the ElastoDyn integrals then include ElastoDyn's gravity term), or a
+    non-rotating :class:`Blade` (``Tower.as_beam()``: flap = fore-aft, edge = side-side, no gravity). ElastoDyn's
+    integrals see the top body as a point mass (its TwrTpMass), whatever its offsets and inertia in the FE model.
+    """
+    if isinstance(tower, Blade):
+        from . import modes
+        result = modes(tower, 0.0, n_modes, elements)
+        sections, top, gravity = tower.sections, tower.tip_mass, 0.0
+    else:
+        from ..models.tower import tower_modes, with_blade_kinds
+        from ..sections.tower import as_tower
+        model = as_tower(tower)
+        result = with_blade_kinds(tower_modes(model, n_modes, elements))
+        sections, top, gravity = model.sections, model.top_mass, model.gravity
+    beam = BeamIntegrals(sections, top.mass if top is not None else 0.0, gravity=gravity, tower=True)
+    fits, compared = fit_modes(result, beam, TOWER_MODES, nodes, shipped, min_tip_ratio)
     return ElastoDynCoefficients(fits, 0.0, nodes, True, compared, result.notes)
