@@ -148,8 +148,8 @@ the FE).
 {chr(10).join(rows2)}
 
 The seed's rotating frequencies stiffen far more than bladefem's: {stiffer:+.0f}% on the first flap mode at 15 rpm.
-bladefem's FE gives {first_flap_12:.3f} Hz at 12 rpm, in line with ElastoDyn's own estimate for the same blade (about 0.73 Hz at the rated 12.1 rpm); the seed
-gives {SEED_TABLE2[12.0][0]:.4f} Hz.
+bladefem's FE gives {first_flap_12:.3f} Hz at 12 rpm, in line with ElastoDyn's own estimate for the same blade
+(about 0.73 Hz at the rated 12.1 rpm); the seed gives {SEED_TABLE2[12.0][0]:.4f} Hz.
 
 ### Southwell coefficients implied by each set of numbers
 
@@ -165,18 +165,17 @@ speed of bladefem's 5,5,3 model must be raised to reach the seed's stiffening: i
 
 ### What the seed computed
 
-No constant factor on the tension or on the rotor speed reproduces Table 2 (for the flap modes the tension is practically
-the only centrifugal term, so a tension factor is a speed factor, and the speed factor above drifts with speed and
-differs between modes). One change does: integrating the
-centrifugal tension from the root to x, `N(x) = Omega^2 int_0^x f` (the pull of the inboard part, largest at the
-free tip), instead of from x to the tip, `N(x) = Omega^2 int_x^L f` (zero at the free tip, as the seed's own
-boundary condition T(L) = 0 requires). With that single change and the seed's 5,5,3 truncation, bladefem's Galerkin
-model reproduces all 24 numbers of Table 2 within {100 * worst:.2f}% (last two columns). Table 2 is
-thus consistent, to its printed digits, with reversed integration limits in the seed's tension (its eq. 29), and
-with none of the other explanations tried (a constant factor on the tension or the speed, a constant root tension,
-a linearly decreasing tension); it does not reflect additional physics. bladefem keeps the physical tension and
-does not tune its model to Table 2 (the root-integrated tension lives only in `bladefem/models/galerkin_seed.py`,
-as this diagnostic).
+No constant factor on the tension or on the rotor speed reproduces Table 2 (for the flap modes the tension is
+practically the only centrifugal term, so a tension factor is a speed factor, and the speed factor above drifts
+with speed and differs between modes). One change does: integrating the centrifugal tension from the root to x,
+`N(x) = Omega^2 int_0^x f` (the pull of the inboard part, largest at the free tip), instead of from x to the tip,
+`N(x) = Omega^2 int_x^L f` (zero at the free tip, as the seed's own boundary condition T(L) = 0 requires). With
+that single change and the seed's 5,5,3 truncation, bladefem's Galerkin model reproduces all 24 numbers of Table 2
+within {100 * worst:.2f}% (last two columns). Table 2 is thus consistent, to its printed digits, with reversed
+integration limits in the seed's tension (its eq. 29), and with none of the other explanations tried (a constant
+factor on the tension or the speed, a constant root tension, a linearly decreasing tension); it does not reflect
+additional physics. bladefem keeps the physical tension and does not tune its model to Table 2 (the
+root-integrated tension lives only in `bladefem/models/galerkin_seed.py`, as this diagnostic).
 """
     return text
 
