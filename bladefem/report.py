@@ -145,13 +145,29 @@ def mass_rows(blade: Blade) -> list[tuple[str, ...]]:
     return rows
 
 
+def case_provenance(source: str) -> str | None:
+    """The ``source`` entry of a bladefem case file (where its section data came from), if it has one."""
+    path = Path(source)
+    if path.suffix.lower() not in (".yaml", ".yml") or not path.is_file():
+        return None
+    import yaml
+    try:
+        data = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError):
+        return None
+    return str(data["source"]) if isinstance(data, dict) and data.get("source") else None
+
+
 def summary_blocks(blade: Blade, matrices: BladeMatrices) -> list[Block]:
     sections = blade.sections
     geometry = [("flexible length", g(blade.length), "m"), ("hub radius", g(blade.hub_radius), "m"),
                 ("tip radius", g(blade.tip_radius), "m"), ("precone", g(math.degrees(blade.precone)), "deg"),
                 ("pitch", g(math.degrees(blade.pitch)), "deg"), ("root", blade.root, ""),
                 ("section stations", str(sections.stations), "")]
-    provenance = (f"Input: {sections.source or 'built in code'}. Model: Euler-Bernoulli beam finite elements "
+    origin = case_provenance(sections.source)
+    provenance = (f"Input: {sections.source or 'built in code'}"
+                  + (f" (section data from {origin})" if origin else "")
+                  + ". Model: Euler-Bernoulli beam finite elements "
                   f"(docs/THEORY.md), {matrices.free.size} free degrees of freedom; frequencies without Coriolis "
                   "coupling, linearised about the undeflected blade.")
     blocks: list[Block] = [Heading("Model"), Paragraph(provenance),

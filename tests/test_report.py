@@ -156,6 +156,7 @@ def test_nrel5mw_example_writes_the_report(tmp_path):
     # ElastoDyn's first flap at 12.1 rpm; first edge about 1.1 Hz, seed paper Table 1)
     first = re.search(r"^\| 1 \| ([\d.]+) \| 1st flap \|", text, flags=re.M)
     assert float(first.group(1)) == pytest.approx(0.73, abs=0.02)
+    assert "(section data from NRELOffshrBsline5MW_Blade.dat (OpenFAST r-test), mass factor 1)" in text
     assert (tmp_path / "campbell.png").exists()
     assert (tmp_path / "vtk" / "nrel5mw_campbell.pvd").exists()
     assert math.isfinite(value(text, "second mass moment about the blade root"))
