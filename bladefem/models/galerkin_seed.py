@@ -10,6 +10,8 @@ option: bladefem's models use the physical tension.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -52,17 +54,48 @@ def inboard_tension(blade: Blade, x: NDArray, order: int = 12) -> NDArray:
     return total
 
 
-def inboard_tension_matrices(blade: Blade, matrices: GalerkinMatrices) -> GalerkinMatrices:
-    """``matrices`` with the physical tension term of ``K2`` replaced by the root-integrated tension."""
+def physical_tension(blade: Blade, x: NDArray) -> NDArray:
+    """``int_x^L f`` plus the tip body per Omega^2 (kg m): bladefem's tension (docs/THEORY.md)."""
+    edges = cell_edges(blade.sections.span)
+    return centrifugal_tension(blade, edges, np.asarray(x, dtype=float), 12)
+
+
+def constant_root_tension(blade: Blade, x: NDArray) -> NDArray:
+    """The root tension applied along the whole span (an alternative tried against Table 2)."""
+    return np.full(np.shape(x), physical_tension(blade, np.zeros(1))[0])
+
+
+def linear_root_tension(blade: Blade, x: NDArray) -> NDArray:
+    """The root tension falling linearly to zero at the tip (an alternative tried against Table 2)."""
+    return constant_root_tension(blade, x) * (1 - np.asarray(x) / blade.length)
+
+
+#: Tension distributions compared with Table 2 in docs/seed-comparison.md (per Omega^2, kg m).
+TENSION_VARIANTS: dict[str, Callable[[Blade, NDArray], NDArray]] = {
+    "physical, int_x^L": physical_tension,
+    "root-integrated, int_0^x": inboard_tension,
+    "root tension everywhere": constant_root_tension,
+    "root tension falling linearly to the tip": linear_root_tension,
+}
+
+
+def tension_variant_matrices(blade: Blade, matrices: GalerkinMatrices,
+                             tension: Callable[[Blade, NDArray], NDArray]) -> GalerkinMatrices:
+    """``matrices`` with the physical tension term of ``K2`` replaced by another distribution ``tension``."""
     terms, basis = matrices.terms, matrices.basis
     order = max(terms.flap, terms.edge) + 6
     edges = cell_edges(blade.sections.span)
     quad = gauss_on_cells(edges, order)
     slopes = kinematics(quad.x, blade.length, terms, basis)[1]
     physical = integrate(slopes, tension_form(centrifugal_tension(blade, edges, quad.x, order)), quad.weights)
-    inboard = integrate(slopes, tension_form(inboard_tension(blade, quad.x)), quad.weights)
-    return GalerkinMatrices(M=matrices.M, K0=matrices.K0, K2=sym(matrices.K2 - physical + inboard), terms=terms,
+    replaced = integrate(slopes, tension_form(tension(blade, quad.x)), quad.weights)
+    return GalerkinMatrices(M=matrices.M, K0=matrices.K0, K2=sym(matrices.K2 - physical + replaced), terms=terms,
                             basis=basis)
+
+
+def inboard_tension_matrices(blade: Blade, matrices: GalerkinMatrices) -> GalerkinMatrices:
+    """``matrices`` with the physical tension term of ``K2`` replaced by the root-integrated tension."""
+    return tension_variant_matrices(blade, matrices, inboard_tension)
 
 
 def implied_southwell(rest_hz: float, frequency_hz: NDArray, rpm: NDArray) -> NDArray:
