@@ -1,6 +1,7 @@
-"""VTK export: files read back with meshio and pyvista give the solver's frequencies and displacements, the blade
-sits where the rotor-frame convention puts it, section points move as rigid sections, the ribbon's area is the
-integral of the chord, and a Campbell sweep is one collection indexed by rotor speed."""
+"""VTK export: files read back with meshio and pyvista give the solver's frequencies (field data in every VTU and
+the sidecar) and displacements, the blade sits where the rotor-frame convention puts it, section points move as
+rigid sections, the ribbon's area is the integral of the chord, and a Campbell sweep is one collection indexed by
+rotor speed."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ import pytest
 from bladefem.io.case import read_case
 from bladefem.io.vtk import read_vtk, write_vtk
 from bladefem.io.vtk_geometry import chord_edges, mode_displacement, surface_positions
-from bladefem.modal import campbell, modes
+from bladefem.modal import KINDS, campbell, modes
 from bladefem.sections import Blade, uniform_sections
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
@@ -49,6 +50,11 @@ def test_meshio_read_back_gives_the_solver_numbers(coned):
     assert [m["frequency_hz"] for m in speed["modes"]] == pytest.approx(result.frequencies_hz, rel=EXACT, abs=0)
     assert [m["kind"] for m in speed["modes"]] == result.kinds
     axis = speed["meshes"]["axis"]
+    # the files themselves keep the frequencies (field data added to meshio's VTU), exactly
+    for mesh in speed["meshes"].values():
+        np.testing.assert_array_equal(mesh.field_data["frequency_hz"], result.frequencies_hz)
+        np.testing.assert_array_equal(mesh.field_data["rotor_speed_rpm"], [10.0])
+        assert [KINDS[int(i)] for i in mesh.field_data["kind_index"]] == result.kinds
     beta = blade.precone
     for k, mode in enumerate(result.modes, 1):
         shape = mode.shape
@@ -81,6 +87,7 @@ def test_pyvista_reads_the_same_arrays_and_the_collection(coned):
     blocks = reader.read()
     assert blocks.n_blocks == 2
     axis, surface = blocks[0], blocks[1]
+    np.testing.assert_array_equal(surface.field_data["frequency_hz"], result.frequencies_hz)
     for k, mode in enumerate(result.modes, 1):
         flap_z = mode.shape.flap * math.cos(blade.precone) + mode.shape.axial * math.sin(blade.precone)
         np.testing.assert_allclose(axis.point_data[f"mode{k:02d}_displacement"][:, 2], flap_z, rtol=0, atol=1e-15)
@@ -165,5 +172,7 @@ def test_campbell_sweep_is_one_collection_indexed_by_rotor_speed(tmp_path):
         for f, family in enumerate(result.families, 1):
             shape = result.results[k].modes[family.indices[k]].shape
             np.testing.assert_array_equal(axis.point_data[f"mode{f:02d}_displacement"][:, 2], shape.flap)
+        np.testing.assert_array_equal(axis.field_data["frequency_hz"], frequencies)
+        np.testing.assert_array_equal(axis.field_data["rotor_speed_rpm"], [rpm[k]])
     assert data["campbell"]["rpm"] == rpm
     assert not any(name.startswith(".") for name in os.listdir(tmp_path))  # no temporary files left behind

@@ -1,12 +1,13 @@
 """VTK export of mode shapes (meshio): the blade as a line along its reference axis and, when the chord is known,
 as a surface ribbon of its planform; one collection (``.pvd``) indexed by rotor speed plus a JSON sidecar.
 
-Layout written into a directory, for a stem ``S`` (meshio's VTU writer drops field data, so the numbers that are
-not per point or per cell live in the ``.pvd`` and the sidecar):
+Layout written into a directory, for a stem ``S`` (meshio's VTU writer drops field data: the writer adds the
+frequencies back into each VTU as float64 field data, and the ``.pvd`` and a JSON sidecar hold the rest):
 
 - ``S_NNN_axis.vtu`` for each rotor speed ``NNN`` (0-based): line cells between the mesh nodes; point data
   ``modeKK_displacement`` (rotor-frame vector, m per unit modal amplitude) and ``modeKK_twist_rad`` for every mode
-  ``KK`` (1-based), ``span_m``; cell data: section properties at the cell midpoints (SI, unit in the name).
+  ``KK`` (1-based), ``span_m``; cell data: section properties at the cell midpoints (SI, unit in the name); field
+  data ``rotor_speed_rpm``, ``frequency_hz`` and ``kind_index`` (0 flap, 1 edge, 2 torsion, 3 axial) per mode.
 - ``S_NNN_surface.vtu`` when the chord is known: quads between leading and trailing edges, the same arrays
   (displacements of the edge points by the rigid-section kinematics).
 - ``S.pvd``: the collection; ParaView's time is the rotor speed in rpm, part 0 the axis and part 1 the surface.
@@ -31,7 +32,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
-from ..modal import CampbellResult, ModalResult
+from ..modal import KINDS, CampbellResult, ModalResult
 from ..modal.results import Mode
 from ..sections import Blade
 from .results import campbell_to_dict, dumps, write_atomic
@@ -117,14 +118,34 @@ def surface_mesh(blade: Blade, x: NDArray, modes: list[ModeDisplacement]):
     return meshio.Mesh(points, [("quad", quads)], point_data=point_data, cell_data=cells)
 
 
-def write_mesh_atomic(path: Path, mesh) -> None:
-    """meshio VTU (binary, zlib) written to a temporary file in the same folder, then renamed."""
+def field_data_xml(arrays: dict[str, NDArray]) -> str:
+    """A VTK XML ``<FieldData>`` block of float64 arrays, in ASCII with shortest round-trip reprs (exact)."""
+    rows = [f'<DataArray type="Float64" Name={quoteattr(name)} NumberOfTuples="{np.size(values)}" '
+            f'format="ascii">{" ".join(repr(float(v)) for v in np.ravel(values))}</DataArray>'
+            for name, values in arrays.items()]
+    return "<FieldData>\n" + "\n".join(rows) + "\n</FieldData>\n"
+
+
+def with_field_data(vtu: str, arrays: dict[str, NDArray]) -> str:
+    """meshio's VTU text with field data added after the ``<UnstructuredGrid>`` tag (meshio writes none)."""
+    tag = "<UnstructuredGrid>\n"
+    if tag not in vtu:
+        raise ValueError("unexpected VTU layout: no <UnstructuredGrid> line")
+    return vtu.replace(tag, tag + field_data_xml(arrays), 1)
+
+
+def write_mesh_atomic(path: Path, mesh, field_data: dict[str, NDArray] | None = None) -> None:
+    """meshio VTU (binary, zlib) with optional float64 field data, written to a temporary file in the same folder,
+    then renamed."""
     import meshio
 
     handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".vtu")
     os.close(handle)
     try:
         meshio.write(temporary, mesh, file_format="vtu")
+        if field_data:
+            text = Path(temporary).read_text()
+            Path(temporary).write_text(with_field_data(text, field_data))
         os.replace(temporary, path)
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
@@ -137,6 +158,14 @@ def collection_xml(entries: list[tuple[float, int, str, str]]) -> str:
             for rpm, part, file, name in entries]
     return "\n".join(['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1">', "  <Collection>",
                       *rows, "  </Collection>", "</VTKFile>", ""])
+
+
+def speed_field_data(speed: SpeedModes) -> dict[str, NDArray]:
+    """Field data kept in each VTU: ``rotor_speed_rpm``, ``frequency_hz`` and ``kind_index`` (position in
+    :data:`bladefem.modal.KINDS`: 0 flap, 1 edge, 2 torsion, 3 axial) of the modes in array order."""
+    return {"rotor_speed_rpm": np.array([speed.rotor_speed_rpm]),
+            "frequency_hz": np.array([mode.frequency_hz for mode in speed.modes]),
+            "kind_index": np.array([KINDS.index(mode.kind) for mode in speed.modes], dtype=float)}
 
 
 def mode_record(mode: Mode, number: int) -> dict[str, Any]:
@@ -165,11 +194,12 @@ def write_vtk(blade: Blade, result: ModalResult | CampbellResult, directory: str
     for k, speed in enumerate((progress or iter)(speeds)):
         x = speed.modes[0].shape.x
         drawn = [mode_displacement(blade, mode.shape, x) for mode in speed.modes]
+        fields = speed_field_data(speed)
         files = {"axis": f"{stem}_{k:03d}_axis.vtu"}
-        write_mesh_atomic(directory / files["axis"], axis_mesh(blade, x, drawn))
+        write_mesh_atomic(directory / files["axis"], axis_mesh(blade, x, drawn), fields)
         if has_planform(blade):
             files["surface"] = f"{stem}_{k:03d}_surface.vtu"
-            write_mesh_atomic(directory / files["surface"], surface_mesh(blade, x, drawn))
+            write_mesh_atomic(directory / files["surface"], surface_mesh(blade, x, drawn), fields)
         for part, (name, file) in enumerate(files.items()):
             entries.append((speed.rotor_speed_rpm, part, file, name))
             meshes.append(directory / file)
