@@ -67,7 +67,9 @@ class WindIOBeam:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, WindIOBeam):
             return NotImplemented
-        same = lambda a, b: a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)  # noqa: E731
+        def same(a: dict, b: dict) -> bool:
+            return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+
         return (self.reference_axis == other.reference_axis and self.twist == other.twist
                 and np.array_equal(self.stiffness_grid, other.stiffness_grid) and same(self.stiffness, other.stiffness)
                 and np.array_equal(self.inertia_grid, other.inertia_grid) and same(self.inertia, other.inertia))

@@ -75,8 +75,13 @@ def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
         raise InputError("the file has no blade", file=turbine.path or None,
                          line=turbine.lines.get(("components",)), field="components.blade")
     x = _stations(beam)
-    inertia = lambda name: np.interp(x, beam.inertia_grid, beam.inertia[name]) if name in beam.inertia else None  # noqa: E731
-    stiffness = lambda name: np.interp(x, beam.stiffness_grid, beam.stiffness[name])  # noqa: E731
+
+    def inertia(name: str) -> NDArray | None:
+        return np.interp(x, beam.inertia_grid, beam.inertia[name]) if name in beam.inertia else None
+
+    def stiffness(name: str) -> NDArray:
+        return np.interp(x, beam.stiffness_grid, beam.stiffness[name])
+
     cm_x = inertia("cm_x")
     sections = SectionTable(
         span=x * beam.length,
