@@ -102,3 +102,23 @@ def test_user_errors_exit_with_code_2(argv, field, capsys):
 def test_too_few_modes_is_a_user_error(capsys):
     code, _, err = run([str(DATA / "windio_small.yaml"), "--rpm", "5", "--n-modes", "2"], capsys)
     assert code == 2 and "field '--n-modes'" in err and "only" in err
+
+
+def test_read_model_dispatches_every_format():
+    from bladefem.io.detect import detect_format, read_model
+    from bladefem.io.tower import Tower
+    from bladefem.sections import Blade
+    expected = {"NRELOffshrBsline5MW_Onshore_ElastoDyn.dat": "elastodyn-main",
+                "NRELOffshrBsline5MW_Blade.dat": "elastodyn-blade",
+                "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat": "elastodyn-tower",
+                "bmodes_blade.bmi": "bmodes", "windio_small.yaml": "windio"}
+    for name, kind in expected.items():
+        assert detect_format(DATA / name) == kind
+    assert isinstance(read_model(DATA / NAMES[0]), Blade)
+    assert isinstance(read_model(DATA / NAMES[0], "tower"), Tower)
+    blade = read_model(DATA / NAMES[1], tip_radius=63.0, hub_radius=1.5)
+    assert blade.length == pytest.approx(61.5, rel=1e-15)
+    tower = read_model(DATA / NAMES[2], elastodyn_main=DATA / NAMES[0])
+    assert tower.height == pytest.approx(87.6, rel=1e-15) and tower.top_mass.mass > 3e5
+    assert isinstance(read_model(DATA / "bmodes_tower_plain.bmi"), Tower)
+    assert isinstance(read_model(DATA / "windio_small.yaml", "tower"), Tower)

@@ -63,8 +63,17 @@ def detect_format(path: str | Path) -> str:
                      "ElastoDyn main, blade or tower file)", file=str(path), line=1)
 
 
-def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None) -> Blade | Tower:
-    """The blade (default) or tower (``part='tower'``) described by ``path``, in any supported format."""
+def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None,
+               **options: object) -> Blade | Tower:
+    """The blade (default) or tower (``part='tower'``) described by ``path``, in any supported format.
+
+    Geometry for files that lack it, and overrides, as a :class:`Geometry` or as keyword options with the same
+    names (``tip_radius=63.0, elastodyn_main="main.dat"``; SI units, angles in rad)."""
+    if options:
+        unknown = set(options) - set(Geometry.__dataclass_fields__)
+        if unknown:
+            raise TypeError(f"unknown geometry options: {', '.join(sorted(unknown))}")
+        geometry = Geometry(**{**(geometry.__dict__ if geometry else {}), **options})  # type: ignore[arg-type]
     geometry = geometry or Geometry()
     kind = detect_format(path)
     if part not in (None, "blade", "tower"):
