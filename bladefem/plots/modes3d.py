@@ -119,6 +119,13 @@ def with_band_above(view: View, fraction: float) -> View:
     return View(view.focus + view.up * half * fraction, view.right, view.up, half)
 
 
+def behind(mesh, view: View, points: NDArray):
+    """A copy of ``mesh`` moved away from the camera, behind all ``points``: a parallel projection draws it at the
+    same place in the image, and the deformed blade is always drawn over it."""
+    depth = points @ view.normal
+    return mesh.translate(-(2.0 * np.ptp(depth) + 1e-3 * view.half_height) * view.normal, inplace=False)
+
+
 def camera(plotter, view: View) -> None:
     plotter.enable_parallel_projection()
     distance = 10.0 * view.half_height + 1.0
@@ -164,7 +171,8 @@ def render_frames(blade: Blade, mode: Mode, amplitudes: tuple[float, ...] = (1.0
         view = with_band_above(view, TITLE_PIXELS / window_size[1])
     plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
     plotter.set_background("white")
-    plotter.add_mesh(rest, color=UNDEFORMED, opacity=0.55, ambient=0.4, diffuse=0.6, specular=0.0)
+    plotter.add_mesh(behind(rest, view, np.concatenate([rest.points, *shapes])), color=UNDEFORMED, opacity=0.55,
+                     ambient=0.4, diffuse=0.6, specular=0.0)
     deformed = blade_mesh(blade, x, offset)
     plotter.add_mesh(deformed, color=DEFORMED, ambient=0.4, diffuse=0.6, specular=0.0, smooth_shading=True)
     if title:
