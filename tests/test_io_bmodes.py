@@ -10,10 +10,11 @@ import numpy as np
 import pytest
 
 from bladefem.errors import InputError
-from bladefem.io.bmodes import read_bmodes, read_bmodes_sections
-from bladefem.io.bmodes_model import blade_from_bmodes, tower_from_bmodes
+from bladefem.io.bmodes import BModesWires, read_bmodes, read_bmodes_sections
+from bladefem.io.bmodes_model import blade_from_bmodes, tower_from_bmodes, tower_model_from_bmodes
 from bladefem.io.bmodes_writer import write_bmodes
 from bladefem.modal import modes
+from bladefem.models.tower import tower_modes
 
 DATA = Path(__file__).parent / "data"
 DECKS = ("bmodes_blade", "bmodes_tower_plain", "bmodes_tower_wires", "bmodes_tower_platform")
@@ -81,6 +82,30 @@ def test_v300_tension_wires_are_read_and_reported():
     with pytest.raises(InputError) as info:
         tower_from_bmodes(deck)
     assert info.value.field == "tow_support" and info.value.line == 51
+
+
+def test_tension_wires_become_tower_model_supports():
+    deck = read_bmodes(DATA / "bmodes_tower_wires.bmi")
+    tower = tower_model_from_bmodes(deck)
+    first, second = tower.supports.wires
+    # node_attach 6 and 9 of el_loc (0, 0.1, ..., 1) on the 80 m flexible length; v3.00 angles from the tower axis
+    assert (first.count, first.height, first.stiffness) == (3, pytest.approx(40.0, rel=1e-15), 2e6)
+    assert (second.count, second.height, second.stiffness) == (4, pytest.approx(64.0, rel=1e-15), 1e6)
+    assert first.angle == pytest.approx(math.radians(30), rel=1e-15)
+
+
+@pytest.mark.parametrize("stiffness", [1e11, 1e12])
+def test_stiff_wires_at_the_top_pin_the_tower(stiffness):
+    # three stiff wires at the top of a uniform tower without top mass or gravity approach a clamped-pinned beam,
+    # lambda_1 = 3.92660231 (Blevins, Formulas for natural frequency, Table 8-1); the remaining error is the wires'
+    # compliance, first order in EI / (k L^3): measured 1.9e-5 at k = 1e11 N/m and 1.8e-6 at 1e12 N/m
+    deck = read_bmodes(DATA / "bmodes_tower_wires.bmi")
+    deck = replace(deck, tip={key: 0.0 for key in deck.tip},
+                   wires=BModesWires((3,), (11,), (stiffness,), (math.radians(45),)))
+    tower = replace(tower_model_from_bmodes(deck), gravity=0.0)
+    w1 = tower_modes(tower, 2, elements=40).modes[0].frequency_hz * 2 * math.pi * math.sqrt(5000 * 80.0**4 / 5e10)
+    error = 1 - w1 / 3.92660231**2
+    assert 0 < error < 2.5e-5 * (1e11 / stiffness)
 
 
 def test_platform_layout_is_detected():

@@ -25,6 +25,7 @@ a user can check them against their deck):
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -141,3 +142,33 @@ def tower_from_bmodes(bmodes: BModesInput) -> Tower:
     sections = bmodes_sections(bmodes)
     return Tower(sections=sections, base_height=bmodes.hub_rad, top_mass=tip_body(bmodes, 0.0),
                  name=bmodes.title[0].strip() or "BModes tower", notes=_notes(bmodes))
+
+
+def wire_angle_to_axis(bmodes: BModesInput, angle: float) -> float:
+    """``th_wire`` as the angle between a wire and the tower axis, rad: v3.00 decks give it from the tower axis,
+    the later layout (its description) from the horizontal ground plane."""
+    return angle if bmodes.layout == "v3.00" else math.pi / 2 - angle
+
+
+def tower_model_from_bmodes(bmodes: BModesInput):
+    """The tower deck as a :class:`bladefem.sections.tower.Tower` for the tower model, with its tension wires as
+    supports (each wire of a set with the set's ``wire_stfness`` as its own axial stiffness, attached at BModes node
+    ``node_attach`` = ``el_loc[node - 1]`` of the flexible length). A platform block is not mapped yet."""
+    from ..sections.tower import Supports, Tower as ModelTower, Wires
+    if bmodes.beam_type != 2:
+        raise InputError("this is a blade deck (beam_type = 1), not a tower", file=bmodes.path or None,
+                         line=bmodes.key_lines.get("beam_type"), field="beam_type")
+    if bmodes.platform is not None or bmodes.hub_conn != 1:
+        _check_supported(bmodes)
+    plain = tower_from_bmodes(replace(bmodes, wires=None))
+    wires = ()
+    if bmodes.wires is not None:
+        w = bmodes.wires
+        wires = tuple(Wires(count=n, stiffness=k, angle=wire_angle_to_axis(bmodes, a),
+                            height=float(bmodes.el_loc[node - 1]) * bmodes.length)
+                      for n, node, k, a in zip(w.n_wires, w.node_attach, w.stiffness, w.angle))
+    notes = plain.notes + ((f"{len(wires)} tension-wire sets from the deck (each wire with wire_stfness as its "
+                            "axial stiffness; th_wire measured from the tower axis in v3.00 decks, from the "
+                            "ground plane in the later layout)",) if wires else ())
+    return ModelTower(sections=plain.sections, base_height=plain.base_height, top_mass=plain.top_mass,
+                      supports=Supports(wires=wires), name=plain.name, notes=notes)
