@@ -81,6 +81,11 @@ def test_other_input_formats(capsys):
     assert code == 0 and "BldEdgSh(6)" in out
     code, out, _ = run([str(DATA / "windio_small.yaml"), "--part", "tower"], capsys)
     assert code == 0 and "TwSSM2Sh(6)" in out
+    for deck in ("bmodes_tower_plain.bmi", "bmodes_tower_wires.bmi"):     # towers found from the deck itself
+        code, out, _ = run([str(DATA / deck)], capsys)
+        assert code == 0 and "TwFAM1Sh(2)" in out and "tower (non-rotating)" in out
+    code, _, err = run([str(DATA / "bmodes_tower_plain.bmi"), "--part", "blade"], capsys)
+    assert code == 2 and "field '--part'" in err
 
 
 @pytest.mark.parametrize(("argv", "field"), [

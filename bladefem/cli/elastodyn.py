@@ -16,8 +16,8 @@ from ..io.detect import Geometry, detect_format, read_model
 from ..io.elastodyn_blade import BLADE_BLOCKS, blade_with_mode_shapes, read_elastodyn_blade
 from ..io.elastodyn_main import read_elastodyn_main
 from ..io.elastodyn_tower import TOWER_BLOCKS, read_elastodyn_tower, tower_with_mode_shapes
-from ..io.tower import Tower
 from ..modal.elastodyn_fit import MIN_TIP_RATIO, ElastoDynCoefficients, blade_coefficients, tower_coefficients
+from ..sections import Blade
 
 DEFAULT_BLADE_NODES = 17
 DEFAULT_TOWER_NODES = 20
@@ -69,7 +69,8 @@ def _check(args: argparse.Namespace) -> None:
         raise InputError("--dry-run needs --write FILE.dat", field="--dry-run")
 
 
-def _part(args: argparse.Namespace, kind: str) -> str:
+def _part(args: argparse.Namespace) -> str | None:
+    """'blade' or 'tower' from --part or the --write target; None to let INPUT decide."""
     if args.part:
         return args.part
     if args.write:
@@ -78,7 +79,7 @@ def _part(args: argparse.Namespace, kind: str) -> str:
             raise InputError("--write needs an existing ElastoDyn blade or tower file", file=args.write,
                              field="--write")
         return "tower" if target == "elastodyn-tower" else "blade"
-    return "tower" if kind == "elastodyn-tower" else "blade"
+    return None
 
 
 def _main_file(args: argparse.Namespace, kind: str) -> str | None:
@@ -104,13 +105,13 @@ def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | Non
 def run(args: argparse.Namespace) -> int:
     _check(args)
     kind = detect_format(args.input)
-    part = _part(args, kind)
+    wanted = _part(args)
     geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
                         tower_height=args.tower_height, top_mass=args.top_mass)
-    model = read_model(args.input, part, geometry)
-    if isinstance(model, Tower) != (part == "tower"):
-        raise InputError(f"INPUT describes a {'tower' if isinstance(model, Tower) else 'blade'}, not a {part}",
-                         file=args.input, field="--part")
+    model = read_model(args.input, wanted, geometry)
+    part = "blade" if isinstance(model, Blade) else "tower"
+    if wanted is not None and part != wanted:
+        raise InputError(f"INPUT describes a {part}, not a {wanted}", file=args.input, field="--part")
     main_path = _main_file(args, kind)
     main = read_elastodyn_main(main_path) if main_path else None
     shipped, shipped_from = _shipped(args, kind, part)
@@ -125,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _coefficients(args: argparse.Namespace, kind: str, model, main, shipped) -> ElastoDynCoefficients:
-    if isinstance(model, Tower):
+    if not isinstance(model, Blade):
         nodes = args.nodes or (main.tower_nodes if main else DEFAULT_TOWER_NODES)
         return tower_coefficients(model, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
                                   shipped=shipped, min_tip_ratio=args.min_tip_ratio)

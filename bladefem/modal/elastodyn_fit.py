@@ -324,6 +324,7 @@ def tower_coefficients(tower: object, *, nodes: int = 20, n_modes: int = 12, ele
     non-rotating :class:`Blade` (``Tower.as_beam()``: flap = fore-aft, edge = side-side, no gravity). ElastoDyn's
     integrals see the top body as a point mass (its TwrTpMass), whatever its offsets and inertia in the FE model.
     """
+    notes: tuple[str, ...] = ()
     if isinstance(tower, Blade):
         from . import modes
         result = modes(tower, 0.0, n_modes, elements)
@@ -334,6 +335,9 @@ def tower_coefficients(tower: object, *, nodes: int = 20, n_modes: int = 12, ele
         model = as_tower(tower)
         result = with_blade_kinds(tower_modes(model, n_modes, elements))
         sections, top, gravity = model.sections, model.top_mass, model.gravity
+        if model.supports.wires or model.supports.moving_base or model.supports.soil is not None:
+            notes += ("ElastoDyn's tower integrals have no wires, foundation, platform or soil springs: its "
+                      "frequencies below are those of the fitted shapes on a clamped base",)
     beam = BeamIntegrals(sections, top.mass if top is not None else 0.0, gravity=gravity, tower=True)
     fits, compared = fit_modes(result, beam, TOWER_MODES, nodes, shipped, min_tip_ratio)
-    return ElastoDynCoefficients(fits, 0.0, nodes, True, compared, result.notes)
+    return ElastoDynCoefficients(fits, 0.0, nodes, True, compared, result.notes + notes)
