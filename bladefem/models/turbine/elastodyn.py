@@ -77,8 +77,8 @@ def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArr
     relative = positions - top - cm
     inertia = np.einsum("p,pi,pj->ij", masses, relative, relative)
     inertia = np.trace(inertia) * np.eye(3) - inertia
-    for frame, local in model.rigid_bodies(motion):
-        inertia += frame.R @ local @ frame.R.T
+    for _, axis, moment in model.rigid_bodies(motion):
+        inertia += moment * np.outer(axis, axis)
     return mass, cm, inertia
 
 

@@ -94,9 +94,7 @@ class TurbineModel:
         self.masses = np.concatenate([self.tower_masses, self.rigid_masses, self.blade_masses.ravel()])
         self.gravity = np.array([0.0, 0.0, -p.gravity])
         nacelle_own = p.nacelle_yaw_inertia - p.nacelle_mass * (p.nacelle_cm[0] ** 2 + p.nacelle_cm[1] ** 2)
-        self.nacelle_inertia = np.diag([0.0, 0.0, nacelle_own])
-        self.hub_inertia = np.diag([p.hub_inertia, 0.0, 0.0])
-        self.generator_inertia = np.diag([p.generator_inertia, 0.0, 0.0])
+        self.inertias = (nacelle_own, p.hub_inertia, p.generator_inertia)
         tower_top_mass = p.rotor_nacelle_mass
         springs = [(np.array([index["drivetrain"]]), np.array([[p.drivetrain_stiffness]])),
                    (np.array([index["yaw"]]), np.array([[p.yaw_stiffness]]))]
@@ -153,10 +151,12 @@ class TurbineModel:
         """Positions of all point masses (in the order of ``self.masses``), (N, 3)."""
         return np.concatenate([motion.tower.r, motion.rigid.r, motion.blades.r.reshape(-1, 3)])
 
-    def rigid_bodies(self, motion: TurbineMotion) -> list[tuple[FrameMotion, NDArray]]:
-        """(frame, inertia tensor about the centre of mass in frame components) of the bodies with rotary inertia."""
-        return [(motion.nacelle, self.nacelle_inertia), (motion.rotor, self.hub_inertia),
-                (motion.generator, self.generator_inertia)]
+    def rigid_bodies(self, motion: TurbineMotion) -> list[tuple[FrameMotion, NDArray, float]]:
+        """(frame, unit axis in earth components, moment of inertia about it through the centre of mass) of the
+        bodies with rotary inertia, each about one body axis as in ElastoDyn: the nacelle about the yaw axis (its
+        NacYIner less the share of its centre of mass), the hub and the generator about the shaft."""
+        frames = (motion.nacelle, motion.rotor, motion.generator)
+        return [(frame, frame.R[:, axis], inertia) for frame, axis, inertia in zip(frames, (2, 0, 0), self.inertias)]
 
     # -- Kane's equations ---------------------------------------------------------------------------------------
 
@@ -172,10 +172,12 @@ class TurbineModel:
         weighted = rigid.J * np.sqrt(self.rigid_masses)[:, None, None]
         M += np.einsum("pik,pil->kl", weighted, weighted)
         f += np.einsum("pik,pi->k", rigid.J, self.rigid_masses[:, None] * (self.gravity - rigid.a))
-        for frame, local in self.rigid_bodies(motion):
-            inertia = frame.R @ local @ frame.R.T
-            M += frame.W.T @ inertia @ frame.W
-            f -= frame.W.T @ (inertia @ frame.alpha + skew(frame.omega) @ inertia @ frame.omega)
+        for frame, axis, inertia in self.rigid_bodies(motion):
+            # H = I k (k . omega): dH/dt = I [k (k . alpha) + (k . omega) omega x k] at zero accelerations
+            partial = frame.W.T @ axis
+            M += inertia * np.outer(partial, partial)
+            f -= inertia * ((axis @ frame.alpha) * partial
+                            + (axis @ frame.omega) * (frame.W.T @ (skew(frame.omega) @ axis)))
         f -= self.K @ q + self.C @ u
         return M, f
 
@@ -185,7 +187,7 @@ class TurbineModel:
         kinetic = 0.5 * (np.sum(self.tower_masses * np.sum(motion.tower.velocity(u) ** 2, axis=-1))
                          + np.sum(self.rigid_masses * np.sum(motion.rigid.v**2, axis=-1))
                          + np.sum(self.blade_masses * np.sum(motion.blades.velocity(u) ** 2, axis=-1)))
-        for frame, local in self.rigid_bodies(motion):
-            kinetic += 0.5 * frame.omega @ frame.R @ local @ frame.R.T @ frame.omega
+        for frame, axis, inertia in self.rigid_bodies(motion):
+            kinetic += 0.5 * inertia * (axis @ frame.omega) ** 2
         potential = -np.sum(self.masses * (self.positions(motion) @ self.gravity)) + 0.5 * q @ self.K @ q
         return float(kinetic), float(potential)

@@ -73,13 +73,14 @@ def skew(w: NDArray) -> NDArray:
     return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
 
-def cross_columns(W: NDArray) -> NDArray:
-    """(3, 3 n) matrix A with ``(r @ A).reshape(3, n)[:, k] = W[:, k] x r`` for row vectors r."""
-    n = W.shape[1]
-    S = np.zeros((n, 3, 3))
-    S[:, 0, 1], S[:, 0, 2], S[:, 1, 2] = -W[2], W[1], -W[0]
-    S[:, 1, 0], S[:, 2, 0], S[:, 2, 1] = W[2], -W[1], W[0]
-    return S.transpose(2, 1, 0).reshape(3, 3 * n)
+def _cross_map() -> NDArray:
+    c = np.zeros((3, 3, 3))
+    c[2, 0, 1], c[1, 0, 2], c[2, 1, 0], c[0, 1, 2], c[1, 2, 0], c[0, 2, 1] = 1, -1, -1, 1, 1, -1
+    return c.reshape(3, 9)
+
+
+#: (3, 9) map with ``(r @ CROSS).reshape(3, 3) @ w = w x r`` for row vectors r
+CROSS = _cross_map()
 
 
 def rotate(frame: FrameMotion, axis: int, coefficients: NDArray, q: NDArray, u: NDArray,
@@ -116,12 +117,11 @@ def carry(origin: PointMotion, frame: FrameMotion, offset: NDArray, partials: ND
     local_velocity : (..., 3) the offset's rate in the frame, ``partials @ u``
     local_bias : (..., 3) its second rate at zero generalized accelerations
     """
-    n = frame.W.shape[1]
     rho = to_earth(frame.R, offset)
     spin = skew(frame.omega).T                 # row vectors: r @ spin = omega x r
     w_x_rho = rho @ spin
     v = origin.v + w_x_rho
-    J = origin.J + (rho @ cross_columns(frame.W)).reshape(rho.shape[:-1] + (3, n))
+    J = origin.J + (rho @ CROSS).reshape(rho.shape + (3,)) @ frame.W
     a = origin.a + rho @ skew(frame.alpha).T + w_x_rho @ spin
     if partials is not None:
         R = frame.R if frame.R.ndim == 2 else frame.R.reshape(frame.R.shape[:1] + (1,) * (offset.ndim - 2) + (3, 3))
@@ -130,16 +130,6 @@ def carry(origin: PointMotion, frame: FrameMotion, offset: NDArray, partials: ND
         J = J + R @ partials
         a = a + 2.0 * rate @ spin + to_earth(frame.R, local_bias)
     return PointMotion(r=origin.r + rho, v=v, J=J, a=a)
-
-
-def _cross_map() -> NDArray:
-    c = np.zeros((3, 3, 3))
-    c[2, 0, 1], c[1, 0, 2], c[2, 1, 0], c[0, 1, 2], c[1, 2, 0], c[0, 2, 1] = 1, -1, -1, 1, 1, -1
-    return c.reshape(3, 9)
-
-
-#: (3, 9) map with ``(r @ CROSS).reshape(3, 3) @ w = w x r`` for row vectors r
-CROSS = _cross_map()
 
 
 @dataclass(frozen=True)

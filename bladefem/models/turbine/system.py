@@ -67,6 +67,7 @@ class FreeSystem:
         self.q0 = np.asarray(self.q0, dtype=float).copy()
         self.u0 = np.asarray(self.u0, dtype=float).copy()
         self.index = np.flatnonzero(self.free)
+        self.block = np.ix_(self.index, self.index)
 
     @property
     def size(self) -> int:
@@ -88,11 +89,10 @@ class FreeSystem:
         M, f = self.model.equations(q, u)
         du = np.zeros(self.model.n)
         ix = self.index
-        du[ix] = np.linalg.solve(M[np.ix_(ix, ix)], f[ix])
+        du[ix] = np.linalg.solve(M[self.block], f[ix])
         return du
 
     def __call__(self, t: float, x: NDArray) -> NDArray:
         q, u = self.full(t, x)
         M, f = self.model.equations(q, u)
-        ix = self.index
-        return np.concatenate([x[self.size:], np.linalg.solve(M[np.ix_(ix, ix)], f[ix])])
+        return np.concatenate([x[self.size:], np.linalg.solve(M[self.block], f[self.index])])
