@@ -71,3 +71,19 @@ def test_damping_ratios_follow_the_inputs(params):
     result = linearize(model, select_dofs(model.dofs, ["blade1_flap1"]), 0.0)
     # a single mode with its own damping ratio, no gravity stiffness: zeta = 0.477465 % of the blade file
     assert result.modes[0].damping_ratio == pytest.approx(0.00477465, rel=1e-6)
+
+
+def test_fe_shapes_and_their_polynomial_fits_give_close_system_modes():
+    """The same turbine with bladefem's FE shapes and with ElastoDyn polynomials fitted to them (the effect of the
+    polynomial representation): tower, first blade modes, drivetrain and yaw agree within 2 % (measured <= 1.4 %).
+    The second flap family does not: the constrained sextic fitted to the second flap displacement is a stiffer
+    Ritz shape (measured +7.5 to +9.5 %; the single blade shows the same, 2.20 against 2.01 Hz), so it is held to
+    12 % only."""
+    fe = TurbineModel(turbine_from_elastodyn(MAIN, "fe", tower_shapes="fe", gauss_points=1))
+    fitted = TurbineModel(turbine_from_elastodyn(MAIN, "fe-polynomial", tower_shapes="fe-polynomial",
+                                                 gauss_points=1))
+    a = {m.name: m.frequency_hz for m in linearize(fe, np.ones(fe.n, dtype=bool), 12.1).modes}
+    b = {m.name: m.frequency_hz for m in linearize(fitted, np.ones(fitted.n, dtype=bool), 12.1).modes}
+    assert set(a) == set(b)
+    for name in a:
+        assert b[name] == pytest.approx(a[name], rel=0.12 if name.startswith("2nd blade") else 0.02), name

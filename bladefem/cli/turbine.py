@@ -41,11 +41,12 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--initial", nargs="+", default=[], metavar="NAME=VALUE",
                         help="initial coordinates: modal amplitudes in m (tower_fa1=0.3, blade1_flap1=1.0), "
                              "yaw_deg, azimuth_deg, drivetrain_deg in degrees")
-    parser.add_argument("--shapes", choices=("fe", "polynomial"), default="fe",
-                        help="blade mode shapes: bladefem FE at --rpm (default) or the ElastoDyn polynomials")
-    parser.add_argument("--tower-shapes", choices=("fe", "polynomial"), default="polynomial",
-                        help="tower mode shapes: the tower file's polynomials (default) or bladefem's tower FE "
-                             "with the rotor-nacelle on top")
+    parser.add_argument("--shapes", choices=("fe", "fe-polynomial", "polynomial"), default="fe",
+                        help="blade mode shapes: bladefem FE at --rpm (default), ElastoDyn polynomials fitted to "
+                             "them, or the blade file's polynomials")
+    parser.add_argument("--tower-shapes", choices=("fe", "fe-polynomial", "polynomial"), default="polynomial",
+                        help="tower mode shapes: the tower file's polynomials (default), bladefem's tower FE with "
+                             "the rotor-nacelle on top, or ElastoDyn polynomials fitted to those")
     parser.add_argument("--no-gravity", action="store_true", help="switch gravity off")
     parser.add_argument("--no-damping", action="store_true", help="switch structural, drivetrain, yaw damping off")
     parser.add_argument("--yaw-stiffness", type=float, default=None, metavar="N_M_PER_RAD",

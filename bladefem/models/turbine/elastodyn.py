@@ -21,7 +21,10 @@ from .shapes import ModalBeam, hermite_evaluator, polynomial_evaluator, sample_b
 #: NREL 5MW nacelle-yaw spring and damper (ServoDyn YawSpr, YawDamp; not in the ElastoDyn main file)
 NREL5MW_YAW_STIFFNESS = 9.02832e9
 NREL5MW_YAW_DAMPING = 1.916e7
-ShapeSource = Literal["fe", "polynomial"]
+#: 'fe': bladefem's FE shapes themselves; 'fe-polynomial': ElastoDyn polynomials fitted to them
+#: (bladefem.modal.elastodyn_fit); 'polynomial': the polynomials of the input files
+ShapeSource = Literal["fe", "fe-polynomial", "polynomial"]
+SHAPE_SOURCES = ("fe", "fe-polynomial", "polynomial")
 
 
 def tower_damping(tower: ElastoDynTowerFile) -> NDArray:
@@ -34,20 +37,23 @@ def tower_sections(tower: ElastoDynTowerFile, length: float) -> SectionTable:
     return tower_from_elastodyn(tower, height=length).sections
 
 
-def tower_beam(tower: ElastoDynTowerFile, length: float, subdivisions: int = 2, gauss_points: int = 4,
-               elements: int | None = None) -> ModalBeam:
-    """The tower's four polynomial modes (FA1, FA2 along x; SS1, SS2 along y) on the file's stations, each
-    interval subdivided, or on ``elements`` equal elements."""
-    sections = tower_sections(tower, length)
-    stations = sections.span
-    edges = np.unique(np.concatenate([np.linspace(a, b, subdivisions + 1) for a, b in zip(stations, stations[1:])]))
+def tower_edges(sections: SectionTable, subdivisions: int = 2, elements: int | None = None) -> NDArray:
+    """The stations with each interval subdivided, or ``elements`` equal elements."""
     if elements is not None:
-        edges = np.linspace(0.0, length, elements + 1)
-    coefficients = np.array([tower.modes[name] for name in ("fa1", "fa2", "ss1", "ss2")])
-    directions = np.array([[1.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
+        return np.linspace(0.0, sections.length, elements + 1)
+    stations = sections.span
+    return np.unique(np.concatenate([np.linspace(a, b, subdivisions + 1) for a, b in zip(stations, stations[1:])]))
 
-    return sample_beam(polynomial_evaluator(coefficients, length, directions), edges,
-                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), tower_damping(tower),
+
+def tower_beam(sections: SectionTable, coefficients: dict[str, NDArray], damping_ratio: NDArray | float = 0.0,
+               edges: NDArray | None = None, gauss_points: int = 4) -> ModalBeam:
+    """Four polynomial tower modes ('fa1', 'fa2' along x; 'ss1', 'ss2' along y) on ``edges`` (default: the
+    stations, each interval halved)."""
+    c = np.array([coefficients[name] for name in ("fa1", "fa2", "ss1", "ss2")])
+    directions = np.array([[1.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
+    return sample_beam(polynomial_evaluator(c, sections.length, directions),
+                       tower_edges(sections) if edges is None else edges, lambda x: sections.at(x, "mass"),
+                       tower_stiffness(sections), damping_ratio,
                        ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
 
 
@@ -82,16 +88,23 @@ def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArr
     return mass, cm, inertia
 
 
-def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_ratio: NDArray | float = 0.0,
-                  gauss_points: int = 4, edges: NDArray | None = None) -> ModalBeam:
-    """Tower modes FA1, FA2, SS1, SS2 from bladefem's tower FE with the rotor-nacelle assembly of ``params`` as
-    its rigid top body and the same gravity; the FE shapes themselves are the assumed modes."""
-    from ...models.tower import tower_modes
+def fe_tower(params: TurbineParameters, sections: SectionTable):
+    """bladefem's tower model of these sections with the rotor-nacelle assembly of ``params`` as its rigid top
+    body (tower frame: x up, y side-side to the right, z downwind) and the same gravity."""
     from ...sections.tower import OPENFAST_AXES, TopMass, Tower
 
     mass, cm, inertia = rotor_nacelle_body(params)
     top = TopMass(mass, OPENFAST_AXES @ cm, OPENFAST_AXES @ inertia @ OPENFAST_AXES.T)
-    result = tower_modes(Tower(sections, top_mass=top, gravity=params.gravity), n_modes=8)
+    return Tower(sections, top_mass=top, gravity=params.gravity)
+
+
+def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_ratio: NDArray | float = 0.0,
+                  gauss_points: int = 4, edges: NDArray | None = None) -> ModalBeam:
+    """Tower modes FA1, FA2, SS1, SS2 from bladefem's tower FE (:func:`fe_tower`); the FE shapes themselves are
+    the assumed modes."""
+    from ...models.tower import tower_modes
+
+    result = tower_modes(fe_tower(params, sections), n_modes=8)
     chosen = [result.first(kind, number) for kind in ("fore-aft", "side-side") for number in (1, 2)]
     nodes = chosen[0].shape.x
     # tower frame: w fore-aft (downwind), v side-side to the right; here x downwind, y to the left
@@ -144,19 +157,22 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
                            tower_shapes: ShapeSource = "polynomial") -> TurbineParameters:
     """The turbine of an ElastoDyn main file.
 
-    blade_shapes : 'fe' (bladefem's FE modes at ``rpm``, default the file's RotSpeed) or 'polynomial' (the blade
-        file's ElastoDyn polynomials, twisted); the tower uses the tower file's polynomials
+    blade_shapes : 'fe' (bladefem's FE modes at ``rpm``, default the file's RotSpeed), 'fe-polynomial' (ElastoDyn
+        polynomials fitted to those modes) or 'polynomial' (the blade file's); polynomials are twisted as
+        ElastoDyn does
     pitch : rad; yaw_stiffness, yaw_damping : N m/rad, N m s/rad (ServoDyn inputs; NREL 5MW values by default)
     gauss_points : quadrature points per element for the span nodes of the Kane model
     blade_elements, tower_elements : equal elements for those span nodes (default: the files' stations)
-    tower_shapes : 'polynomial' (the tower file's) or 'fe' (bladefem's tower FE with this rotor-nacelle assembly
-        as a rigid top body, and gravity)
+    tower_shapes : 'polynomial' (the tower file's), 'fe' (bladefem's tower FE with this rotor-nacelle assembly
+        as a rigid top body, and gravity) or 'fe-polynomial' (ElastoDyn polynomials fitted to those)
     """
     from ...modal import modes
+    from ...modal.elastodyn_fit import blade_coefficients, tower_coefficients
 
     for name, value in (("blade shapes", blade_shapes), ("tower shapes", tower_shapes)):
-        if value not in ("fe", "polynomial"):
-            raise InputError(f"{name} must be 'fe' or 'polynomial', got '{value}'", field=name.replace(" ", "_"))
+        if value not in SHAPE_SOURCES:
+            raise InputError(f"{name} must be one of {', '.join(SHAPE_SOURCES)}, got '{value}'",
+                             field=name.replace(" ", "_"))
     main = read_elastodyn_main(main_path)
     blade_file = read_elastodyn_blade(main.blade_files[0])
     if len(set(main.precone)) > 1 or len(set(main.tip_mass)) > 1 or len(set(main.blade_files)) > 1:
@@ -172,13 +188,20 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
         beam = blade_beam_from_modes(blade, modes(blade, rpm=speed, n_modes=6), damping,
                                      blade.sections.span if edges is None else edges, gauss_points)
     else:
-        beam = blade_beam_from_polynomials(blade, blade_file.modes, damping, gauss_points, edges)
-    tower_length = main.tower_height - main.tower_base_height
+        coefficients = blade_file.modes if blade_shapes == "polynomial" else \
+            blade_coefficients(blade, speed).coefficients
+        beam = blade_beam_from_polynomials(blade, coefficients, damping, gauss_points, edges)
     tower_file = read_elastodyn_tower(main.tower_file)
-    tower = tower_beam(tower_file, tower_length, gauss_points=gauss_points, elements=tower_elements)
-    blade_note = f"bladefem FE modes at {speed:.4g} rpm" if blade_shapes == "fe" else "ElastoDyn polynomials (twisted)"
-    tower_note = "bladefem tower FE with the rigid rotor-nacelle on top" if tower_shapes == "fe" else \
-        "ElastoDyn polynomials of the tower file"
+    sections = tower_sections(tower_file, main.tower_height - main.tower_base_height)
+    edges = tower_edges(sections, elements=tower_elements)
+    tower = tower_beam(sections, tower_file.modes, tower_damping(tower_file), edges, gauss_points)
+    blade_note = {"fe": f"bladefem FE modes at {speed:.4g} rpm",
+                  "fe-polynomial": f"ElastoDyn polynomials fitted to bladefem FE modes at {speed:.4g} rpm, twisted",
+                  "polynomial": "ElastoDyn polynomials of the blade file, twisted"}[blade_shapes]
+    tower_note = {"fe": "bladefem tower FE with the rigid rotor-nacelle on top",
+                  "fe-polynomial": "ElastoDyn polynomials fitted to bladefem's tower FE modes (rigid rotor-nacelle "
+                                   "on top)",
+                  "polynomial": "ElastoDyn polynomials of the tower file"}[tower_shapes]
     notes = (f"blade shapes: {blade_note}", f"tower shapes: {tower_note}",
              f"yaw spring {yaw_stiffness:g} N m/rad and damper {yaw_damping:g} N m s/rad (ServoDyn inputs)")
     params = TurbineParameters(
@@ -192,7 +215,8 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
         yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping, blade_tip_mass=main.tip_mass[0], pitch=pitch,
         name=Path(main.path).stem, notes=blade.notes + notes)
     if tower_shapes == "fe":
-        tower_edges = None if tower_elements is None else np.linspace(0.0, tower_length, tower_elements + 1)
-        params = params.with_(tower=fe_tower_beam(params, tower_sections(tower_file, tower_length), tower.damping_ratio,
-                                                  gauss_points, tower_edges))
+        params = params.with_(tower=fe_tower_beam(params, sections, tower.damping_ratio, gauss_points, edges))
+    elif tower_shapes == "fe-polynomial":
+        fitted = tower_coefficients(fe_tower(params, sections)).coefficients
+        params = params.with_(tower=tower_beam(sections, fitted, tower.damping_ratio, edges, gauss_points))
     return params
