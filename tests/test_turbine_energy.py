@@ -88,3 +88,19 @@ def test_locked_generator_keeps_the_rotor_speed(model):
     result = simulate(FreeSystem(model, free, q, u), 2.0, dt_output=0.5, rtol=1e-7, atol=1e-9)
     np.testing.assert_allclose(result.outputs["LSSGagVxa"], 12.1, rtol=1e-12)
     np.testing.assert_allclose(np.degrees(result.q[:, 5]), np.degrees(12.1 * np.pi / 30 * result.time), atol=1e-9)
+
+
+def test_root_moment_of_a_resting_horizontal_blade_is_its_weight_moment(model):
+    """Blade 1 horizontal (azimuth 90 deg: it points to the right looking downwind, leading edge down; shaft tilt
+    off so that the rotor plane is vertical), everything locked at rest: the in-plane root moment is g times the
+    blade's first mass moment about the root (tip mass included), the out-of-plane moment is zero."""
+    from bladefem.models.turbine.simulate import outputs_at
+    model = TurbineModel(model.params.with_(shaft_tilt=0.0))
+    q, u = np.zeros(model.n), np.zeros(model.n)
+    q[5] = np.pi / 2
+    outputs = outputs_at(FreeSystem(model, np.zeros(model.n, dtype=bool), q, u), q, u)
+    p = model.params
+    first_moment = np.sum(p.blade.point_mass * p.blade.x) + p.blade_tip_mass * p.blade.length
+    assert outputs["RootMIP1"] * 1e3 == pytest.approx(p.gravity * first_moment, rel=1e-12)
+    assert abs(outputs["RootMOoP1"]) < 1e-9 * abs(outputs["RootMIP1"])
+    assert outputs["Azimuth"] == pytest.approx(90.0)
