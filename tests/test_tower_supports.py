@@ -78,6 +78,23 @@ def test_gravity_reduces_pitch_stiffness_by_the_weight_moment():
     assert found == pytest.approx(expected, rel=1e-5)
 
 
+def test_free_floating_platform_has_zero_frequency_rigid_modes():
+    depth = ABOVE / PLATFORM_MASS
+    tower = floating_tower(depth, 9.81)
+    p = tower.supports.platform
+    unmoored = Platform(mass=p.mass, centre_of_mass=[0.0, 0.0, -depth], inertia=PLATFORM_INERTIA, added_mass=ADDED,
+                        hydrostatic=HYDROSTATIC, base_height=BASE_HEIGHT)
+    result = tower_modes(tower.with_(supports=Supports(platform=unmoored)), 6, elements=20)
+    omega = {mode.kind: 2 * np.pi * mode.frequency_hz for mode in result.modes}
+    # K is singular (no surge, sway, yaw stiffness): the shifted inverse problem resolves omega^2 to ~1e-16 times
+    # the shift (~10 rad^2/s^2), so the free motions come out at |omega| < 1e-6 rad/s
+    for kind in ("surge", "sway", "yaw"):
+        assert abs(omega[kind]) < 1e-6
+    assert omega["heave"] == pytest.approx(np.sqrt(HYDROSTATIC[2, 2] / (TOTAL_MASS + ADDED[2, 2])), rel=1e-5)
+    assert omega["pitch"] == pytest.approx(np.sqrt(HYDROSTATIC[4, 4] / (pitch_inertia(depth) + ADDED[4, 4])),
+                                           rel=1e-5)
+
+
 def test_openfast_matrices_turn_into_the_tower_frame():
     K = np.zeros((6, 6))
     K[0, 4] = K[4, 0] = 7.0            # surge-pitch coupling

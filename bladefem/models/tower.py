@@ -43,6 +43,8 @@ DEGENERATE_RTOL = 1e-5
 BUCKLING_WARNING_FRACTION = 0.5
 #: mesh of the buckling check (the critical load factor converges like h^4: 40 elements give ~1e-7)
 BUCKLING_ELEMENTS = 40
+#: tenfold increases of the shift tried when K is not positive definite
+SHIFT_ATTEMPTS = 8
 #: extra modes solved so that a degenerate pair straddling the last requested mode is rotated as a whole
 CLUSTER_MARGIN = 2
 MESH_RTOL = 1e-6
@@ -86,12 +88,35 @@ def inverse_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray
     return values, vectors
 
 
+def shifted_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int, shift: float) -> tuple[NDArray, NDArray, float]:
+    """The inverse problem of ``K + s M`` from ``s = shift`` up (tenfold until definite); returns the shift used."""
+    for _ in range(SHIFT_ATTEMPTS):
+        try:
+            values, vectors = inverse_pairs(K + shift * M, M, n_modes)
+            return values - shift, vectors, shift
+        except la.LinAlgError:
+            shift *= 10
+    raise la.LinAlgError("no shift makes K + s M positive definite")
+
+
 def solve_tower(matrices: TowerMatrices, n_modes: int) -> tuple[NDArray, NDArray]:
-    """Lowest eigenvalues (omega^2) and M-normalised eigenvectors on the independent coordinates: the inverse
-    problem when K is positive definite, else (a free rigid-body motion, a buckled tower) the direct one."""
+    """Lowest eigenvalues (omega^2) and M-normalised eigenvectors on the independent coordinates, from the inverse
+    problem. When K is not positive definite (a free rigid-body motion, a buckled tower) the inverse problem of
+    ``K + s M`` is solved twice: first with ``s`` twice the largest |omega^2| the direct problem estimates, which
+    gives every omega^2 to ~1e-16 s; then with ``s`` twice the larger of the lowest clearly nonzero omega^2 and the
+    most negative one's magnitude, so that free motions come out at ~1e-8 of the lowest frequency."""
     K, M = matrices.reduced()
     try:
         return inverse_pairs(K, M, n_modes)
+    except la.LinAlgError:
+        estimate, _ = eigen_pairs(K, M, n_modes)
+    try:
+        values, vectors, shift = shifted_pairs(K, M, n_modes, 2 * float(np.max(np.abs(estimate))) or 1.0)
+        nonzero = values[np.abs(values) > 1e-9 * shift]
+        if nonzero.size:
+            refined = 2 * max(float(np.abs(nonzero).min()), -float(values.min()))
+            values, vectors, _ = shifted_pairs(K, M, n_modes, refined)
+        return values, vectors
     except la.LinAlgError:
         return eigen_pairs(K, M, n_modes)
 
