@@ -22,6 +22,8 @@ from ..errors import InputError
 POSITIVE = ("mass", "flap_stiffness", "edge_stiffness")
 #: Optional stiffness columns; ``None`` means rigid (the DOF is removed from the model).
 OPTIONAL_STIFFNESS = ("torsion_stiffness", "axial_stiffness")
+#: Smallest station interval accepted, as a fraction of the length
+MIN_STATION_GAP = 1e-6
 #: Optional planform geometry (not used by the mechanics)
 GEOMETRY = ("chord", "pitch_axis")
 #: Columns that default to zero.
@@ -118,6 +120,11 @@ class SectionTable:
         if steps.size:
             i = int(steps[0]) + 1
             raise self._error(f"stations must increase strictly ({self.span[i - 1]} then {self.span[i]})", i, "span")
+        close = np.flatnonzero(np.diff(self.span) < MIN_STATION_GAP * self.span[-1])
+        if close.size:
+            i = int(close[0]) + 1
+            raise self._error(f"stations {self.span[i - 1]} and {self.span[i]} are closer than {MIN_STATION_GAP:g} "
+                              "of the length: merge them (a sliver element ruins the conditioning)", i, "span")
         for name in POSITIVE + OPTIONAL_STIFFNESS + ("chord",):
             value = getattr(self, name)
             if value is None:
