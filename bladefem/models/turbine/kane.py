@@ -86,6 +86,7 @@ class TurbineModel:
         self.blade_rotations = np.stack([axis_rotation(0, 2 * np.pi * k / p.n_blades) @ cone_rotation(p.precone)
                                          for k in range(p.n_blades)])
         self._nodes()
+        self._fast = None
         self.base = at_rest(np.array([0.0, 0.0, p.tower_base_height]), n)
         blade = np.append(p.blade.point_mass, p.blade_tip_mass)
         self.tower_masses = np.append(p.tower.point_mass, p.yaw_bearing_mass)
@@ -105,6 +106,14 @@ class TurbineModel:
                                     *[(cols, blade_K) for cols in self.blade_columns]])
         self.C = block_diagonal(n, [(self.tower_columns, p.tower.damping_matrix(tower_top_mass)), *dampers,
                                     *[(cols, blade_C) for cols in self.blade_columns]])
+
+    def fast_equations(self):
+        """The fastest available ``(q, u) -> (M, f)``: the numba-compiled kernel (:mod:`.compiled`) if numba is
+        installed, else :meth:`equations`."""
+        if self._fast is None:
+            from .compiled import compiled_equations
+            self._fast = compiled_equations(self) or self.equations
+        return self._fast
 
     # -- kinematics ---------------------------------------------------------------------------------------------
 

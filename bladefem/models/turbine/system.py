@@ -86,13 +86,16 @@ class FreeSystem:
 
     def accelerations(self, q: NDArray, u: NDArray) -> NDArray:
         """du/dt of all coordinates (zero for the locked ones)."""
-        M, f = self.model.equations(q, u)
+        M, f = self.model.fast_equations()(q, u)
         du = np.zeros(self.model.n)
         ix = self.index
         du[ix] = np.linalg.solve(M[self.block], f[ix])
         return du
 
     def __call__(self, t: float, x: NDArray) -> NDArray:
+        equations = self.model.fast_equations()
+        if hasattr(equations, "derivative"):
+            return equations.derivative(t, x, self.q0, self.u0, self.index)
         q, u = self.full(t, x)
-        M, f = self.model.equations(q, u)
+        M, f = equations(q, u)
         return np.concatenate([x[self.size:], np.linalg.solve(M[self.block], f[self.index])])
