@@ -19,8 +19,7 @@ import numpy as np
 
 from .assembly import BladeMatrices
 from .io.results import write_atomic
-from .modal import CampbellResult, ModalResult, blade_matrices, solve_modes, track_families
-from .modal.campbell import TRACKING_MARGIN
+from .modal import CampbellResult, ModalResult, blade_matrices, campbell_sweep, solve_modes
 from .plots.campbell import crossings, family_labels, save_campbell_plot
 from .plots.modes3d import mode_labels
 from .sections import Blade
@@ -42,12 +41,8 @@ def progress_bar(description: str, quiet: bool = False) -> Progress:
 
 def sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int, notes: tuple[str, ...] = (),
           progress: Progress | None = None) -> CampbellResult:
-    """:func:`bladefem.modal.campbell_sweep` with a progress wrapper around the loop over rotor speeds (rpm)."""
-    rpm = np.asarray(rpm, dtype=float)
-    results = [solve_modes(matrices, speed, n_modes + TRACKING_MARGIN, notes) for speed in (progress or iter)(rpm)]
-    M = matrices.M[matrices.free][:, matrices.free]
-    families = track_families(results, M, min(n_modes, len(results[0].modes)))
-    return CampbellResult(rpm=rpm, families=families, results=results, notes=notes)
+    """:func:`bladefem.modal.campbell_sweep` with an optional progress bar over the rotor speeds (rpm)."""
+    return campbell_sweep(matrices, rpm, n_modes, notes, progress)
 
 
 # -- blocks -------------------------------------------------------------------------------------------------------

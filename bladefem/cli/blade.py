@@ -9,9 +9,12 @@ from ..errors import InputError
 from ..io.results import campbell_to_dict, dumps, modal_to_dict
 from ..modal import blade_matrices, campbell_sweep, solve_modes
 from ..modal.results import ModalResult
+from ..report import progress_bar
 from ..sections import Blade
-from .inputs import add_blade_options, finite_float, positive_int, read_blade, rpm_range
+from ..sections.tower import as_tower
+from .inputs import add_blade_options, finite_float, positive_int, read_blade, read_structure, rpm_range
 from .tables import campbell_table, modes_table
+from .tower import add_tower_options, is_tower_input, tower_modes_command
 
 METHODS = ("fe", "galerkin")
 
@@ -20,6 +23,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     modes = subparsers.add_parser("modes", help="natural frequencies and mode shapes at one rotor speed",
                                   description="Natural frequencies (Hz) and mode shapes at one rotor speed.")
     add_blade_options(modes)
+    add_tower_options(modes)
     modes.add_argument("--rpm", type=finite_float, default=0.0, help="rotor speed, rpm (default 0)")
     modes.add_argument("--n-modes", type=positive_int, default=10, metavar="N", help="number of modes (default 10)")
     modes.add_argument("--method", choices=METHODS, default="fe",
@@ -38,6 +42,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     campbell.add_argument("--operating-rpm", type=finite_float, metavar="RPM", help="operating speed to mark")
     campbell.add_argument("--plot", metavar="FILE.png", help="write the Campbell diagram to this image")
     campbell.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    campbell.add_argument("--quiet", action="store_true", help="no progress bar")
     campbell.set_defaults(run=run_campbell)
 
 
@@ -46,26 +51,20 @@ def _check_rpm(rpm: float) -> None:
         raise InputError(f"must not be negative, got {rpm}", field="--rpm")
 
 
-def galerkin_terms(text: str) -> tuple[int, int, int]:
-    try:
-        terms = tuple(int(part) for part in text.split(","))
-    except ValueError:
-        terms = ()
-    if len(terms) != 3 or min(terms) < 1:
-        raise InputError(f"expected three positive integers NW,NV,NPHI, got '{text}'", field="--terms")
-    return terms  # type: ignore[return-value]
-
-
 def compute_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     if args.method == "galerkin":
-        from ..models.galerkin import galerkin_modes
-        return galerkin_modes(blade, rpm=args.rpm, n_modes=args.n_modes, terms=galerkin_terms(args.terms))
+        from ..models.galerkin import galerkin_modes, parse_terms
+        return galerkin_modes(blade, rpm=args.rpm, n_modes=args.n_modes, terms=parse_terms(args.terms))
     return solve_modes(blade_matrices(blade, args.elements, args.n_modes), args.rpm, args.n_modes, blade.notes)
 
 
 def run_modes(args: argparse.Namespace) -> int:
+    if is_tower_input(args.input):
+        return tower_modes_command(args)
+    blade = read_structure(args)
+    if not isinstance(blade, Blade):      # a BModes or windIO tower deck
+        return tower_modes_command(args, as_tower(blade))
     _check_rpm(args.rpm)
-    blade = read_blade(args)
     result = compute_modes(blade, args)
     if args.json:
         print(dumps({"input": args.input, **modal_to_dict(result, args.method)}))
@@ -77,7 +76,8 @@ def run_modes(args: argparse.Namespace) -> int:
 def run_campbell(args: argparse.Namespace) -> int:
     blade = read_blade(args)
     matrices = blade_matrices(blade, args.elements, args.n_modes)
-    result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes)
+    result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes,
+                            progress_bar("Campbell sweep", args.quiet or args.json))
     if args.plot:
         from ..plots.campbell import save_campbell_plot
         save_campbell_plot(result, args.plot, title=blade.name, operating_rpm=args.operating_rpm)

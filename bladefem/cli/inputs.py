@@ -4,22 +4,16 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
-
 import numpy as np
 
 from ..errors import InputError
-from ..io.case import read_case
-from ..io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
-from ..io.elastodyn_main import read_elastodyn_main
+from ..io.detect import Geometry, read_model
 from ..sections import ROOTS, Blade
-
-YAML_SUFFIXES = (".yaml", ".yml")
-
 
 def add_blade_options(parser: argparse.ArgumentParser) -> None:
     """INPUT plus the geometry options used for ElastoDyn blade files (and as overrides for case files)."""
-    parser.add_argument("input", metavar="INPUT", help="bladefem case file (.yaml) or ElastoDyn blade file")
+    parser.add_argument("input", metavar="INPUT",
+                        help="bladefem case or windIO file (.yaml), BModes deck (.bmi), ElastoDyn main or blade file")
     geometry = parser.add_argument_group("geometry (ElastoDyn blade files; override case-file values)")
     geometry.add_argument("--tip-radius", type=float, metavar="M", help="rotor tip radius TipRad, m")
     geometry.add_argument("--hub-radius", type=float, metavar="M", help="hub radius HubRad, m")
@@ -69,46 +63,23 @@ def rpm_range(text: str) -> np.ndarray:
     return np.linspace(start, stop, count)
 
 
+def read_structure(args: argparse.Namespace) -> object:
+    """The blade (or, for BModes and windIO tower inputs, the tower) described by INPUT and the geometry options."""
+    if args.tip_mass is not None and args.tip_mass < 0:
+        raise InputError(f"must not be negative, got {args.tip_mass}", field="--tip-mass")
+    geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, tip_mass=args.tip_mass,
+                        elastodyn_main=args.elastodyn_main,
+                        precone=None if args.precone_deg is None else math.radians(args.precone_deg),
+                        pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
+    model = read_model(args.input, None, geometry)
+    if isinstance(model, Blade) and args.root is not None:
+        return model.with_(root=args.root)
+    return model
+
+
 def read_blade(args: argparse.Namespace) -> Blade:
-    """The blade described by INPUT and the geometry options."""
-    path = Path(args.input)
-    if not path.exists():
-        raise InputError("file not found", file=str(path))
-    if path.suffix.lower() in YAML_SUFFIXES:
-        blade = read_case(path)
-    else:
-        blade = _elastodyn_blade(path, args)
-    changes: dict[str, object] = {}
-    if args.hub_radius is not None and path.suffix.lower() in YAML_SUFFIXES:
-        raise InputError("--hub-radius applies to ElastoDyn blade files; edit hub_radius_m in the case file",
-                         file=str(path), field="hub_radius_m")
-    if args.precone_deg is not None:
-        changes["precone"] = math.radians(args.precone_deg)
-    if args.pitch_deg is not None:
-        changes["pitch"] = math.radians(args.pitch_deg)
-    if args.root is not None:
-        changes["root"] = args.root
-    return blade.with_(**changes) if changes else blade
-
-
-def _elastodyn_blade(path: Path, args: argparse.Namespace) -> Blade:
-    blade_file = read_elastodyn_blade(path)
-    if args.elastodyn_main:
-        main = read_elastodyn_main(args.elastodyn_main)
-        tip_radius, hub_radius = main.tip_radius, main.hub_radius
-        precone, tip_mass = main.precone[0], main.tip_mass[0]
-    else:
-        if args.tip_radius is None:
-            raise InputError("an ElastoDyn blade file needs --tip-radius (m) or --elastodyn-main FILE",
-                             file=str(path), field="TipRad")
-        tip_radius, hub_radius, precone, tip_mass = args.tip_radius, args.hub_radius or 0.0, 0.0, 0.0
-    if args.tip_radius is not None:
-        tip_radius = args.tip_radius
-    if args.hub_radius is not None:
-        hub_radius = args.hub_radius
-    if args.tip_mass is not None:
-        if args.tip_mass < 0:
-            raise InputError(f"must not be negative, got {args.tip_mass}", field="--tip-mass")
-        tip_mass = args.tip_mass
-    return blade_from_elastodyn(blade_file, tip_radius=tip_radius, hub_radius=hub_radius, precone=precone,
-                                tip_mass=tip_mass)
+    """The blade described by INPUT (any supported format) and the geometry options."""
+    model = read_structure(args)
+    if not isinstance(model, Blade):
+        raise InputError("this input describes a tower; 'bladefem modes' takes towers", file=str(args.input))
+    return model

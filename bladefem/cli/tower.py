@@ -126,9 +126,13 @@ def tower_table(tower: Tower, result: ModalResult) -> str:
     return "\n".join(lines)
 
 
-def tower_modes_command(args: argparse.Namespace) -> int:
-    """``bladefem modes TOWER_INPUT``: print the tower's modes as a table or JSON; returns the exit code."""
-    tower = read_tower(args)
+def tower_modes_command(args: argparse.Namespace, tower: Tower | None = None) -> int:
+    """``bladefem modes TOWER_INPUT``: print the tower's modes as a table or JSON; returns the exit code. ``tower``:
+    an already-read tower (BModes and windIO decks), else INPUT is read here."""
+    if tower is None:
+        tower = read_tower(args)
+    elif getattr(args, "no_gravity", False):
+        tower = tower.with_(gravity=0.0)
     n_modes, elements = getattr(args, "n_modes", 10), getattr(args, "elements", None)
     shown = tower_modes(tower, n_modes, elements)
     coefficients = None

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 import scipy.sparse as sp
@@ -43,11 +43,13 @@ def track_families(results: Sequence[ModalResult], M: sp.spmatrix, n_families: i
     return families
 
 
-def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int = 6,
-                   notes: tuple[str, ...] = ()) -> CampbellResult:
-    """Modes at each rotor speed in ``rpm`` (rpm), from one assembly (K = K0 + Omega^2 K2)."""
+def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int = 6, notes: tuple[str, ...] = (),
+                   progress: Callable[[Iterable[float]], Iterable[float]] | None = None) -> CampbellResult:
+    """Modes at each rotor speed in ``rpm`` (rpm), from one assembly (K = K0 + Omega^2 K2).
+
+    ``progress`` optionally wraps the loop over speeds (e.g. a progress bar)."""
     rpm = np.asarray(rpm, dtype=float)
-    results = [solve_modes(matrices, speed, n_modes + TRACKING_MARGIN, notes) for speed in rpm]
+    results = [solve_modes(matrices, speed, n_modes + TRACKING_MARGIN, notes) for speed in (progress or iter)(rpm)]
     M = matrices.M[matrices.free][:, matrices.free]
     n_families = min(n_modes, len(results[0].modes))
     return CampbellResult(rpm=rpm, families=track_families(results, M, n_families), results=results, notes=notes)

@@ -70,8 +70,9 @@ def energy_fractions(matrices: BladeMatrices, M: sp.spmatrix, vectors: NDArray) 
             for j in range(vectors.shape[1])]
 
 
-def mode_shape(matrices: BladeMatrices, vector: NDArray) -> ModeShape:
-    """Nodal mode shape from a free-DOF eigenvector, scaled to a largest displacement of +1."""
+def mode_shape(matrices: BladeMatrices, vector: NDArray, kind: str) -> ModeShape:
+    """Nodal mode shape from a free-DOF eigenvector: a torsion mode scaled to a largest twist of +1 rad, any other
+    to a largest displacement (flap, edge or axial) of +1."""
     full = np.zeros(matrices.dofs.size)
     full[matrices.free] = vector
     dofs = matrices.dofs
@@ -82,7 +83,7 @@ def mode_shape(matrices: BladeMatrices, vector: NDArray) -> ModeShape:
     shape = {"flap": take(dofs.value, "w"), "flap_slope": take(dofs.slope, "w"), "edge": take(dofs.value, "v"),
              "edge_slope": take(dofs.slope, "v"), "twist": take(dofs.value, "phi"), "axial": take(dofs.value, "u")}
     translations = np.concatenate([shape["flap"], shape["edge"], shape["axial"]])
-    reference = translations if np.abs(translations).max() > 1e-12 * np.abs(full).max() else shape["twist"]
+    reference = shape["twist"] if kind == "torsion" else translations
     scale = reference[np.argmax(np.abs(reference))]
     return ModeShape(x=dofs.nodes, **{key: value / scale for key, value in shape.items()})
 
@@ -101,6 +102,6 @@ def solve_modes(matrices: BladeMatrices, rpm: float = 0.0, n_modes: int = 10,
         kind = max(fractions[j], key=fractions[j].get)
         frequency = np.sign(value) * np.sqrt(abs(value)) / (2 * np.pi)   # negative: statically unstable
         modes.append(Mode(frequency_hz=float(frequency), kind=kind, energy_fractions=fractions[j],
-                          residual=float(residuals[j]), shape=mode_shape(matrices, vectors[:, j])))
+                          residual=float(residuals[j]), shape=mode_shape(matrices, vectors[:, j], kind)))
     return ModalResult(rotor_speed_rpm=float(rpm), modes=modes, stations=matrices.blade.sections.span.copy(),
                        vectors=vectors, n_dofs=len(matrices.free), notes=notes)

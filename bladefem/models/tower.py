@@ -254,7 +254,7 @@ def modal_result(matrices: TowerMatrices, values: NDArray, vectors: NDArray,
         kind = max(fractions[j], key=fractions[j].get)
         modes.append(Mode(frequency_hz=float(_frequencies(np.array([value]))[0]), kind=kind,
                           energy_fractions=fractions[j], residual=float(residuals[j]),
-                          shape=mode_shape(view, full[:matrices.dofs.size, j])))
+                          shape=mode_shape(view, full[:matrices.dofs.size, j], kind)))
     return ModalResult(rotor_speed_rpm=0.0, modes=modes, stations=matrices.tower.sections.span.copy(),
                        vectors=vectors, n_dofs=matrices.n_free, notes=notes)
 
