@@ -19,8 +19,7 @@ except ImportError:                                    # pragma: no cover - numb
     njit = None
 
 
-def _kernels():
-    """Compile the kernels (once per process; numba caches them on disk)."""
+if njit is not None:                                   # module-level kernels: numba caches them on disk
 
     @njit(cache=True)
     def cross(a, b):
@@ -220,7 +219,61 @@ def _kernels():
         out[size:] = np.linalg.solve(Mf, ff)
         return out
 
-    return equations, derivative
+    # Dormand-Prince 5(4) tableau
+    _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+    _A = np.array([[0, 0, 0, 0, 0, 0],
+                   [1 / 5, 0, 0, 0, 0, 0],
+                   [3 / 40, 9 / 40, 0, 0, 0, 0],
+                   [44 / 45, -56 / 15, 32 / 9, 0, 0, 0],
+                   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0, 0],
+                   [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0],
+                   [35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84]])
+    _B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0])
+    _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+
+    @njit(cache=True)
+    def dormand_prince(times, x0, rtol, atol, q0, u0, index, *data):
+        """Adaptive Dormand-Prince 5(4) with local extrapolation (scipy's RK45 scheme), steps landing on the
+        output times; returns the states at ``times`` and the number of right-hand sides."""
+        size = x0.shape[0]
+        out = np.empty((times.shape[0], size))
+        out[0] = x0
+        x = x0.copy()
+        t = times[0]
+        k = np.empty((7, size))
+        k[0] = derivative(t, x, q0, u0, index, *data)
+        count = 1
+        h = min(1e-3, times[-1] - t) if times.shape[0] > 1 else 0.0
+        for n in range(1, times.shape[0]):
+            target = times[n]
+            while t < target - 1e-12 * max(1.0, abs(target)):
+                h = min(h, target - t)
+                for i in range(1, 7):
+                    stage = x.copy()
+                    for j in range(i):
+                        if _A[i, j] != 0.0:
+                            stage += h * _A[i, j] * k[j]
+                    k[i] = derivative(t + _C[i] * h, stage, q0, u0, index, *data)
+                    count += 1
+                new = x + h * (_B @ k)
+                error = h * (_E @ k)
+                scale = atol + rtol * np.maximum(np.abs(x), np.abs(new))
+                norm = np.sqrt(np.mean((error / scale) ** 2))
+                if norm <= 1.0:
+                    t += h
+                    x = new
+                    k[0] = k[6]                          # first same as last
+                    factor = 5.0 if norm == 0.0 else min(5.0, 0.9 * norm ** -0.2)
+                else:
+                    factor = max(0.2, 0.9 * norm ** -0.2)
+                h *= factor
+            out[n] = x
+        return out, count
+
+
+def _kernels():
+    """The compiled (equations, derivative, integrator) kernels."""
+    return equations, derivative, dormand_prince
 
 
 _KERNELS = None
@@ -239,6 +292,12 @@ class CompiledEquations:
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
         return self.kernels[1](float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, *self.data)
+
+    def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
+                  index: NDArray) -> tuple[NDArray, int]:
+        """Compiled adaptive Dormand-Prince 5(4) from times[0]; states at ``times`` and the right-hand sides."""
+        return self.kernels[2](np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(x0, dtype=float),
+                               float(rtol), float(atol), q0, u0, index, *self.data)
 
 
 def compiled_equations(model) -> CompiledEquations | None:

@@ -101,9 +101,13 @@ def runge_kutta4(rhs, x0: NDArray, times: NDArray, step: float) -> NDArray:
 
 
 def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol: float = 1e-6,
-             atol: float = 1e-8, method: str = "RK45", step: float = 0.01) -> SimulationResult:
-    """Integrate from t = 0 to ``duration`` (s), outputs every ``dt_output`` s: with scipy's adaptive ``method``
-    (tolerances ``rtol``, ``atol``), or ``method='RK4'`` with the fixed ``step`` (s)."""
+             atol: float = 1e-8, method: str = "auto", step: float = 0.01) -> SimulationResult:
+    """Integrate from t = 0 to ``duration`` (s), outputs every ``dt_output`` s.
+
+    method : 'auto' (the compiled Dormand-Prince 5(4) when numba is installed, else scipy's 'RK45', the same
+        scheme), 'DP54' (compiled only), a scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``,
+        ``atol``), or 'RK4' with the fixed ``step`` (s)
+    """
     count = [0]
 
     def rhs(t: float, x: NDArray) -> NDArray:
@@ -111,7 +115,16 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
         return system(t, x)
 
     times = np.linspace(0.0, duration, int(round(duration / dt_output)) + 1)
-    if method == "RK4":
+    compiled = system.model.fast_equations()
+    if method == "auto":
+        method = "DP54" if hasattr(compiled, "integrate") else "RK45"
+    if method == "DP54":
+        if not hasattr(compiled, "integrate"):
+            raise RuntimeError("method 'DP54' needs numba (pip install numba)")
+        states, evaluations = compiled.integrate(times, system.initial_state(), rtol, atol, system.q0, system.u0,
+                                                 system.index)
+        count[0] = int(evaluations)
+    elif method == "RK4":
         states = runge_kutta4(rhs, system.initial_state(), times, step)
     else:
         solution = solve_ivp(rhs, (0.0, duration), system.initial_state(), method=method, t_eval=times,
