@@ -62,8 +62,10 @@ def plot_campbell(result: TurbineCampbell, path: str | os.PathLike, harmonics: S
     import matplotlib.pyplot as plt
 
     figure, axis = plt.subplots(figsize=(8, 6))
-    for name, frequencies in zip(result.names, result.frequencies_hz):
-        axis.plot(result.rpm, frequencies, marker="o", ms=3, lw=1, label=name)
+    colors = plt.get_cmap("tab20").colors
+    for i, (name, frequencies) in enumerate(zip(result.names, result.frequencies_hz)):
+        axis.plot(result.rpm, frequencies, marker="o", ms=3, lw=1, label=name, color=colors[i % len(colors)],
+                  linestyle="-" if i < len(colors) else "--")
     top = np.nanmax(result.frequencies_hz) * 1.05 if result.frequencies_hz.size else 1.0
     for k in harmonics:
         axis.plot(result.rpm, k * result.rpm / 60.0, "k--", lw=0.6)

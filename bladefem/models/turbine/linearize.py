@@ -121,23 +121,16 @@ class LinearModel:
     modes: list[LinearMode]
 
 
-def whirl(vector: NDArray, coordinates: list[str], mode: str) -> str:
-    """'forward' or 'backward' whirl of an asymmetric blade mode: with ``q_k = q_c cos(psi_k) + q_s sin(psi_k)``
-    and the eigenvalue's positive frequency, ``q_s = -i q_c`` is a pattern turning with the rotor (forward)."""
-    ratio = vector[coordinates.index(f"sine_{mode}")] / vector[coordinates.index(f"cosine_{mode}")]
-    return "forward" if ratio.imag < 0 else "backward"
-
-
-def mode_name(coordinate: str, vector: NDArray, coordinates: list[str], used: set[str]) -> str:
+def mode_name(coordinate: str, used: set[str]) -> str:
     """Readable mode name from its dominant coordinate, e.g. 'tower_fa1' -> '1st tower fore-aft',
-    'collective_flap1' -> '1st blade collective flap', 'cosine_flap1' -> '1st blade asymmetric flap (backward
-    whirl)'; a mode led by the generator azimuth is the drivetrain torsion, one led by the drivetrain twist
-    the collective edge coupled to it."""
+    'collective_flap1' -> '1st blade collective flap', 'cosine_flap1' -> '1st blade asymmetric flap'; a mode led
+    by the generator azimuth is the drivetrain torsion, one led by the drivetrain twist the collective edge
+    coupled to it. A repeated name gets a count, '(2)'."""
     kind, _, mode = coordinate.partition("_")
     if kind in ("collective", "cosine", "sine"):
         family = "flap" if mode.startswith("flap") else "edge"
-        name = f"{ORDINALS[mode[-1]]} blade collective {family}" if kind == "collective" else \
-            f"{ORDINALS[mode[-1]]} blade asymmetric {family} ({whirl(vector, coordinates, mode)} whirl)"
+        group = "collective" if kind == "collective" else "asymmetric"
+        name = f"{ORDINALS[mode[-1]]} blade {group} {family}"
     elif kind.startswith("blade"):
         name = f"{ORDINALS[mode[-1]]} {'flap' if mode.startswith('flap') else 'edge'} of blade {kind[5:]}"
     elif kind == "tower":
@@ -172,17 +165,27 @@ def modes_of(A: NDArray, coordinates: list[str], scale: NDArray, rpm: float) -> 
         if lam.imag < -1e-9 or frequency < RIGID_HZ:
             continue
         weights = np.abs(vectors[:m, i]) * scale
-        rows.append((frequency, -lam.real / abs(lam), abs(lam.imag) / (2 * np.pi), weights / weights.max(),
-                     vectors[:m, i]))
+        rows.append((frequency, -lam.real / abs(lam), abs(lam.imag) / (2 * np.pi), weights / weights.max(), i))
     rows.sort(key=lambda row: row[0])
     used: set[str] = set()
-    result = []
-    for frequency, damping, damped, participation, vector in rows:
-        dominant = coordinates[int(np.argmax(participation))]
-        result.append(LinearMode(name=mode_name(dominant, vector, coordinates, used), frequency_hz=float(frequency),
-                                 damping_ratio=float(damping), damped_frequency_hz=float(damped),
-                                 participation={c: float(p) for c, p in zip(coordinates, participation)}))
-    return result
+    names = [mode_name(coordinates[int(np.argmax(row[3]))], used) for row in rows]
+    names = whirl_names(names)
+    return [LinearMode(name=name, frequency_hz=float(frequency), damping_ratio=float(damping),
+                       damped_frequency_hz=float(damped),
+                       participation={c: float(p) for c, p in zip(coordinates, participation)})
+            for name, (frequency, damping, damped, participation, _) in zip(names, rows)]
+
+
+def whirl_names(names: list[str]) -> list[str]:
+    """An asymmetric pair ('... asymmetric flap' and '... asymmetric flap (2)', in frequency order) becomes its
+    backward and forward whirl: in the fixed frame the backward whirl is the lower, at w - Omega, the forward at
+    w + Omega (at rest the two coincide and the names are a convention)."""
+    renamed = list(names)
+    for i, name in enumerate(names):
+        if " asymmetric " in name and not name.endswith(")") and f"{name} (2)" in names:
+            renamed[i] = f"{name} (backward whirl)"
+            renamed[names.index(f"{name} (2)")] = f"{name} (forward whirl)"
+    return renamed
 
 
 def operating_point(model: TurbineModel, rpm: float, azimuth: float = 0.0) -> tuple[NDArray, NDArray]:
