@@ -16,12 +16,12 @@ from .system import FreeSystem
 
 RAD_S_TO_RPM = 30.0 / np.pi
 
-#: output channel -> (unit, description)
+#: output channel -> (unit, description); names after ElastoDyn's, signs in bladefem's frames
 CHANNELS = {
-    "OoPDefl1": ("m", "blade 1 tip out-of-plane deflection"),
-    "IPDefl1": ("m", "blade 1 tip in-plane deflection"),
-    "TTDspFA": ("m", "tower-top fore-aft displacement"),
-    "TTDspSS": ("m", "tower-top side-to-side displacement"),
+    "OoPDefl1": ("m", "blade 1 tip out-of-plane deflection, positive downwind"),
+    "IPDefl1": ("m", "blade 1 tip in-plane deflection, positive toward the leading edge (blade frame y)"),
+    "TTDspFA": ("m", "tower-top fore-aft displacement, positive downwind"),
+    "TTDspSS": ("m", "tower-top side-to-side displacement, positive to the left looking downwind"),
     "YawPzn": ("deg", "nacelle yaw angle"),
     "Azimuth": ("deg", "rotor azimuth (blade 1 up at 0)"),
     "RotSpeed": ("rpm", "rotor speed (low-speed shaft at the hub)"),
