@@ -57,6 +57,9 @@ def summary(full: SimulationResult, reduced: SimulationResult) -> str:
     fa, sa = spectrum(t, a)
     fb, sb = spectrum(t, b)
     energy = float(np.sum(sb**2) / np.sum(sa**2))
+    full_peaks, reduced_peaks = peaks(fa, sa, 8), peaks(fb, sb, 8)
+    missing = [(f, v) for f, v in full_peaks if all(abs(f - g) > 0.03 for g, _ in reduced_peaks)]
+    spurious = [(f, v) for f, v in reduced_peaks if all(abs(f - g) > 0.03 for g, _ in full_peaks)]
     lines = [
         "# Model reduction: tower-top side-to-side displacement (NREL 5MW, no aerodynamics)",
         "",
@@ -71,6 +74,10 @@ def summary(full: SimulationResult, reduced: SimulationResult) -> str:
         f"Spectral energy of the reduced model's side-side fluctuation relative to the full model's: {energy:.3f}.",
         f"RMS of the difference between the two histories: {np.sqrt(np.mean((a - b) ** 2)):.4g} m "
         f"({np.sqrt(np.mean((a - b) ** 2)) / a.std():.2f} times the full model's fluctuation RMS).",
+        "Largest spectral peaks of the full model with no reduced-model peak within 0.03 Hz (lost dynamics): "
+        + ("; ".join(f"{f:.3f} Hz ({v:.1e} m)" for f, v in missing) or "none") + ".",
+        "Peaks of the reduced model absent from the full one: "
+        + ("; ".join(f"{f:.3f} Hz ({v:.1e} m)" for f, v in spurious) or "none") + ".",
         f"Right-hand sides: full {full.evaluations}, reduced {reduced.evaluations}.",
     ]
     return "\n".join(lines) + "\n"
