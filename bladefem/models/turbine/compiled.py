@@ -99,7 +99,7 @@ if njit is not None:                                   # module-level kernels: n
     @njit(cache=True)
     def equations(q, u, n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns,
                   b_rotations, fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass,
-                  inertias, gravity, base, K, C):
+                  inertias, gravity, K, C):
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
@@ -317,7 +317,7 @@ def compiled_equations(model) -> CompiledEquations | None:
             model.blade_masses[0].copy(), model.blade_columns.astype(np.int64), model.blade_rotations.copy(),
             model.fore_aft_tilt.copy(), model.side_side_tilt.copy(), model.yaw.copy(), model.azimuth.copy(),
             model.generator_angle.copy(), model.tilt.copy(), model.rigid_offsets.copy(), model.rigid_masses.copy(),
-            np.array(model.inertias, dtype=float), model.gravity.copy(), model.base.r.copy(), model.K.copy(),
+            np.array(model.inertias, dtype=float), model.gravity.copy(), model.K.copy(),
             model.C.copy())
     return CompiledEquations(_KERNELS, data)
 
