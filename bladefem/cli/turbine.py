@@ -55,9 +55,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="nacelle-yaw damper (ServoDyn YawDamp; default NREL 5MW 1.916e7)")
     parser.add_argument("--dt", type=float, default=0.05, help="output interval of --simulate, s")
     parser.add_argument("--rtol", type=float, default=1e-6, help="relative tolerance of the time integration")
-    parser.add_argument("--method", choices=("auto", "DP54", "RK45", "DOP853", "RK4"), default="auto",
-                        help="time integrator: auto (compiled Dormand-Prince 5(4) with numba, else scipy RK45), "
-                             "DP54 (compiled, needs numba), scipy RK45 or DOP853, or fixed-step RK4 (--step)")
+    parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default="auto",
+                        help="time integrator: auto (compiled 8th-order Dormand-Prince with numba, else scipy "
+                             "DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or DOP853, or fixed-step "
+                             "RK4 (--step)")
     parser.add_argument("--step", type=float, default=0.01, help="step of --method RK4, s")
     parser.add_argument("--output", "-o", metavar="FILE", help="CSV table of --simulate or --campbell")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
@@ -184,8 +185,9 @@ def simulate_command(model, free, q0: np.ndarray, rpm: float, args: argparse.Nam
 
     u0 = np.zeros(model.n)
     u0[5] = rpm * np.pi / 30.0
-    if args.method == "DP54" and not hasattr(model.fast_equations(), "integrate"):
-        raise InputError("DP54 needs numba (pip install numba); use auto, RK45, DOP853 or RK4", field="--method")
+    if args.method in ("DP54", "DP853") and not hasattr(model.fast_equations(), "integrate"):
+        raise InputError(f"{args.method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
+                         field="--method")
     result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=args.dt, rtol=args.rtol,
                       atol=args.rtol * 1e-2, method=args.method, step=args.step)
     text = table_text(result)

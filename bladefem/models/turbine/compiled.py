@@ -26,6 +26,48 @@ if njit is not None:                                   # module-level kernels: n
         return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
     @njit(cache=True)
+    def mm(A, B):
+        """A @ B by loops (small matrices: no BLAS call)."""
+        out = np.zeros((A.shape[0], B.shape[1]))
+        for i in range(A.shape[0]):
+            for k in range(A.shape[1]):
+                a = A[i, k]
+                if a != 0.0:
+                    for j in range(B.shape[1]):
+                        out[i, j] += a * B[k, j]
+        return out
+
+    @njit(cache=True)
+    def mv(A, x):
+        """A @ x by loops."""
+        out = np.zeros(A.shape[0])
+        for i in range(A.shape[0]):
+            for k in range(A.shape[1]):
+                out[i] += A[i, k] * x[k]
+        return out
+
+    @njit(cache=True)
+    def tmv(A, x):
+        """A^T @ x by loops."""
+        out = np.zeros(A.shape[1])
+        for k in range(A.shape[0]):
+            xk = x[k]
+            if xk != 0.0:
+                for i in range(A.shape[1]):
+                    out[i] += A[k, i] * xk
+        return out
+
+    @njit(cache=True)
+    def add_gram(M, J, m):
+        """M += m J^T J by loops."""
+        for i in range(J.shape[1]):
+            for j in range(J.shape[1]):
+                value = 0.0
+                for r in range(J.shape[0]):
+                    value += J[r, i] * J[r, j]
+                M[i, j] += m * value
+
+    @njit(cache=True)
     def axis_rotation(axis, angle):
         c, s = np.cos(angle), np.sin(angle)
         R = np.eye(3)
@@ -39,20 +81,32 @@ if njit is not None:                                   # module-level kernels: n
     @njit(cache=True)
     def rotate(R, w, W, al, axis, coefficients, q, u):
         """Frame turned about its own axis by coefficients . q (see kinematics.rotate)."""
-        angle = coefficients @ q
-        rate = coefficients @ u
+        angle = 0.0
+        rate = 0.0
+        for i in range(q.shape[0]):
+            angle += coefficients[i] * q[i]
+            rate += coefficients[i] * u[i]
         k = R[:, axis].copy()
         al = al + cross(w, k) * rate
         w = w + k * rate
-        W = W + np.outer(k, coefficients)
-        return R @ axis_rotation(axis, angle), w, W, al
+        W = W.copy()
+        for i in range(coefficients.shape[0]):
+            if coefficients[i] != 0.0:
+                for r in range(3):
+                    W[r, i] += k[r] * coefficients[i]
+        return mm(R, axis_rotation(axis, angle)), w, W, al
 
     @njit(cache=True)
     def add_group(M, f, A, F, Z):
         """M += Z^T A Z, f += Z^T F."""
-        AZ = A @ Z
-        M += Z.T @ AZ
-        f += Z.T @ F
+        AZ = mm(A, Z)
+        for i in range(Z.shape[1]):
+            for j in range(Z.shape[1]):
+                value = 0.0
+                for r in range(Z.shape[0]):
+                    value += Z[r, i] * AZ[r, j]
+                M[i, j] += value
+        f += tmv(Z, F)
 
     @njit(cache=True)
     def accumulate_node(A, F, G, m, load):
@@ -126,21 +180,21 @@ if njit is not None:                                   # module-level kernels: n
         R, w, W, al = rotate(R, w, W, al, 1, fore_aft, q, u)
         R, w, W, al = rotate(R, w, W, al, 0, side_side, q, u)
         RN, wN, WN, alN = rotate(R, w, W, al, 2, yaw, q, u)
-        RS = RN @ tilt
+        RS = mm(RN, tilt)
         RL, wL, WL, alL = rotate(RS, wN, WN, alN, 0, azimuth, q, u)
         RG, wG, WG, alG = rotate(RS, wN, WN, alN, 0, generator, q, u)
         # rigid points in the nacelle frame: nacelle centre of mass, apex, hub centre of mass
         apex_J = np.zeros((3, n))
         apex_a = np.zeros(3)
         for i in range(3):
-            rho = RN @ rigid_offsets[i]
+            rho = mv(RN, rigid_offsets[i])
             J = top_J.copy()
             for c in range(n):
                 J[:, c] += cross(WN[:, c], rho)
             a = top_a + cross(alN, rho) + cross(wN, cross(wN, rho))
             m = rigid_mass[i]
-            M += m * (J.T @ J)
-            f += J.T @ (m * (gravity - a))
+            add_gram(M, J, m)
+            f += tmv(J, m * (gravity - a))
             if i == 1:
                 apex_J, apex_a = J, a
         # blade nodes: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade]
@@ -149,7 +203,7 @@ if njit is not None:                                   # module-level kernels: n
         D = np.zeros((3, kb))
         rho, moving, load = np.zeros(3), np.zeros(3), np.zeros(3)
         for b in range(b_rotations.shape[0]):
-            Rb = RL @ b_rotations[b]
+            Rb = mm(RL, b_rotations[b])
             cols = b_columns[b]
             qb, ub = q[cols], u[cols]
             A = np.zeros((6 + kb, 6 + kb))
@@ -191,11 +245,10 @@ if njit is not None:                                   # module-level kernels: n
         for axis_frame, W_b, w_b, al_b, inertia in ((RN[:, 2].copy(), WN, wN, alN, inertias[0]),
                                                      (RL[:, 0].copy(), WL, wL, alL, inertias[1]),
                                                      (RG[:, 0].copy(), WG, wG, alG, inertias[2])):
-            partial = np.ascontiguousarray(W_b.T) @ axis_frame
+            partial = tmv(W_b, axis_frame)
             M += inertia * np.outer(partial, partial)
-            f -= inertia * ((axis_frame @ al_b) * partial
-                            + (axis_frame @ w_b) * (np.ascontiguousarray(W_b.T) @ cross(w_b, axis_frame)))
-        f -= K @ q + C @ u
+            f -= inertia * ((axis_frame @ al_b) * partial + (axis_frame @ w_b) * tmv(W_b, cross(w_b, axis_frame)))
+        f -= mv(K, q) + mv(C, u)
         return M, f
 
     @njit(cache=True)
@@ -270,10 +323,64 @@ if njit is not None:                                   # module-level kernels: n
             out[n] = x
         return out, count
 
+    @njit(cache=True)
+    def dormand_prince_853(times, x0, rtol, atol, A, B, C, E3, E5, q0, u0, index, *data):
+        """Adaptive 8th-order Dormand-Prince with the 5th/3rd-order error estimate (Hairer's DOP853, scipy's
+        scheme and tableau), steps landing on the output times; states at ``times`` and right-hand sides."""
+        size = x0.shape[0]
+        stages = B.shape[0]
+        out = np.empty((times.shape[0], size))
+        out[0] = x0
+        x = x0.copy()
+        t = times[0]
+        k = np.zeros((stages + 1, size))
+        k[0] = derivative(t, x, q0, u0, index, *data)
+        count = 1
+        h = min(1e-3, times[-1] - t) if times.shape[0] > 1 else 0.0
+        for n in range(1, times.shape[0]):
+            target = times[n]
+            while t < target - 1e-12 * max(1.0, abs(target)):
+                h = min(h, target - t)
+                for i in range(1, stages):
+                    stage = x.copy()
+                    for j in range(i):
+                        if A[i, j] != 0.0:
+                            stage += h * A[i, j] * k[j]
+                    k[i] = derivative(t + C[i] * h, stage, q0, u0, index, *data)
+                    count += 1
+                new = x.copy()
+                for j in range(stages):
+                    new += h * B[j] * k[j]
+                k[stages] = derivative(t + h, new, q0, u0, index, *data)
+                count += 1
+                scale = atol + rtol * np.maximum(np.abs(x), np.abs(new))
+                err5 = (E5 @ k) / scale
+                err3 = (E3 @ k) / scale
+                e5, e3 = np.sum(err5**2), np.sum(err3**2)
+                norm = 0.0 if e5 == 0.0 and e3 == 0.0 else h * e5 / np.sqrt((e5 + 0.01 * e3) * size)
+                if norm <= 1.0:
+                    t += h
+                    x = new
+                    k[0] = k[stages]
+                    factor = 10.0 if norm == 0.0 else min(10.0, 0.9 * norm ** -0.125)
+                else:
+                    factor = max(0.2, 0.9 * norm ** -0.125)
+                h *= factor
+            out[n] = x
+        return out, count
+
 
 def _kernels():
-    """The compiled (equations, derivative, integrator) kernels."""
-    return equations, derivative, dormand_prince
+    """The compiled (equations, derivative, Dormand-Prince 5(4), DOP853) kernels."""
+    return equations, derivative, dormand_prince, dormand_prince_853
+
+
+def _dop853_tableau() -> tuple[NDArray, ...]:
+    """Hairer's DOP853 coefficients as scipy ships them (A, B, C for the 12 stages; E3, E5 error weights)."""
+    from scipy.integrate._ivp import dop853_coefficients as d
+    stages = d.N_STAGES
+    return (np.ascontiguousarray(d.A[:stages, :stages]), np.ascontiguousarray(d.B),
+            np.ascontiguousarray(d.C[:stages]), np.ascontiguousarray(d.E3), np.ascontiguousarray(d.E5))
 
 
 _KERNELS = None
@@ -294,10 +401,15 @@ class CompiledEquations:
         return self.kernels[1](float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, *self.data)
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
-                  index: NDArray) -> tuple[NDArray, int]:
-        """Compiled adaptive Dormand-Prince 5(4) from times[0]; states at ``times`` and the right-hand sides."""
-        return self.kernels[2](np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(x0, dtype=float),
-                               float(rtol), float(atol), q0, u0, index, *self.data)
+                  index: NDArray, order: int = 5) -> tuple[NDArray, int]:
+        """Compiled adaptive Dormand-Prince from times[0], 5(4) (``order=5``) or 8(5,3) (``order=8``); states at
+        ``times`` and the number of right-hand sides."""
+        times = np.ascontiguousarray(times, dtype=float)
+        x0 = np.ascontiguousarray(x0, dtype=float)
+        if order == 8:
+            return self.kernels[3](times, x0, float(rtol), float(atol), *_dop853_tableau(), q0, u0, index,
+                                   *self.data)
+        return self.kernels[2](times, x0, float(rtol), float(atol), q0, u0, index, *self.data)
 
 
 def compiled_equations(model) -> CompiledEquations | None:

@@ -104,9 +104,10 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
              atol: float = 1e-8, method: str = "auto", step: float = 0.01) -> SimulationResult:
     """Integrate from t = 0 to ``duration`` (s), outputs every ``dt_output`` s.
 
-    method : 'auto' (the compiled Dormand-Prince 5(4) when numba is installed, else scipy's 'RK45', the same
-        scheme), 'DP54' (compiled only), a scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``,
-        ``atol``), or 'RK4' with the fixed ``step`` (s)
+    method : 'auto' (the compiled 8th-order Dormand-Prince 'DP853' when numba is installed, else scipy's
+        'DOP853', the same scheme), 'DP853' or 'DP54' (compiled Dormand-Prince 8(5,3) or 5(4), numba only), a
+        scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``, ``atol``), or 'RK4' with the fixed
+        ``step`` (s)
     """
     count = [0]
 
@@ -117,12 +118,12 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     times = np.linspace(0.0, duration, int(round(duration / dt_output)) + 1)
     compiled = system.model.fast_equations()
     if method == "auto":
-        method = "DP54" if hasattr(compiled, "integrate") else "RK45"
-    if method == "DP54":
+        method = "DP853" if hasattr(compiled, "integrate") else "DOP853"
+    if method in ("DP54", "DP853"):
         if not hasattr(compiled, "integrate"):
-            raise RuntimeError("method 'DP54' needs numba (pip install numba)")
+            raise RuntimeError(f"method '{method}' needs numba (pip install numba)")
         states, evaluations = compiled.integrate(times, system.initial_state(), rtol, atol, system.q0, system.u0,
-                                                 system.index)
+                                                 system.index, order=8 if method == "DP853" else 5)
         count[0] = int(evaluations)
     elif method == "RK4":
         states = runge_kutta4(rhs, system.initial_state(), times, step)
