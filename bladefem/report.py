@@ -245,8 +245,8 @@ def write_report(blade: Blade, directory: str | Path, rpm: float, sweep_rpm: Seq
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     matrices = blade_matrices(blade, elements, n_modes)
-    result = solve_modes(matrices, rpm, n_modes, blade.notes)
-    campbell = sweep(matrices, sweep_rpm, n_modes, blade.notes, progress_bar("Campbell sweep", quiet))
+    result = solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
+    campbell = sweep(matrices, sweep_rpm, n_modes, blade.notes + matrices.notes, progress_bar("Campbell sweep", quiet))
     operating = rpm if rpm > 0 else None
     images = [directory / "campbell.png"]
     save_campbell_plot(campbell, images[0], title=blade.name, operating_rpm=operating)

@@ -31,6 +31,7 @@ class BladeMatrices:
     K2 : stiffness per Omega^2 (centrifugal tension, spin softening, rotation second order), kg-type units
     M : mass matrix
     free : DOFs left free by the root condition
+    notes : statements about the mesh (e.g. refinement stopped before convergence)
     """
 
     K0: sp.csr_matrix
@@ -39,6 +40,7 @@ class BladeMatrices:
     dofs: DofMap
     free: NDArray[np.int64]
     blade: Blade
+    notes: tuple[str, ...] = ()
 
     def reduced(self, rotor_speed: float) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s)."""

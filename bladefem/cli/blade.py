@@ -55,7 +55,8 @@ def compute_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     if args.method == "galerkin":
         from ..models.galerkin import galerkin_modes, parse_terms
         return galerkin_modes(blade, rpm=args.rpm, n_modes=args.n_modes, terms=parse_terms(args.terms))
-    return solve_modes(blade_matrices(blade, args.elements, args.n_modes), args.rpm, args.n_modes, blade.notes)
+    matrices = blade_matrices(blade, args.elements, args.n_modes)
+    return solve_modes(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes)
 
 
 def run_modes(args: argparse.Namespace) -> int:
@@ -76,7 +77,7 @@ def run_modes(args: argparse.Namespace) -> int:
 def run_campbell(args: argparse.Namespace) -> int:
     blade = read_blade(args)
     matrices = blade_matrices(blade, args.elements, args.n_modes)
-    result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes,
+    result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes,
                             progress_bar("Campbell sweep", args.quiet or args.json))
     if args.plot:
         from ..plots.campbell import save_campbell_plot

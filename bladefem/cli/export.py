@@ -84,13 +84,13 @@ def run_export(args: argparse.Namespace) -> int:
     out = Path(args.output)
     written: list[Path] = []
     if len(args.rpm) > 1:
-        result = sweep(matrices, args.rpm, args.n_modes, blade.notes, progress_bar("Campbell sweep", args.quiet))
+        result = sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes, progress_bar("Campbell sweep", args.quiet))
         if args.png:
             from ..plots.campbell import save_campbell_plot
             written.append(out / "campbell.png")
             save_campbell_plot(result, written[-1], title=blade.name)
     else:
-        result = solve_modes(matrices, float(args.rpm[0]), args.n_modes, blade.notes)
+        result = solve_modes(matrices, float(args.rpm[0]), args.n_modes, blade.notes + matrices.notes)
         written += pictures(blade, result, out, args)
     if vtk:
         from ..io.vtk import write_vtk

@@ -8,16 +8,16 @@ from ..modal import CampbellResult, ModalResult
 from ..sections import Blade
 
 
-def header(blade: Blade) -> list[str]:
+def header(blade: Blade, notes: tuple[str, ...]) -> list[str]:
     lines = [f"# {blade.name}: flexible length {blade.length:.4g} m, hub radius {blade.hub_radius:.4g} m, "
              f"precone {math.degrees(blade.precone):.4g} deg, pitch {math.degrees(blade.pitch):.4g} deg, "
              f"root {blade.root}"]
-    lines += [f"# note: {note}" for note in blade.notes]
+    lines += [f"# note: {note}" for note in notes]
     return lines
 
 
 def modes_table(blade: Blade, result: ModalResult, method: str = "fe") -> str:
-    lines = header(blade)
+    lines = header(blade, result.notes)
     lines.append(f"# method {method}, rotor speed {result.rotor_speed_rpm:g} rpm, {result.n_dofs} DOFs")
     lines.append(f"{'mode':>4}  {'frequency_hz':>12}  {'kind':<8} {'flap':>5} {'edge':>5} {'tors':>5} "
                  f"{'axial':>5}  {'residual':>9}")
@@ -29,7 +29,7 @@ def modes_table(blade: Blade, result: ModalResult, method: str = "fe") -> str:
 
 
 def campbell_table(blade: Blade, result: CampbellResult) -> str:
-    lines = header(blade)
+    lines = header(blade, result.notes)
     names = [f"{family.kind} {sum(f.kind == family.kind for f in result.families[:i + 1])}"
              for i, family in enumerate(result.families)]
     lines.append(f"# frequencies in Hz; families tracked by MAC (lowest MAC between neighbouring speeds: "

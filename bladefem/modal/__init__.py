@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -16,23 +17,29 @@ from .solve import solve_modes
 MESH_RTOL = 1e-6
 #: error ratio of a mesh and its halving for h^4 convergence, minus one
 RICHARDSON = 15.0
+#: automatic refinement stops here: finer Hermite meshes gain less than round-off costs
+MAX_ELEMENTS = 800
 
 
 def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
-                       start: int | None = None, max_elements: int = 2000) -> BladeMatrices:
+                       start: int | None = None, max_elements: int = MAX_ELEMENTS) -> BladeMatrices:
     """Assemble on meshes doubled from ``start`` elements until the lowest ``n_modes`` non-rotating frequencies
     are converged to ``rtol`` (relative): the error of the finer mesh is estimated as the change / 15 (Richardson
-    for errors falling as h^4). Returns the matrices of the finer mesh."""
+    for errors falling as h^4). Returns the matrices of the finer mesh; if ``max_elements`` is reached first (beyond
+    it round-off grows as h^-4), the matrices carry a note with the last estimated error."""
     elements = start or max(24, blade.sections.stations - 1)
-    coarse = assemble_blade(blade, elements)
-    previous = solve_modes(coarse, 0.0, n_modes).frequencies_hz
+    previous = solve_modes(assemble_blade(blade, elements), 0.0, n_modes).frequencies_hz
     while True:
         elements *= 2
         fine = assemble_blade(blade, elements)
         current = solve_modes(fine, 0.0, n_modes).frequencies_hz
-        change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300))
-        if change / RICHARDSON < rtol or elements >= max_elements:
+        error = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300)) / RICHARDSON
+        if error < rtol:
             return fine
+        if elements >= max_elements:
+            note = (f"mesh refinement stopped at {len(fine.dofs.nodes) - 1} elements with an estimated frequency "
+                    f"error of {error:.1e} (above {rtol:g}): rough section properties; check with --elements")
+            return replace(fine, notes=fine.notes + (note,))
         previous = current
 
 
@@ -47,12 +54,14 @@ def modes(blade: Blade, rpm: float = 0.0, n_modes: int = 10, elements: int | Non
     ``elements``: target number of elements over the span (stations are always nodes), or None for a mesh refined
     until the frequencies converge to 1e-6.
     """
-    return solve_modes(blade_matrices(blade, elements, n_modes), rpm, n_modes, blade.notes)
+    matrices = blade_matrices(blade, elements, n_modes)
+    return solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
 
 
 def campbell(blade: Blade, rpm: Sequence[float], n_modes: int = 6, elements: int | None = None) -> CampbellResult:
     """Modes over rotor speeds ``rpm`` (rpm), families tracked by MAC; the matrices are assembled once."""
-    return campbell_sweep(blade_matrices(blade, elements, n_modes), rpm, n_modes, blade.notes)
+    matrices = blade_matrices(blade, elements, n_modes)
+    return campbell_sweep(matrices, rpm, n_modes, blade.notes + matrices.notes)
 
 
 __all__ = ["KINDS", "BladeMatrices", "CampbellResult", "ModalResult", "Mode", "ModeFamily", "ModeShape",
