@@ -6,14 +6,13 @@ Usage: python examples/seed_comparison.py [--output docs/seed-comparison.md]
 from __future__ import annotations
 
 import argparse
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 from scipy.optimize import brentq
 
 from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.io.results import write_atomic
 from bladefem.modal import campbell, modes
 from bladefem.models.galerkin import PAPER_TERMS, galerkin_campbell, galerkin_modes, galerkin_system, solve
 from bladefem.models.galerkin_seed import (SEED_TABLE1, SEED_TABLE2, TABLE2_MODES, TENSION_VARIANTS,
@@ -197,19 +196,11 @@ root-integrated tension lives only in `bladefem/models/galerkin_seed.py`, as thi
     return text
 
 
-def write_atomically(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    with os.fdopen(handle, "w") as stream:
-        stream.write(text)
-    os.replace(temporary, path)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--output", type=Path, default=ROOT / "docs" / "seed-comparison.md")
     args = parser.parse_args()
-    write_atomically(args.output, report(blade_from_elastodyn_main(MAIN_FILE)))
+    write_atomic(args.output, report(blade_from_elastodyn_main(MAIN_FILE)))
     print(f"written {args.output}")
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -42,10 +43,28 @@ class BladeMatrices:
     blade: Blade
     notes: tuple[str, ...] = ()
 
-    def reduced(self, rotor_speed: float) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    @cached_property
+    def free_parts(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
+        """(K0, K2, M) restricted to the free DOFs (computed once)."""
+        return tuple(A[self.free][:, self.free].tocsc() for A in (self.K0, self.K2, self.M))  # type: ignore[return-value]
+
+    def reduced(self, rotor_speed: float) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s)."""
-        K = self.K0 + rotor_speed**2 * self.K2
-        return K[self.free][:, self.free].tocsc(), self.M[self.free][:, self.free].tocsc()
+        K0, K2, M = self.free_parts
+        return (K0 + rotor_speed**2 * K2).tocsc(), M
+
+    @cached_property
+    def free_field_dofs(self) -> dict[str, NDArray[np.int64]]:
+        """Field -> positions of its DOFs among the free DOFs."""
+        position = np.full(self.dofs.size, -1)
+        position[self.free] = np.arange(len(self.free))
+        return {name: position[dofs][position[dofs] >= 0] for name, dofs in self.dofs.field_dofs.items()}
+
+    @cached_property
+    def field_mass_blocks(self) -> dict[str, sp.csc_matrix]:
+        """Field -> its diagonal block of the free mass matrix (for kinetic-energy shares)."""
+        M = self.free_parts[2]
+        return {name: M[local][:, local] for name, local in self.free_field_dofs.items()}
 
 
 def model_fields(blade: Blade) -> tuple[str, ...]:

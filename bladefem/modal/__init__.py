@@ -15,32 +15,35 @@ from .solve import solve_modes
 
 #: default relative frequency change accepted by the automatic mesh refinement
 MESH_RTOL = 1e-6
-#: error ratio of a mesh and its halving for h^4 convergence, minus one
-RICHARDSON = 15.0
 #: automatic refinement stops here: finer Hermite meshes gain less than round-off costs
 MAX_ELEMENTS = 800
 
 
 def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
                        start: int | None = None, max_elements: int = MAX_ELEMENTS) -> BladeMatrices:
-    """Assemble on meshes doubled from ``start`` elements until the lowest ``n_modes`` non-rotating frequencies
-    are converged to ``rtol`` (relative): the error of the finer mesh is estimated as the change / 15 (Richardson
-    for errors falling as h^4). Returns the matrices of the finer mesh; if ``max_elements`` is reached first (beyond
-    it round-off grows as h^-4), the matrices carry a note with the last estimated error."""
+    """Matrices on the coarsest mesh (of ``start`` elements doubled) whose lowest ``n_modes`` non-rotating
+    frequencies are within ``rtol`` (relative) of the converged ones.
+
+    A mesh is accepted when halving its elements changes the frequencies by less than ``rtol / 2``: its error is
+    then about that change where the error already falls as h^4, and at most twice it where rough section
+    properties keep the mesh pre-asymptotic (error halving per doubling). If ``max_elements`` is reached first
+    (beyond it round-off grows as h^-4), the finest matrices carry a note with the last change.
+    """
     elements = start or max(24, blade.sections.stations - 1)
-    previous = solve_modes(assemble_blade(blade, elements), 0.0, n_modes).frequencies_hz
+    coarse = assemble_blade(blade, elements)
+    previous = solve_modes(coarse, 0.0, n_modes).frequencies_hz
     while True:
         elements *= 2
         fine = assemble_blade(blade, elements)
         current = solve_modes(fine, 0.0, n_modes).frequencies_hz
-        error = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300)) / RICHARDSON
-        if error < rtol:
-            return fine
+        change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300))
+        if change < rtol / 2:
+            return coarse
         if elements >= max_elements:
-            note = (f"mesh refinement stopped at {len(fine.dofs.nodes) - 1} elements with an estimated frequency "
-                    f"error of {error:.1e} (above {rtol:g}): rough section properties; check with --elements")
+            note = (f"mesh refinement stopped at {len(fine.dofs.nodes) - 1} elements with a last frequency change "
+                    f"of {change:.1e} (above {rtol:g}): rough section properties; check with --elements")
             return replace(fine, notes=fine.notes + (note,))
-        previous = current
+        coarse, previous = fine, current
 
 
 def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10) -> BladeMatrices:

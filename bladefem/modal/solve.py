@@ -54,17 +54,12 @@ def relative_residuals(K: sp.spmatrix, M: sp.spmatrix, values: NDArray, vectors:
     return np.linalg.norm(Kx - (M @ vectors) * values, axis=0) / np.maximum(np.linalg.norm(Kx, axis=0), 1e-300)
 
 
-def energy_fractions(matrices: BladeMatrices, M: sp.spmatrix, vectors: NDArray) -> list[dict[str, float]]:
+def energy_fractions(matrices: BladeMatrices, vectors: NDArray) -> list[dict[str, float]]:
     """Kinetic-energy share of each field (flap, edge, torsion, axial) in each mode (diagonal field blocks)."""
-    position = np.full(matrices.dofs.size, -1)
-    position[matrices.free] = np.arange(len(matrices.free))
     shares = {}
-    for name, dofs in matrices.dofs.field_dofs.items():
-        local = position[dofs]
-        local = local[local >= 0]
-        block = M[local][:, local]
+    for name, local in matrices.free_field_dofs.items():
         part = vectors[local]
-        shares[FIELD_KINDS[name]] = np.einsum("ij,ij->j", part, block @ part)
+        shares[FIELD_KINDS[name]] = np.einsum("ij,ij->j", part, matrices.field_mass_blocks[name] @ part)
     total = sum(shares.values())
     return [{kind: float(shares[kind][j] / total[j]) if kind in shares else 0.0 for kind in KINDS}
             for j in range(vectors.shape[1])]
@@ -88,15 +83,12 @@ def mode_shape(matrices: BladeMatrices, vector: NDArray, kind: str) -> ModeShape
     return ModeShape(x=dofs.nodes, **{key: value / scale for key, value in shape.items()})
 
 
-def solve_modes(matrices: BladeMatrices, rpm: float = 0.0, n_modes: int = 10,
-                notes: tuple[str, ...] = ()) -> ModalResult:
-    """Natural modes of the assembled blade at ``rpm`` (rotor speed, rpm)."""
-    if n_modes < 1:
-        raise ValueError("n_modes must be at least 1")
+def modal_result(matrices: BladeMatrices, rpm: float, values: NDArray, vectors: NDArray,
+                 notes: tuple[str, ...] = ()) -> ModalResult:
+    """Frequencies, kinds, residuals and shapes from eigenpairs (omega^2, M-normalised vectors) at ``rpm``."""
     K, M = matrices.reduced(rpm_to_rad_s(rpm))
-    values, vectors = eigen_pairs(K, M, n_modes)
     residuals = relative_residuals(K, M, values, vectors)
-    fractions = energy_fractions(matrices, M, vectors)
+    fractions = energy_fractions(matrices, vectors)
     modes = []
     for j, value in enumerate(values):
         kind = max(fractions[j], key=fractions[j].get)
@@ -105,3 +97,13 @@ def solve_modes(matrices: BladeMatrices, rpm: float = 0.0, n_modes: int = 10,
                           residual=float(residuals[j]), shape=mode_shape(matrices, vectors[:, j], kind)))
     return ModalResult(rotor_speed_rpm=float(rpm), modes=modes, stations=matrices.blade.sections.span.copy(),
                        vectors=vectors, n_dofs=len(matrices.free), notes=notes)
+
+
+def solve_modes(matrices: BladeMatrices, rpm: float = 0.0, n_modes: int = 10,
+                notes: tuple[str, ...] = ()) -> ModalResult:
+    """Natural modes of the assembled blade at ``rpm`` (rotor speed, rpm)."""
+    if n_modes < 1:
+        raise ValueError("n_modes must be at least 1")
+    K, M = matrices.reduced(rpm_to_rad_s(rpm))
+    values, vectors = eigen_pairs(K, M, n_modes)
+    return modal_result(matrices, rpm, values, vectors, notes)
