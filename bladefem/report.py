@@ -15,11 +15,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from .assembly import BladeMatrices
 from .io.results import write_atomic
-from .modal import CampbellResult, ModalResult, blade_matrices, campbell_sweep, solve_modes
+from .modal import (
+    CampbellResult,
+    ModalResult,
+    blade_matrices,
+    campbell_sweep,
+    solve_modes,
+)
 from .plots.campbell import crossings, family_labels, save_campbell_plot
 from .plots.modes3d import mode_labels
 from .sections import Blade
@@ -244,7 +248,7 @@ def write_report(blade: Blade, directory: str | Path, rpm: float, sweep_rpm: Seq
     at the operating speed ``rpm`` (rpm) with a Campbell sweep over ``sweep_rpm`` (rpm)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    matrices = blade_matrices(blade, elements, n_modes)
+    matrices = blade_matrices(blade, elements, n_modes, max(rpm, *sweep_rpm))
     result = solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
     campbell = sweep(matrices, sweep_rpm, n_modes, blade.notes + matrices.notes, progress_bar("Campbell sweep", quiet))
     operating = rpm if rpm > 0 else None

@@ -20,9 +20,10 @@ from pathlib import Path
 
 import numpy as np
 
+from bladefem.files import write_atomic
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
 from bladefem.models.turbine.elastodyn import turbine_from_elastodyn
-from bladefem.models.turbine.simulate import SimulationResult, simulate, write_atomically
+from bladefem.models.turbine.simulate import SimulationResult, simulate
 
 MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
 RATED_RPM = 12.1                 # NREL 5MW rated rotor speed (Jonkman et al. 2009)
@@ -117,9 +118,9 @@ def main(output: str | Path = "out/model_reduction", seconds: float = 60.0) -> s
     full = simulate(FreeSystem(model, np.ones(model.n, dtype=bool), q, u), seconds, dt_output=0.05)
     reduced = simulate(FreeSystem(model, select_dofs(model.dofs, REDUCED_DOFS), q, u), seconds, dt_output=0.05)
     text = summary(full, reduced)
-    write_atomically(folder / "summary.md", text)
+    write_atomic(folder / "summary.md", text)
     table = np.column_stack([full.time, full.outputs["TTDspSS"], reduced.outputs["TTDspSS"]])
-    write_atomically(folder / "tower_side_side.csv", "Time_s,full_TTDspSS_m,reduced_TTDspSS_m\n" + "\n".join(
+    write_atomic(folder / "tower_side_side.csv", "Time_s,full_TTDspSS_m,reduced_TTDspSS_m\n" + "\n".join(
         ",".join(f"{value:.9g}" for value in row) for row in table) + "\n")
     plot(full, reduced, folder / "model_reduction.png")
     return text

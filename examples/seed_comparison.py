@@ -14,9 +14,22 @@ from scipy.optimize import brentq
 from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
 from bladefem.io.results import write_atomic
 from bladefem.modal import campbell, modes
-from bladefem.models.galerkin import PAPER_TERMS, galerkin_campbell, galerkin_modes, galerkin_system, solve
-from bladefem.models.galerkin_seed import (SEED_TABLE1, SEED_TABLE2, TABLE2_MODES, TENSION_VARIANTS,
-                                           implied_southwell, inboard_tension_matrices, tension_variant_matrices)
+from bladefem.models.galerkin import (
+    PAPER_TERMS,
+    galerkin_campbell,
+    galerkin_modes,
+    galerkin_system,
+    solve,
+)
+from bladefem.models.galerkin_seed import (
+    SEED_TABLE1,
+    SEED_TABLE2,
+    TABLE2_MODES,
+    TENSION_VARIANTS,
+    implied_southwell,
+    inboard_tension_matrices,
+    tension_variant_matrices,
+)
 from bladefem.sections import Blade
 
 ROOT = Path(__file__).resolve().parents[1]

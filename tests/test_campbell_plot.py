@@ -12,8 +12,14 @@ import pytest
 matplotlib.use("Agg")
 
 from bladefem.modal.results import CampbellResult, ModeFamily  # noqa: E402
-from bladefem.plots.campbell import (campbell_figure, crossings, excitation_crossings, family_labels,  # noqa: E402
-                                     save_campbell_plot, spread)
+from bladefem.plots.campbell import (  # noqa: E402
+    campbell_figure,
+    crossings,
+    excitation_crossings,
+    family_labels,
+    save_campbell_plot,
+    spread,
+)
 
 RPM = np.linspace(0.0, 15.0, 16)
 

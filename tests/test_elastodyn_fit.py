@@ -11,8 +11,17 @@ import pytest
 
 from bladefem.io.elastodyn_blade import blade_from_elastodyn_main, read_elastodyn_blade
 from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
-from bladefem.modal.elastodyn_fit import (blade_coefficients, centrifugal_load, composite_gauss, elastodyn_frequency,
-                                          fit_sextic, fitting_target, modes_of_kind, polynomial, tower_coefficients)
+from bladefem.modal.elastodyn_fit import (
+    blade_coefficients,
+    centrifugal_load,
+    composite_gauss,
+    elastodyn_frequency,
+    fit_sextic,
+    fitting_target,
+    modes_of_kind,
+    polynomial,
+    tower_coefficients,
+)
 from bladefem.modal.results import ModalResult, Mode, ModeShape
 from bladefem.sections import Blade, uniform_sections
 

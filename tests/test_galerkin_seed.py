@@ -10,8 +10,14 @@ import pytest
 from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
 from bladefem.modal import modes
 from bladefem.models.galerkin import PAPER_TERMS, galerkin_modes, galerkin_system, solve
-from bladefem.models.galerkin_seed import (SEED_TABLE1, SEED_TABLE2, TABLE2_MODES, implied_southwell,
-                                           inboard_tension, inboard_tension_matrices)
+from bladefem.models.galerkin_seed import (
+    SEED_TABLE1,
+    SEED_TABLE2,
+    TABLE2_MODES,
+    implied_southwell,
+    inboard_tension,
+    inboard_tension_matrices,
+)
 from bladefem.sections import Blade, uniform_sections
 
 MAIN_FILE = Path(__file__).parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

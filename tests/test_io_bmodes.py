@@ -11,7 +11,11 @@ import pytest
 
 from bladefem.errors import InputError
 from bladefem.io.bmodes import BModesWires, read_bmodes, read_bmodes_sections
-from bladefem.io.bmodes_model import blade_from_bmodes, tower_from_bmodes, tower_model_from_bmodes
+from bladefem.io.bmodes_model import (
+    blade_from_bmodes,
+    tower_from_bmodes,
+    tower_model_from_bmodes,
+)
 from bladefem.io.bmodes_writer import write_bmodes
 from bladefem.modal import modes
 from bladefem.models.tower import tower_modes

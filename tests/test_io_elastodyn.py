@@ -10,8 +10,13 @@ import numpy as np
 import pytest
 
 from bladefem.errors import InputError
-from bladefem.io.elastodyn_blade import (blade_from_elastodyn, blade_from_elastodyn_main, blade_with_mode_shapes,
-                                         read_elastodyn_blade, write_elastodyn_blade)
+from bladefem.io.elastodyn_blade import (
+    blade_from_elastodyn,
+    blade_from_elastodyn_main,
+    blade_with_mode_shapes,
+    read_elastodyn_blade,
+    write_elastodyn_blade,
+)
 from bladefem.io.elastodyn_main import read_elastodyn_main, write_elastodyn_main
 
 DATA = Path(__file__).parent / "data"
@@ -162,6 +167,7 @@ def test_in_place_update_changes_only_coefficient_lines():
 
 def test_written_coefficients_add_up_to_one_in_decimal():
     from decimal import Decimal
+
     from bladefem.io._modeshape_blocks import decimal_texts
     coefficients = np.array([-70.53191234567, -63.7623456789, 289.7371111111, -176.5130987654, 0.0])
     coefficients[-1] = 1 - coefficients[:-1].sum()
@@ -251,7 +257,11 @@ def test_tower_file_matches_the_published_table():
 
 
 def test_tower_round_trip_and_in_place_update(tmp_path):
-    from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_with_mode_shapes, write_elastodyn_tower
+    from bladefem.io.elastodyn_tower import (
+        read_elastodyn_tower,
+        tower_with_mode_shapes,
+        write_elastodyn_tower,
+    )
     original = read_elastodyn_tower(TOWER)
     write_elastodyn_tower(original, tmp_path / "tower.dat")
     again = read_elastodyn_tower(tmp_path / "tower.dat")

@@ -13,8 +13,15 @@ pytest.importorskip("pyvista")
 iio = pytest.importorskip("imageio.v3")
 
 from bladefem.modal import modes  # noqa: E402
-from bladefem.plots.modes3d import (TUBE, mode_labels, ordinal, render, save_mode_gif, save_mode_png,  # noqa: E402
-                                    save_mode_strip)
+from bladefem.plots.modes3d import (  # noqa: E402
+    TUBE,
+    mode_labels,
+    ordinal,
+    render,
+    save_mode_gif,
+    save_mode_png,
+    save_mode_strip,
+)
 from bladefem.sections import Blade, uniform_sections  # noqa: E402
 
 LENGTH = 30.0

@@ -18,7 +18,14 @@ from bladefem.cli import export as export_cli
 from bladefem.cli import report as report_cli
 from bladefem.errors import InputError
 from bladefem.modal import modes
-from bladefem.report import Table, can_render, markdown, mass_rows, progress_bar, write_report
+from bladefem.report import (
+    Table,
+    can_render,
+    markdown,
+    mass_rows,
+    progress_bar,
+    write_report,
+)
 from bladefem.sections import Blade, TipMass, uniform_sections
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,8 +11,16 @@ from scipy.optimize import brentq
 from bladefem.errors import InputError
 from bladefem.models.tower import tower_modes
 from bladefem.sections import uniform_sections
-from bladefem.sections.tower import (Foundation, Platform, SoilSprings, Supports, TopMass, Tower, Wires,
-                                     openfast_to_tower)
+from bladefem.sections.tower import (
+    Foundation,
+    Platform,
+    SoilSprings,
+    Supports,
+    TopMass,
+    Tower,
+    Wires,
+    openfast_to_tower,
+)
 
 # -- floating platform --------------------------------------------------------------------------------------
 

@@ -5,8 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from bladefem.models.turbine.shapes import (closed_form_cantilever, hermite_evaluator, polynomial_evaluator,
-                                            sample_beam, twisted_polynomial_nodes)
+from bladefem.models.turbine.shapes import (
+    closed_form_cantilever,
+    hermite_evaluator,
+    polynomial_evaluator,
+    sample_beam,
+    twisted_polynomial_nodes,
+)
 
 L = 20.0
 

@@ -14,7 +14,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from bladefem.models.turbine import FreeSystem, ModalBeam, TurbineModel, TurbineParameters
+from bladefem.models.turbine import (
+    FreeSystem,
+    ModalBeam,
+    TurbineModel,
+    TurbineParameters,
+)
 
 sympy = pytest.importorskip("sympy")
 me = pytest.importorskip("sympy.physics.mechanics")

@@ -10,8 +10,15 @@ import pytest
 import bladefem.cli.verify as cli_verify
 from bladefem.errors import InputError
 from bladefem.modal import modes
-from bladefem.verify import (UNIFORM_BOUND, VerifyRow, format_table, nrel5mw_rows, southwell_row, torsion_row,
-                             verification_rows)
+from bladefem.verify import (
+    UNIFORM_BOUND,
+    VerifyRow,
+    format_table,
+    nrel5mw_rows,
+    southwell_row,
+    torsion_row,
+    verification_rows,
+)
 
 
 @pytest.fixture(scope="module")

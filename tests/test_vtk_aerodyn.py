@@ -79,8 +79,7 @@ def test_aerodyn_span_must_cover_the_blade(tmp_path):
 
 
 def test_export_command_takes_the_aerodyn_chord(tmp_path):
-    from bladefem.cli import Parser
-    from bladefem.cli import export
+    from bladefem.cli import Parser, export
     parser = Parser(prog="bladefem")
     export.add_parser(parser.add_subparsers(dest="command", required=True, parser_class=Parser))
     args = parser.parse_args(["export", str(DATA / "NRELOffshrBsline5MW_Blade.dat"), "--elastodyn-main",

@@ -11,7 +11,12 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from skfem import Basis, BilinearForm
 
-from ..elements import beam_element, projected_inertia, rotation_second_order, section_motion
+from ..elements import (
+    beam_element,
+    projected_inertia,
+    rotation_second_order,
+    section_motion,
+)
 from ..sections import Blade
 from . import terms
 from .dofs import DofMap

@@ -8,7 +8,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..elements import projected_inertia, rotation_second_order
-from ..sections import Blade, bending_stiffness, extension_bending_stiffness, mass_moments
+from ..sections import (
+    Blade,
+    bending_stiffness,
+    extension_bending_stiffness,
+    mass_moments,
+)
 
 #: Gauss-Legendre rule for the tension integrals (exact to degree 9 on each piece)
 _GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(5)

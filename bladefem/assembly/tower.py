@@ -32,8 +32,16 @@ from .blade import QUADRATURE_ORDER, Term, assemble_terms
 from .dofs import DofMap
 from .mesh import span_mesh, span_nodes
 from .parameters import SectionParameters
-from .supports import (BASE_SIZE, base_constraint, base_height, base_matrices, node_matrix, soil_parameters,
-                       soil_springs, wire_stiffness)
+from .supports import (
+    BASE_SIZE,
+    base_constraint,
+    base_height,
+    base_matrices,
+    node_matrix,
+    soil_parameters,
+    soil_springs,
+    wire_stiffness,
+)
 
 
 def rigid_fields(tower: Tower) -> tuple[str, ...]:

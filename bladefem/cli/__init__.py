@@ -41,7 +41,10 @@ SUBCOMMANDS = [blade, verify, elastodyn, export, report, turbine]
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``bladefem`` console script; returns the exit code."""
-    args = build_parser().parse_args(argv)
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exit:         # --help, --version, or a usage error already printed on one line
+        return int(exit.code or 0)
     try:
         return int(args.run(args) or 0)
     except InputError as error:
@@ -49,4 +52,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     except BrokenPipeError:
         return 0
+    except OSError as error:           # e.g. an output folder that cannot be created
+        where = f"{error.filename}: " if error.filename else ""
+        print(f"bladefem: error: {where}{error.strerror or error}", file=sys.stderr)
+        return 2
 

@@ -12,7 +12,14 @@ from ..modal.results import ModalResult
 from ..report import progress_bar
 from ..sections import Blade
 from ..sections.tower import as_tower
-from .inputs import add_blade_options, finite_float, positive_int, read_blade, read_structure, rpm_range
+from .inputs import (
+    add_blade_options,
+    finite_float,
+    positive_int,
+    read_blade,
+    read_structure,
+    rpm_range,
+)
 from .tables import campbell_table, modes_table
 from .tower import add_tower_options, is_tower_input, tower_modes_command
 
@@ -55,7 +62,7 @@ def compute_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     if args.method == "galerkin":
         from ..models.galerkin import galerkin_modes, parse_terms
         return galerkin_modes(blade, rpm=args.rpm, n_modes=args.n_modes, terms=parse_terms(args.terms))
-    matrices = blade_matrices(blade, args.elements, args.n_modes)
+    matrices = blade_matrices(blade, args.elements, args.n_modes, args.rpm)
     return solve_modes(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes)
 
 
@@ -76,7 +83,7 @@ def run_modes(args: argparse.Namespace) -> int:
 
 def run_campbell(args: argparse.Namespace) -> int:
     blade = read_blade(args)
-    matrices = blade_matrices(blade, args.elements, args.n_modes)
+    matrices = blade_matrices(blade, args.elements, args.n_modes, float(args.rpm.max()))
     result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes,
                             progress_bar("Campbell sweep", args.quiet or args.json))
     if args.plot:

@@ -10,13 +10,26 @@ import sys
 from pathlib import Path
 
 from ..errors import InputError
-from ..io._fast_format import write_atomically
+from ..files import write_atomic
 from ..io._modeshape_blocks import block_lines, decimal_texts
 from ..io.detect import Geometry, detect_format, read_model
-from ..io.elastodyn_blade import BLADE_BLOCKS, blade_with_mode_shapes, read_elastodyn_blade
+from ..io.elastodyn_blade import (
+    BLADE_BLOCKS,
+    blade_with_mode_shapes,
+    read_elastodyn_blade,
+)
 from ..io.elastodyn_main import read_elastodyn_main
-from ..io.elastodyn_tower import TOWER_BLOCKS, read_elastodyn_tower, tower_with_mode_shapes
-from ..modal.elastodyn_fit import MIN_TIP_RATIO, ElastoDynCoefficients, blade_coefficients, tower_coefficients
+from ..io.elastodyn_tower import (
+    TOWER_BLOCKS,
+    read_elastodyn_tower,
+    tower_with_mode_shapes,
+)
+from ..modal.elastodyn_fit import (
+    MIN_TIP_RATIO,
+    ElastoDynCoefficients,
+    blade_coefficients,
+    tower_coefficients,
+)
 from ..sections import Blade
 
 DEFAULT_BLADE_NODES = 17
@@ -185,6 +198,6 @@ def _update(path: str, result: ElastoDynCoefficients, dry_run: bool) -> None:
                                     fromfile=path, tofile=f"{path} (updated)")
         sys.stdout.write("\n" + "".join(diff))
         return
-    write_atomically(Path(path), new)
+    write_atomic(Path(path), new)
     changed = sum(a != b for a, b in zip(old.splitlines(), new.splitlines()))
     print(f"\n# updated {path}: {changed} coefficient lines changed, every other byte kept")

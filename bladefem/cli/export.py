@@ -80,7 +80,7 @@ def run_export(args: argparse.Namespace) -> int:
     if (args.png and len(args.rpm) == 1) or args.gif:
         require_pyvista("--gif" if args.gif else "--png")
     blade = read_drawn_blade(args)
-    matrices = blade_matrices(blade, args.elements, args.n_modes)
+    matrices = blade_matrices(blade, args.elements, args.n_modes, float(max(args.rpm)))
     out = Path(args.output)
     written: list[Path] = []
     if len(args.rpm) > 1:

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import argparse
 import math
+
 import numpy as np
 
 from ..errors import InputError
 from ..io.detect import Geometry, read_model
 from ..sections import ROOTS, Blade
+
 
 def add_blade_options(parser: argparse.ArgumentParser) -> None:
     """INPUT plus the geometry options used for ElastoDyn blade files (and as overrides for case files)."""

@@ -105,7 +105,11 @@ def initial_state(dofs: tuple[str, ...], entries: list[str]) -> np.ndarray:
 
 def build_model(args: argparse.Namespace):
     from ..models.turbine import TurbineModel
-    from ..models.turbine.elastodyn import NREL5MW_YAW_DAMPING, NREL5MW_YAW_STIFFNESS, turbine_from_elastodyn
+    from ..models.turbine.elastodyn import (
+        NREL5MW_YAW_DAMPING,
+        NREL5MW_YAW_STIFFNESS,
+        turbine_from_elastodyn,
+    )
 
     for name in ("yaw_stiffness", "yaw_damping"):
         value = getattr(args, name)
@@ -165,13 +169,13 @@ def linearize_command(model, free, rpm: float) -> int:
 
 
 def campbell_command(model, free, sweep: np.ndarray, args: argparse.Namespace) -> int:
+    from ..files import write_atomic
     from ..models.turbine.campbell import campbell, campbell_text, plot_campbell
-    from ..models.turbine.simulate import write_atomically
 
     result = campbell(model, free, sweep)
     text = campbell_text(result)
     if args.output:
-        write_atomically(args.output, text)
+        write_atomic(args.output, text)
     else:
         sys.stdout.write(text)
     if args.plot:
@@ -180,8 +184,9 @@ def campbell_command(model, free, sweep: np.ndarray, args: argparse.Namespace) -
 
 
 def simulate_command(model, free, q0: np.ndarray, rpm: float, args: argparse.Namespace) -> int:
+    from ..files import write_atomic
     from ..models.turbine import FreeSystem
-    from ..models.turbine.simulate import plot_outputs, simulate, table_text, write_atomically
+    from ..models.turbine.simulate import plot_outputs, simulate, table_text
 
     u0 = np.zeros(model.n)
     u0[5] = rpm * np.pi / 30.0
@@ -192,7 +197,7 @@ def simulate_command(model, free, q0: np.ndarray, rpm: float, args: argparse.Nam
                       atol=args.rtol * 1e-2, method=args.method, step=args.step)
     text = table_text(result)
     if args.output:
-        write_atomically(args.output, text)
+        write_atomic(args.output, text)
         print(f"# {len(result.time)} rows written to {Path(args.output)}; {result.evaluations} right-hand sides")
     else:
         sys.stdout.write(text)

@@ -154,7 +154,8 @@ def tower_model_from_bmodes(bmodes: BModesInput):
     """The tower deck as a :class:`bladefem.sections.tower.Tower` for the tower model, with its tension wires as
     supports (each wire of a set with the set's ``wire_stfness`` as its own axial stiffness, attached at BModes node
     ``node_attach`` = ``el_loc[node - 1]`` of the flexible length). A platform block is not mapped yet."""
-    from ..sections.tower import Supports, Tower as ModelTower, Wires
+    from ..sections.tower import Supports, Wires
+    from ..sections.tower import Tower as ModelTower
     if bmodes.beam_type != 2:
         raise InputError("this is a blade deck (beam_type = 1), not a tower", file=bmodes.path or None,
                          line=bmodes.key_lines.get("beam_type"), field="beam_type")

@@ -8,8 +8,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ._fast_format import degrees_exact, format_number, write_atomically
-from .bmodes import MULTIPLIERS, SECTION_COLUMNS, TIP_KEYS, BModesInput, BModesPlatform, BModesSections, BModesWires
+from ..files import write_atomic
+from ._fast_format import degrees_exact, format_number
+from .bmodes import (
+    MULTIPLIERS,
+    SECTION_COLUMNS,
+    TIP_KEYS,
+    BModesInput,
+    BModesPlatform,
+    BModesSections,
+    BModesWires,
+)
 
 RULE = "-" * 90
 
@@ -144,6 +153,6 @@ def write_bmodes(bmodes: BModesInput, path: str | os.PathLike, sections_path: st
     ``<stem>_sec_props.dat``), both atomically."""
     path = Path(path)
     sections_path = Path(sections_path) if sections_path else path.with_name(f"{path.stem}_sec_props.dat")
-    write_atomically(sections_path, bmodes_sections_text(bmodes.sections))
+    write_atomic(sections_path, bmodes_sections_text(bmodes.sections))
     relative = Path(os.path.relpath(sections_path, path.parent)).as_posix()
-    write_atomically(path, bmodes_main_text(bmodes, relative))
+    write_atomic(path, bmodes_main_text(bmodes, relative))

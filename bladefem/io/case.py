@@ -56,7 +56,7 @@ TIP_KEYS = {"mass_kg": "mass", "axial_offset_m": "axial_offset", "chordwise_offs
             "torsion_inertia_kg_m2": "torsion_inertia"}
 
 
-class _Case:
+class CaseFile:
     """Reads values out of the parsed YAML with errors that name file, line and field."""
 
     def __init__(self, path: Path, data: Any, lines: dict[Key, int]) -> None:
@@ -89,7 +89,7 @@ class _Case:
         return float(value)
 
 
-def _section_table(case: _Case, hub_radius: float) -> SectionTable:
+def _section_table(case: CaseFile, hub_radius: float) -> SectionTable:
     key: Key = ("sections",)
     sections = case.get(key)
     if not isinstance(sections, dict):
@@ -134,7 +134,7 @@ def read_case(path: str | Path) -> Blade:
     """Read a bladefem YAML case file into a :class:`~bladefem.sections.Blade`."""
     path = Path(path)
     data, lines = load_yaml(path)
-    case = _Case(path, data, lines)
+    case = CaseFile(path, data, lines)
     if not isinstance(data, dict):
         raise case.error("expected a mapping of keys at the top level", ())
     for key in data:

@@ -85,7 +85,11 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry)
     if kind == "bmodes":
         from .bmodes import read_bmodes
-        from .bmodes_model import blade_from_bmodes, tower_from_bmodes, tower_model_from_bmodes
+        from .bmodes_model import (
+            blade_from_bmodes,
+            tower_from_bmodes,
+            tower_model_from_bmodes,
+        )
         deck = read_bmodes(path)
         if deck.beam_type == 2:
             return tower_model_from_bmodes(deck) if deck.wires is not None else tower_from_bmodes(deck)
@@ -125,7 +129,11 @@ def _elastodyn_blade(path: Path, kind: str, g: Geometry) -> Blade:
 
 
 def _elastodyn_tower(path: Path, kind: str, g: Geometry) -> Tower:
-    from .elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn, tower_from_elastodyn_main
+    from .elastodyn_tower import (
+        read_elastodyn_tower,
+        tower_from_elastodyn,
+        tower_from_elastodyn_main,
+    )
     if kind == "elastodyn-main":
         return tower_from_elastodyn_main(path)
     if g.elastodyn_main:

@@ -21,8 +21,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..files import write_atomic
 from ..sections import Blade, SectionTable, TipMass
-from ._fast_format import FastText, degrees_exact, format_number, write_atomically
+from ._fast_format import FastText, degrees_exact, format_number
 from ._modeshape_blocks import block_lines, block_values, read_block
 from .elastodyn_main import read_elastodyn_main
 
@@ -228,7 +229,7 @@ def elastodyn_blade_text(blade_file: ElastoDynBladeFile) -> str:
 
 def write_elastodyn_blade(blade_file: ElastoDynBladeFile, path: str | Path) -> None:
     """Write a complete ElastoDyn blade file atomically."""
-    write_atomically(path, elastodyn_blade_text(blade_file))
+    write_atomic(path, elastodyn_blade_text(blade_file))
 
 
 def blade_with_mode_shapes(path: str | Path, modes: dict[str, NDArray]) -> tuple[str, str]:

@@ -13,7 +13,14 @@ import os
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
-from ._fast_format import FastText, degrees_exact, format_number, rpm_exact, rpm_to_rad_per_s, write_atomically
+from ..files import write_atomic
+from ._fast_format import (
+    FastText,
+    degrees_exact,
+    format_number,
+    rpm_exact,
+    rpm_to_rad_per_s,
+)
 
 #: DOF switches read when present.
 DOF_KEYS = ("FlapDOF1", "FlapDOF2", "EdgeDOF", "TeetDOF", "DrTrDOF", "GenDOF", "YawDOF", "TwFADOF1", "TwFADOF2",
@@ -187,4 +194,4 @@ def _quoted(file: Path, folder: Path) -> str:
 
 def write_elastodyn_main(main: ElastoDynMain, path: str | Path) -> None:
     """Write ``main`` (see :func:`elastodyn_main_text`) atomically."""
-    write_atomically(path, elastodyn_main_text(main, path))
+    write_atomic(path, elastodyn_main_text(main, path))

@@ -15,8 +15,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..files import write_atomic
 from ..sections import SectionTable, TipMass
-from ._fast_format import FastText, format_number, write_atomically
+from ._fast_format import FastText, format_number
 from ._modeshape_blocks import block_lines, block_values, read_block
 from .elastodyn_blade import _check_stations, blade_from_elastodyn, read_elastodyn_blade
 from .elastodyn_main import read_elastodyn_main
@@ -178,7 +179,7 @@ def elastodyn_tower_text(tower_file: ElastoDynTowerFile) -> str:
 
 def write_elastodyn_tower(tower_file: ElastoDynTowerFile, path: str | Path) -> None:
     """Write a complete ElastoDyn tower file atomically."""
-    write_atomically(path, elastodyn_tower_text(tower_file))
+    write_atomic(path, elastodyn_tower_text(tower_file))
 
 
 def tower_with_mode_shapes(path: str | Path, modes: dict[str, NDArray]) -> tuple[str, str]:

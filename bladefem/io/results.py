@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import json
-import os
-import tempfile
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ..files import write_atomic
 from ..modal import CampbellResult, ModalResult
+
+__all__ = ["campbell_to_dict", "dumps", "modal_to_dict", "write_atomic"]
 
 
 def _floats(values: np.ndarray) -> list[float]:
@@ -43,20 +43,6 @@ def campbell_to_dict(result: CampbellResult) -> dict[str, Any]:
             "families": [{"kind": family.kind, "frequencies_hz": _floats(family.frequencies_hz),
                           "min_mac": float(family.mac.min())} for family in result.families],
             "notes": list(result.notes)}
-
-
-def write_atomic(path: str | os.PathLike, data: bytes | str) -> None:
-    """Write a whole file or nothing: write a temporary file in the same folder, then rename it."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(data.encode() if isinstance(data, str) else data)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
 
 
 def dumps(data: dict[str, Any]) -> str:

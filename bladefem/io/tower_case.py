@@ -36,8 +36,17 @@ import numpy as np
 
 from ..errors import InputError
 from ..sections import SectionTable
-from ..sections.tower import STANDARD_GRAVITY, Foundation, Platform, SoilSprings, Supports, TopMass, Tower, Wires
-from .case import _Case
+from ..sections.tower import (
+    STANDARD_GRAVITY,
+    Foundation,
+    Platform,
+    SoilSprings,
+    Supports,
+    TopMass,
+    Tower,
+    Wires,
+)
+from .case import CaseFile
 from .yamlnodes import Key, load_yaml
 
 #: case-file column -> SectionTable field
@@ -65,7 +74,7 @@ SOIL_COLUMNS = {"height_m": "height", "lateral_N_per_m2": "lateral", "axial_N_pe
                 "torsional_N_m_per_m": "torsional"}
 
 
-class _TowerCase(_Case):
+class _TowerCase(CaseFile):
     """The case reader's value access, also through list indices (for the list of wires)."""
 
     def get(self, key: Key) -> Any:
@@ -80,7 +89,7 @@ class _TowerCase(_Case):
         return value
 
 
-def _keys(case: _Case, key: Key, known: set[str] | dict[str, str]) -> dict:
+def _keys(case: CaseFile, key: Key, known: set[str] | dict[str, str]) -> dict:
     value = case.get(key)
     if not isinstance(value, dict):
         raise case.error("expected a mapping", key)
@@ -90,7 +99,7 @@ def _keys(case: _Case, key: Key, known: set[str] | dict[str, str]) -> dict:
     return value
 
 
-def _array(case: _Case, key: Key, shapes: tuple[tuple[int, ...], ...]) -> np.ndarray:
+def _array(case: CaseFile, key: Key, shapes: tuple[tuple[int, ...], ...]) -> np.ndarray:
     """A list (of lists) of numbers with one of the given shapes."""
     value = case.get(key)
     try:
@@ -113,7 +122,7 @@ def _looks_numeric(value: object) -> bool:
     return isinstance(value, str)
 
 
-def _table(case: _Case, key: Key, columns_map: dict[str, str], required: tuple[str, ...]) -> dict[str, np.ndarray]:
+def _table(case: CaseFile, key: Key, columns_map: dict[str, str], required: tuple[str, ...]) -> dict[str, np.ndarray]:
     """A ``columns``/``rows`` table as arrays by the mapped names; errors name the row's line."""
     data = _keys(case, key, {"columns", "rows"})
     columns, rows = data.get("columns"), data.get("rows")
@@ -143,7 +152,7 @@ def _table(case: _Case, key: Key, columns_map: dict[str, str], required: tuple[s
     return {target: values[:, j] for j, target in enumerate(targets)} | {"_columns": np.array(columns)}
 
 
-def _sections(case: _Case) -> SectionTable:
+def _sections(case: CaseFile) -> SectionTable:
     key: Key = ("sections",)
     table = _table(case, key, COLUMNS, REQUIRED)
     columns = list(table.pop("_columns"))
@@ -158,7 +167,7 @@ def _sections(case: _Case) -> SectionTable:
     return SectionTable(**table, source=str(case.path), lines=lines)
 
 
-def _top_mass(case: _Case) -> TopMass | None:
+def _top_mass(case: CaseFile) -> TopMass | None:
     key: Key = ("top_mass",)
     if case.get(key) is None:
         return None
@@ -172,7 +181,7 @@ def _top_mass(case: _Case) -> TopMass | None:
     return _located(case, key + ("inertia_kg_m2",), lambda: TopMass(mass, offset, inertia))
 
 
-def _located(case: _Case, key: Key, build: Any) -> Any:
+def _located(case: CaseFile, key: Key, build: Any) -> Any:
     """Run a constructor; an InputError it raises is given this key's file and line."""
     try:
         return build()
@@ -180,7 +189,7 @@ def _located(case: _Case, key: Key, build: Any) -> Any:
         raise case.error(error.message, key, error.field) from None
 
 
-def _supports(case: _Case) -> Supports:
+def _supports(case: CaseFile) -> Supports:
     key: Key = ("supports",)
     if case.get(key) is None:
         return Supports()

@@ -22,7 +22,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import tempfile
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,11 +31,18 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
+from ..files import atomic_path
 from ..modal import KINDS, CampbellResult, ModalResult
 from ..modal.results import Mode
 from ..sections import Blade
 from .results import campbell_to_dict, dumps, write_atomic
-from .vtk_geometry import ModeDisplacement, axis_positions, has_planform, mode_displacement, surface_positions
+from .vtk_geometry import (
+    ModeDisplacement,
+    axis_positions,
+    has_planform,
+    mode_displacement,
+    surface_positions,
+)
 
 FORMAT = "bladefem-vtk-1"
 FRAME = ("rotor frame: origin at the rotor apex; z along the shaft axis, downwind; x radial through the blade "
@@ -139,17 +145,10 @@ def write_mesh_atomic(path: Path, mesh, field_data: dict[str, NDArray] | None = 
     then renamed."""
     import meshio
 
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".vtu")
-    os.close(handle)
-    try:
+    with atomic_path(path) as temporary:
         meshio.write(temporary, mesh, file_format="vtu")
         if field_data:
-            text = Path(temporary).read_text()
-            Path(temporary).write_text(with_field_data(text, field_data))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+            temporary.write_text(with_field_data(temporary.read_text(), field_data))
 
 
 def collection_xml(entries: list[tuple[float, int, str, str]]) -> str:

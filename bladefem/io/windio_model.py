@@ -20,8 +20,9 @@ import yaml
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..files import write_atomic
 from ..sections import Blade, SectionTable, TipMass
-from ._fast_format import degrees_exact, write_atomically
+from ._fast_format import degrees_exact
 from .tower import Tower
 from .windio import WindIOBeam, WindIOTurbine
 
@@ -173,5 +174,5 @@ def windio_text(turbine: WindIOTurbine) -> str:
 
 def write_windio(turbine: WindIOTurbine, path: str | Path) -> None:
     """Write :func:`windio_text` atomically."""
-    write_atomically(path, windio_text(turbine))
+    write_atomic(path, windio_text(turbine))
 

@@ -19,10 +19,10 @@ MESH_RTOL = 1e-6
 MAX_ELEMENTS = 800
 
 
-def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
+def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL, rpm: float = 0.0,
                        start: int | None = None, max_elements: int = MAX_ELEMENTS) -> BladeMatrices:
-    """Matrices on the coarsest mesh (of ``start`` elements doubled) whose lowest ``n_modes`` non-rotating
-    frequencies are within ``rtol`` (relative) of the converged ones.
+    """Matrices on the coarsest mesh (of ``start`` elements doubled) whose lowest ``n_modes`` frequencies at rotor
+    speed ``rpm`` (rpm) are within ``rtol`` (relative) of the converged ones.
 
     A mesh is accepted when halving its elements changes the frequencies by less than ``rtol / 2``: its error is
     then about that change where the error already falls as h^4, and at most twice it where rough section
@@ -31,11 +31,11 @@ def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
     """
     elements = start or max(24, blade.sections.stations - 1)
     coarse = assemble_blade(blade, elements)
-    previous = solve_modes(coarse, 0.0, n_modes).frequencies_hz
+    previous = solve_modes(coarse, rpm, n_modes).frequencies_hz
     while True:
         elements *= 2
         fine = assemble_blade(blade, elements)
-        current = solve_modes(fine, 0.0, n_modes).frequencies_hz
+        current = solve_modes(fine, rpm, n_modes).frequencies_hz
         change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300))
         if change < rtol / 2:
             return coarse
@@ -46,9 +46,9 @@ def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
         coarse, previous = fine, current
 
 
-def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10) -> BladeMatrices:
-    """Matrices on a mesh of about ``elements`` elements, or on an automatically converged mesh (None)."""
-    return converged_matrices(blade, n_modes) if elements is None else assemble_blade(blade, elements)
+def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10, rpm: float = 0.0) -> BladeMatrices:
+    """Matrices on a mesh of about ``elements`` elements, or on a mesh converged at ``rpm`` (None)."""
+    return converged_matrices(blade, n_modes, rpm=rpm) if elements is None else assemble_blade(blade, elements)
 
 
 def modes(blade: Blade, rpm: float = 0.0, n_modes: int = 10, elements: int | None = None) -> ModalResult:
@@ -57,13 +57,13 @@ def modes(blade: Blade, rpm: float = 0.0, n_modes: int = 10, elements: int | Non
     ``elements``: target number of elements over the span (stations are always nodes), or None for a mesh refined
     until the frequencies converge to 1e-6.
     """
-    matrices = blade_matrices(blade, elements, n_modes)
+    matrices = blade_matrices(blade, elements, n_modes, rpm)
     return solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
 
 
 def campbell(blade: Blade, rpm: Sequence[float], n_modes: int = 6, elements: int | None = None) -> CampbellResult:
     """Modes over rotor speeds ``rpm`` (rpm), families tracked by MAC; the matrices are assembled once."""
-    matrices = blade_matrices(blade, elements, n_modes)
+    matrices = blade_matrices(blade, elements, n_modes, float(np.max(rpm)))
     return campbell_sweep(matrices, rpm, n_modes, blade.notes + matrices.notes)
 
 

@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from ..assembly import BladeMatrices
 from ..elements import FIELD_KINDS
-from .results import KINDS, Mode, ModalResult, ModeShape
+from .results import KINDS, ModalResult, Mode, ModeShape
 
 #: Systems up to this many free DOFs (or asking for a third of all modes) use dense LAPACK; larger ones use
 #: ARPACK shift-invert Lanczos, which is faster there (4 ms against 70 ms for the 268-DOF 5MW blade)

@@ -17,7 +17,14 @@ from numpy.typing import NDArray
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import InputError
-from ..modal.results import KINDS, CampbellResult, ModalResult, Mode, ModeFamily, ModeShape
+from ..modal.results import (
+    KINDS,
+    CampbellResult,
+    ModalResult,
+    Mode,
+    ModeFamily,
+    ModeShape,
+)
 from ..sections import Blade
 from .galerkin_basis import BASES, Basis, bending_shapes, torsion_shapes
 from .galerkin_matrices import GalerkinMatrices, Terms, galerkin_matrices

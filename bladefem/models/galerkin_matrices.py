@@ -16,8 +16,13 @@ from numpy.typing import NDArray
 
 from ..sections import Blade, bending_stiffness, mass_moments
 from .galerkin_basis import Basis, bending_shapes, torsion_shapes
-from .galerkin_terms import (axial_centrifugal_force, kinetic_form, rotation_second_order_form,
-                             spin_softening_form, tension_form)
+from .galerkin_terms import (
+    axial_centrifugal_force,
+    kinetic_form,
+    rotation_second_order_form,
+    spin_softening_form,
+    tension_form,
+)
 
 #: The span is cut into at least this many quadrature cells (station intervals are subdivided evenly).
 MIN_CELLS = 24

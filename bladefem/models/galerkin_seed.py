@@ -16,8 +16,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..sections import Blade
-from .galerkin_matrices import (GalerkinMatrices, axial_force_density, cell_edges, centrifugal_tension,
-                                gauss_on_cells, integrate, kinematics, sym, tension_form)
+from .galerkin_matrices import (
+    GalerkinMatrices,
+    axial_force_density,
+    cell_edges,
+    centrifugal_tension,
+    gauss_on_cells,
+    integrate,
+    kinematics,
+    sym,
+    tension_form,
+)
 
 #: Table 1: mode -> (FAST Modes, ADAMS, the paper's Galerkin model), Hz; None where the paper has no value.
 SEED_TABLE1: dict[str, tuple[float | None, float | None, float]] = {

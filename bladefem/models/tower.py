@@ -23,13 +23,20 @@ from numpy.typing import NDArray
 from ..assembly.dofs import DofMap
 from ..assembly.supports import BASE_FIELDS, BASE_SIZE, PLATFORM_KINDS
 from ..assembly.tower import TowerMatrices, assemble_tower
-from ..modal.results import ModalResult, Mode
-from ..modal.solve import DENSE_LIMIT, eigen_pairs, mode_shape
 from ..io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
 from ..io.elastodyn_main import ElastoDynMain, read_elastodyn_main
 from ..io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
-from ..sections.tower import (STANDARD_GRAVITY, RigidPart, TopMass, Tower, as_tower, combine_parts,
-                              openfast_vector)
+from ..modal.results import ModalResult, Mode
+from ..modal.solve import DENSE_LIMIT, eigen_pairs, mode_shape
+from ..sections.tower import (
+    STANDARD_GRAVITY,
+    RigidPart,
+    TopMass,
+    Tower,
+    as_tower,
+    combine_parts,
+    openfast_vector,
+)
 
 #: tower kind of each beam field
 TOWER_FIELD_KINDS: dict[str, str] = {"w": "fore-aft", "v": "side-side", "phi": "torsion", "u": "axial"}

@@ -17,7 +17,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..io.results import write_atomic
-from ..io.vtk_geometry import ModeDisplacement, axis_positions, has_planform, mode_displacement, surface_positions
+from ..io.vtk_geometry import (
+    ModeDisplacement,
+    axis_positions,
+    has_planform,
+    mode_displacement,
+    surface_positions,
+)
 from ..modal.results import ModalResult, Mode
 from ..sections import Blade
 

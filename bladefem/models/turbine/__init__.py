@@ -7,7 +7,13 @@ linearized (``linearize``, ``campbell``). See docs/turbine.md.
 
 from .kane import TurbineModel
 from .parameters import BLADE_DOFS, PLATFORM_DOFS, TurbineParameters, dof_names
-from .shapes import ModalBeam, closed_form_cantilever, hermite_evaluator, polynomial_evaluator, sample_beam
+from .shapes import (
+           ModalBeam,
+           closed_form_cantilever,
+           hermite_evaluator,
+           polynomial_evaluator,
+           sample_beam,
+)
 from .system import FreeSystem, select_dofs
 
 __all__ = ["BLADE_DOFS", "PLATFORM_DOFS", "FreeSystem", "ModalBeam", "TurbineModel", "TurbineParameters",

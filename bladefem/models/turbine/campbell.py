@@ -4,14 +4,13 @@ rotor speed, followed by their names."""
 from __future__ import annotations
 
 import os
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ...files import atomic_path
 from .kane import TurbineModel
 from .linearize import LinearModel, linearize
 
@@ -78,11 +77,8 @@ def plot_campbell(result: TurbineCampbell, path: str | os.PathLike, harmonics: S
     axis.grid(alpha=0.3)
     axis.legend(fontsize=6, ncol=2)
     figure.tight_layout()
-    handle, temporary = tempfile.mkstemp(dir=Path(path).resolve().parent, prefix=".tmp-", suffix=Path(path).suffix)
-    os.close(handle)
     try:
-        figure.savefig(temporary, dpi=120)
-        os.replace(temporary, path)
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, dpi=120)
     finally:
-        Path(temporary).unlink(missing_ok=True)
         plt.close(figure)

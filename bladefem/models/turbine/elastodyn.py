@@ -12,11 +12,21 @@ from numpy.typing import NDArray
 from ...errors import InputError
 from ...io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
 from ...io.elastodyn_main import read_elastodyn_main
-from ...io.elastodyn_tower import ElastoDynTowerFile, read_elastodyn_tower, tower_from_elastodyn
+from ...io.elastodyn_tower import (
+    ElastoDynTowerFile,
+    read_elastodyn_tower,
+    tower_from_elastodyn,
+)
 from ...modal.results import ModalResult
 from ...sections import Blade, SectionTable, bending_stiffness, total_angle
 from .parameters import TurbineParameters
-from .shapes import ModalBeam, hermite_evaluator, polynomial_evaluator, sample_beam, twisted_polynomial_nodes
+from .shapes import (
+    ModalBeam,
+    hermite_evaluator,
+    polynomial_evaluator,
+    sample_beam,
+    twisted_polynomial_nodes,
+)
 
 #: NREL 5MW nacelle-yaw spring and damper (ServoDyn YawSpr, YawDamp; not in the ElastoDyn main file)
 NREL5MW_YAW_STIFFNESS = 9.02832e9

@@ -15,8 +15,20 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .kinematics import (BeamNodes, FrameMotion, NodeGroup, PointMotion, at_rest, axis_rotation, carry, carry_nodes,
-                         earth, rotate, skew, turn)
+from .kinematics import (
+    BeamNodes,
+    FrameMotion,
+    NodeGroup,
+    PointMotion,
+    at_rest,
+    axis_rotation,
+    carry,
+    carry_nodes,
+    earth,
+    rotate,
+    skew,
+    turn,
+)
 from .parameters import TurbineParameters
 
 

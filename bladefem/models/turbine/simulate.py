@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import os
-import tempfile
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from ...files import atomic_path, write_atomic
 from .kane import TurbineModel
 from .system import FreeSystem
 
@@ -141,19 +140,6 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
                             evaluations=count[0])
 
 
-def write_atomically(path: str | os.PathLike, text: str) -> None:
-    """Write through a temporary file in the same folder and an atomic rename."""
-    folder = Path(path).resolve().parent
-    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=Path(path).suffix)
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-
-
 def table_text(result: SimulationResult) -> str:
     """CSV text: time and every output channel, with units in the header."""
     names = list(CHANNELS)
@@ -165,7 +151,7 @@ def table_text(result: SimulationResult) -> str:
 
 def write_table(result: SimulationResult, path: str | os.PathLike) -> None:
     """Write the output table as CSV, atomically."""
-    write_atomically(path, table_text(result))
+    write_atomic(path, table_text(result))
 
 
 def plot_outputs(result: SimulationResult, path: str | os.PathLike,
@@ -183,12 +169,8 @@ def plot_outputs(result: SimulationResult, path: str | os.PathLike,
         axis.grid(alpha=0.3)
     np.atleast_1d(axes)[-1].set_xlabel("time [s]")
     figure.tight_layout()
-    folder = Path(path).resolve().parent
-    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=Path(path).suffix)
-    os.close(handle)
     try:
-        figure.savefig(temporary, dpi=120)
-        os.replace(temporary, path)
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, dpi=120)
     finally:
-        Path(temporary).unlink(missing_ok=True)
         plt.close(figure)
