@@ -84,7 +84,8 @@ def run_export(args: argparse.Namespace) -> int:
     out = Path(args.output)
     written: list[Path] = []
     if len(args.rpm) > 1:
-        result = sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes, progress_bar("Campbell sweep", args.quiet))
+        result = sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes,
+                       progress_bar("Campbell sweep", args.quiet))
         if args.png:
             from ..plots.campbell import save_campbell_plot
             written.append(out / "campbell.png")

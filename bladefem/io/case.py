@@ -71,12 +71,33 @@ class CaseFile:
         return InputError(message, file=str(self.path), line=line, field=field or ".".join(map(str, key)))
 
     def get(self, key: Key) -> Any:
+        """The value at a key path (mapping keys and list indices), or None where there is none."""
         value = self.data
         for part in key:
-            if not isinstance(value, dict) or part not in value:
+            if isinstance(value, dict) and part in value:
+                value = value[part]
+            elif isinstance(value, list) and isinstance(part, int) and 0 <= part < len(value):
+                value = value[part]
+            else:
                 return None
-            value = value[part]
         return value
+
+    @classmethod
+    def open(cls, path: str | Path, kind: str, known_keys: set[str]) -> CaseFile:
+        """Parse a case file and check its top level: a mapping of known keys with ``kind: <kind>`` (a blade case
+        may leave ``kind`` out)."""
+        path = Path(path)
+        data, lines = load_yaml(path)
+        case = cls(path, data, lines)
+        if not isinstance(data, dict):
+            raise case.error("expected a mapping of keys at the top level", ())
+        for name in data:
+            if name not in known_keys:
+                raise case.error(f"unknown key (known: {', '.join(sorted(known_keys))})", (name,), str(name))
+        found = data.get("kind", "blade")
+        if found != kind:
+            raise case.error(f"expected 'kind: {kind}', got {found!r}", ("kind",))
+        return case
 
     def number(self, key: Key, default: float | None = None, field: str | None = None) -> float:
         value = self.get(key)
@@ -132,17 +153,8 @@ def _section_table(case: CaseFile, hub_radius: float) -> SectionTable:
 
 def read_case(path: str | Path) -> Blade:
     """Read a bladefem YAML case file into a :class:`~bladefem.sections.Blade`."""
-    path = Path(path)
-    data, lines = load_yaml(path)
-    case = CaseFile(path, data, lines)
-    if not isinstance(data, dict):
-        raise case.error("expected a mapping of keys at the top level", ())
-    for key in data:
-        if key not in TOP_KEYS:
-            raise case.error(f"unknown key (known: {', '.join(sorted(TOP_KEYS))})", (key,), str(key))
-    kind = data.get("kind", "blade")
-    if kind != "blade":
-        raise case.error(f"unknown kind '{kind}' (this reader takes 'blade')", ("kind",))
+    case = CaseFile.open(path, "blade", TOP_KEYS)
+    path, data = case.path, case.data
     hub_radius = case.number(("hub_radius_m",), 0.0)
     if hub_radius < 0:
         raise case.error("must not be negative", ("hub_radius_m",))

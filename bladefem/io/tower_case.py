@@ -74,21 +74,6 @@ SOIL_COLUMNS = {"height_m": "height", "lateral_N_per_m2": "lateral", "axial_N_pe
                 "torsional_N_m_per_m": "torsional"}
 
 
-class _TowerCase(CaseFile):
-    """The case reader's value access, also through list indices (for the list of wires)."""
-
-    def get(self, key: Key) -> Any:
-        value = self.data
-        for part in key:
-            if isinstance(value, dict) and part in value:
-                value = value[part]
-            elif isinstance(value, list) and isinstance(part, int) and 0 <= part < len(value):
-                value = value[part]
-            else:
-                return None
-        return value
-
-
 def _keys(case: CaseFile, key: Key, known: set[str] | dict[str, str]) -> dict:
     value = case.get(key)
     if not isinstance(value, dict):
@@ -244,16 +229,8 @@ def is_tower_case(path: str | Path) -> bool:
 
 def read_tower_case(path: str | Path) -> Tower:
     """Read a bladefem YAML tower case into a :class:`~bladefem.sections.tower.Tower`."""
-    path = Path(path)
-    data, lines = load_yaml(path)
-    case = _TowerCase(path, data, lines)
-    if not isinstance(data, dict):
-        raise case.error("expected a mapping of keys at the top level", ())
-    for name in data:
-        if name not in TOP_KEYS:
-            raise case.error(f"unknown key (known: {', '.join(sorted(TOP_KEYS))})", (name,), str(name))
-    if data.get("kind") != "tower":
-        raise case.error(f"expected 'kind: tower', got {data.get('kind')!r}", ("kind",))
+    case = CaseFile.open(path, "tower", TOP_KEYS)
+    data = case.data
     gravity = case.number(("gravity_m_s2",), STANDARD_GRAVITY)
     if gravity < 0:
         raise case.error("must not be negative (0 switches gravity off)", ("gravity_m_s2",))

@@ -51,6 +51,16 @@ class ModeShape:
                 "axial": np.interp(x, self.x, self.axial)}
 
 
+def signed_frequency_hz(eigenvalue: float) -> float:
+    """Natural frequency (Hz) from omega^2 (rad^2/s^2); negative for a negative eigenvalue (statically unstable)."""
+    return float(np.sign(eigenvalue) * np.sqrt(abs(eigenvalue)) / (2 * np.pi))
+
+
+def dominant_kind(fractions: dict[str, float]) -> str:
+    """The kind with the largest kinetic-energy share."""
+    return max(fractions, key=fractions.get)  # type: ignore[arg-type]
+
+
 @dataclass(frozen=True)
 class Mode:
     """One natural mode.

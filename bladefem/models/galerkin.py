@@ -24,6 +24,8 @@ from ..modal.results import (
     Mode,
     ModeFamily,
     ModeShape,
+    dominant_kind,
+    signed_frequency_hz,
 )
 from ..sections import Blade
 from .galerkin_basis import BASES, Basis, bending_shapes, torsion_shapes
@@ -123,9 +125,8 @@ def solve(blade: Blade, matrices: GalerkinMatrices, rpm: float, n_modes: int,
     fractions = energy_fractions(matrices, vectors)
     modes = []
     for j, value in enumerate(values):
-        kind = max(fractions[j], key=fractions[j].get)
-        frequency = np.sign(value) * np.sqrt(abs(value)) / (2 * np.pi)   # negative: statically unstable
-        modes.append(Mode(frequency_hz=float(frequency), kind=kind, energy_fractions=fractions[j],
+        kind = dominant_kind(fractions[j])
+        modes.append(Mode(frequency_hz=signed_frequency_hz(value), kind=kind, energy_fractions=fractions[j],
                           residual=float(residuals[j]), shape=mode_shape(blade, matrices, vectors[:, j], kind)))
     return ModalResult(rotor_speed_rpm=float(rpm), modes=modes, stations=blade.sections.span.copy(),
                        vectors=vectors, n_dofs=matrices.terms.size, notes=blade.notes + notes)
