@@ -95,9 +95,13 @@ def test_free_floating_platform_has_zero_frequency_rigid_modes():
     result = tower_modes(tower.with_(supports=Supports(platform=unmoored)), 6, elements=20)
     omega = {mode.kind: 2 * np.pi * mode.frequency_hz for mode in result.modes}
     # K is singular (no surge, sway, yaw stiffness): the shifted inverse problem resolves omega^2 to ~1e-16 times
-    # the shift (~10 rad^2/s^2), so the free motions come out at |omega| < 1e-6 rad/s
+    # the shift (~10 rad^2/s^2), so the free motions come out at |omega| < 1e-6 rad/s. The three share omega = 0,
+    # so any rotation of them within that null space is as valid: check the space, not each mode's label.
+    free = sorted(result.modes, key=lambda mode: abs(mode.frequency_hz))[:3]
+    assert all(abs(2 * np.pi * mode.frequency_hz) < 1e-6 for mode in free)
+    assert {mode.kind for mode in free} <= {"surge", "sway", "yaw"}
     for kind in ("surge", "sway", "yaw"):
-        assert abs(omega[kind]) < 1e-6
+        assert sum(mode.energy_fractions[kind] for mode in free) > 0.5
     assert omega["heave"] == pytest.approx(np.sqrt(HYDROSTATIC[2, 2] / (TOTAL_MASS + ADDED[2, 2])), rel=1e-5)
     assert omega["pitch"] == pytest.approx(np.sqrt(HYDROSTATIC[4, 4] / (pitch_inertia(depth) + ADDED[4, 4])),
                                            rel=1e-5)
