@@ -132,6 +132,11 @@ class SectionTable:
             bad = np.flatnonzero(value <= 0)
             if bad.size:
                 raise self._error(f"must be positive, got {value[bad[0]]}", int(bad[0]), name)
+        if self.axial_stiffness is None and np.any(self.tension_centre_offset != 0):
+            i = int(np.flatnonzero(self.tension_centre_offset)[0])
+            raise self._error("a tension-centre offset needs the axial stiffness (EA): with the axial DOF removed the "
+                              "reference axis, not the tension centre, would be held inextensible", i,
+                              "tension_centre_offset")
         for name in ("flap_inertia", "edge_inertia"):
             bad = np.flatnonzero(getattr(self, name) < 0)
             if bad.size:
