@@ -79,7 +79,7 @@ ROW = "    - [1.0, 1.0, 1.0, 4.0, 0.01, 1.0e-4, 1.0e-3]"
     (ROW, "    - [0.0, 1.0, 1.0, 4.0, 0.01, 1.0e-4, 1.0e-3]", "span"),               # stations not increasing
     (ROW, "    - [1.0, -1.0, 1.0, 4.0, 0.01, 1.0e-4, 1.0e-3]", "mass"),              # non-positive mass
     (ROW, "    - [1.0, 1.0, 0.0, 4.0, 0.01, 1.0e-4, 1.0e-3]", "flap_stiffness"),     # non-positive stiffness
-    (ROW, "    - [1.0, 1.0, .nan, 4.0, 0.01, 1.0e-4, 1.0e-3]", "flap_stiffness"),   # NaN
+    (ROW, "    - [1.0, 1.0, .nan, 4.0, 0.01, 1.0e-4, 1.0e-3]", "flap_stiffness_N_m2"),  # NaN
     (ROW, "    - [1.0, 1.0, abc, 4.0, 0.01, 1.0e-4, 1.0e-3]", "flap_stiffness_N_m2"),  # not a number
     ("root: cantilever", "root: wobbly", "root"),                                  # unknown value
 ])

@@ -21,6 +21,7 @@ Example (every unit is in the key name; see the README for all keys)::
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -109,45 +110,67 @@ class CaseFile:
             raise self.error(f"expected a finite number, got {value!r}", key, field)
         return float(value)
 
+    def table(self, key: Key, columns_map: dict[str, str], required: Sequence[str]) -> dict[str, np.ndarray]:
+        """A ``columns``/``rows`` table at ``key`` as arrays by the mapped names (plus ``_columns``, the names as
+        given); every error names the line of the offending row or column list."""
+        data = self.get(key)
+        if not isinstance(data, dict):
+            raise self.error("expected a mapping with 'columns' and 'rows'", key)
+        for name in data:
+            if name not in ("columns", "rows"):
+                raise self.error("unknown key (known: columns, rows)", key + (name,), str(name))
+        columns, rows = data.get("columns"), data.get("rows")
+        if not isinstance(columns, list) or not columns:
+            raise self.error("expected a list of column names", key + ("columns",))
+        for i, name in enumerate(columns):
+            if name not in columns_map:
+                raise self.error(f"unknown column '{name}' (known: {', '.join(columns_map)})", key + ("columns", i),
+                                 str(name))
+        targets = [columns_map[name] for name in columns]
+        if len(set(targets)) != len(targets):
+            raise self.error("a quantity is given twice", key + ("columns",))
+        for name in required:
+            if name not in columns:
+                raise self.error(f"required column '{name}' is missing", key + ("columns",))
+        if not isinstance(rows, list) or len(rows) < 2:
+            raise self.error("expected at least two rows", key + ("rows",))
+        values = np.empty((len(rows), len(columns)))
+        for i, row in enumerate(rows):
+            if not isinstance(row, list) or len(row) != len(columns):
+                count = len(row) if isinstance(row, list) else 1
+                raise self.error(f"row has {count} values, expected {len(columns)} ({', '.join(columns)})",
+                                 key + ("rows", i), "rows")
+            for j, value in enumerate(row):
+                if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                    hint = " (YAML reads 1e11 as text: write 1.0e+11)" if _looks_numeric(value) else ""
+                    raise self.error(f"expected a finite number, got {value!r}{hint}", key + ("rows", i, j),
+                                     columns[j])
+                values[i, j] = value
+        return {target: values[:, j] for j, target in enumerate(targets)} | {"_columns": np.array(columns)}
+
+
+def _looks_numeric(value: object) -> bool:
+    """A string that would have been a number (PyYAML reads 1e11 without a dot or sign as text)."""
+    try:
+        float(str(value))
+    except ValueError:
+        return False
+    return isinstance(value, str)
+
 
 def _section_table(case: CaseFile, hub_radius: float) -> SectionTable:
     key: Key = ("sections",)
-    sections = case.get(key)
-    if not isinstance(sections, dict):
-        raise case.error("missing 'sections' mapping with 'columns' and 'rows'", key)
-    columns, rows = sections.get("columns"), sections.get("rows")
-    if not isinstance(columns, list) or not columns:
-        raise case.error("expected a list of column names", key + ("columns",))
-    for i, name in enumerate(columns):
-        if name not in COLUMNS:
-            raise case.error(f"unknown column '{name}' (known: {', '.join(COLUMNS)})", key + ("columns", i), str(name))
-    if len(set(columns)) != len(columns):
-        raise case.error("a column is named twice", key + ("columns",))
-    spans = [c for c in columns if COLUMNS[c][0] == "span"]
-    if len(spans) != 1:
-        raise case.error("give exactly one of span_m or span_fraction", key + ("columns",))
-    for name in REQUIRED_COLUMNS:
-        if name not in columns:
-            raise case.error(f"required column '{name}' is missing", key + ("columns",))
-    if not isinstance(rows, list) or len(rows) < 2:
-        raise case.error("expected at least two rows", key + ("rows",))
-    values = np.empty((len(rows), len(columns)))
-    for i, row in enumerate(rows):
-        if not isinstance(row, list) or len(row) != len(columns):
-            count = len(row) if isinstance(row, list) else 1
-            raise case.error(f"row has {count} values, expected {len(columns)} ({', '.join(columns)})",
-                             key + ("rows", i), "rows")
-        for j, value in enumerate(row):
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise case.error(f"expected a number, got {value!r}", key + ("rows", i, j), columns[j])
-            values[i, j] = value
-    table = {COLUMNS[name][0]: values[:, j] * COLUMNS[name][1] for j, name in enumerate(columns)}
+    given = case.table(key, {name: field for name, (field, _) in COLUMNS.items()}, REQUIRED_COLUMNS)
+    columns = [str(name) for name in given.pop("_columns")]
+    if "span" not in given:
+        raise case.error("give one of span_m or span_fraction", key + ("columns",))
+    table = {COLUMNS[name][0]: given[COLUMNS[name][0]] * COLUMNS[name][1] for name in columns}
     if "span_fraction" in columns:
         tip = case.number(("tip_radius_m",), field="tip_radius_m")
         if tip <= hub_radius:
             raise case.error("tip_radius_m must exceed hub_radius_m", ("tip_radius_m",))
         table["span"] = table["span"] * (tip - hub_radius)
-    lines = tuple(case.lines.get(key + ("rows", i), 0) for i in range(len(rows)))
+    lines = tuple(case.lines.get(key + ("rows", i), 0) for i in range(len(table["span"])))
     return SectionTable(**table, source=str(case.path), lines=lines)
 
 

@@ -99,47 +99,9 @@ def _array(case: CaseFile, key: Key, shapes: tuple[tuple[int, ...], ...]) -> np.
     return array
 
 
-def _looks_numeric(value: object) -> bool:
-    try:
-        float(str(value))
-    except ValueError:
-        return False
-    return isinstance(value, str)
-
-
-def _table(case: CaseFile, key: Key, columns_map: dict[str, str], required: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """A ``columns``/``rows`` table as arrays by the mapped names; errors name the row's line."""
-    data = _keys(case, key, {"columns", "rows"})
-    columns, rows = data.get("columns"), data.get("rows")
-    if not isinstance(columns, list) or not columns:
-        raise case.error("expected a list of column names", key + ("columns",))
-    for i, name in enumerate(columns):
-        if name not in columns_map:
-            raise case.error(f"unknown column '{name}' (known: {', '.join(columns_map)})", key + ("columns", i),
-                             str(name))
-    targets = [columns_map[name] for name in columns]
-    if len(set(targets)) != len(targets):
-        raise case.error("a quantity is given twice", key + ("columns",))
-    for name in required:
-        if name not in columns:
-            raise case.error(f"required column '{name}' is missing", key + ("columns",))
-    if not isinstance(rows, list) or len(rows) < 2:
-        raise case.error("expected at least two rows", key + ("rows",))
-    values = np.empty((len(rows), len(columns)))
-    for i, row in enumerate(rows):
-        if not isinstance(row, list) or len(row) != len(columns):
-            raise case.error(f"row needs {len(columns)} values ({', '.join(columns)})", key + ("rows", i), "rows")
-        for j, value in enumerate(row):
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                hint = " (YAML reads 1e11 as text: write 1.0e+11)" if _looks_numeric(value) else ""
-                raise case.error(f"expected a finite number, got {value!r}{hint}", key + ("rows", i, j), columns[j])
-            values[i, j] = value
-    return {target: values[:, j] for j, target in enumerate(targets)} | {"_columns": np.array(columns)}
-
-
 def _sections(case: CaseFile) -> SectionTable:
     key: Key = ("sections",)
-    table = _table(case, key, COLUMNS, REQUIRED)
+    table = case.table(key, COLUMNS, REQUIRED)
     columns = list(table.pop("_columns"))
     if ("height_m" in columns) == ("height_fraction" in columns):
         raise case.error("give exactly one of height_m or height_fraction", key + ("columns",))
@@ -211,7 +173,7 @@ def _supports(case: CaseFile) -> Supports:
     soil = None
     if data.get("soil") is not None:
         item = key + ("soil",)
-        table = _table(case, item, SOIL_COLUMNS, ("height_m", "lateral_N_per_m2"))
+        table = case.table(item, SOIL_COLUMNS, ("height_m", "lateral_N_per_m2"))
         table.pop("_columns")
         soil = _located(case, item, lambda: SoilSprings(**table))
     return _located(case, key, lambda: Supports(wires=tuple(wires), foundation=foundation, platform=platform,
