@@ -29,8 +29,8 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from bladefem.io.turbine_elastodyn import turbine_from_elastodyn  # noqa: E402
 from bladefem.models.turbine import FreeSystem, TurbineModel  # noqa: E402
-from bladefem.models.turbine.elastodyn import turbine_from_elastodyn  # noqa: E402
 from bladefem.models.turbine.simulate import simulate  # noqa: E402
 
 MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

@@ -13,8 +13,9 @@ from pathlib import Path
 from bladefem.io.elastodyn_blade import blade_from_elastodyn_main, read_elastodyn_blade
 from bladefem.io.elastodyn_main import read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
-from bladefem.modal.elastodyn_fit import blade_coefficients, tower_coefficients
-from bladefem.models.tower import elastodyn_tower
+from bladefem.io.tower_elastodyn import elastodyn_tower
+from bladefem.modal.elastodyn_fit import blade_coefficients
+from bladefem.models.tower_fit import tower_coefficients
 
 CASE = Path(__file__).resolve().parent.parent / "cases" / "nrel5mw"
 MAIN = CASE / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

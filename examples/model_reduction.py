@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 
 from bladefem.files import write_atomic
+from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
-from bladefem.models.turbine.elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine.simulate import SimulationResult, simulate
 
 MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

@@ -20,9 +20,9 @@ from bladefem.modal.elastodyn_fit import (
     fitting_target,
     modes_of_kind,
     polynomial,
-    tower_coefficients,
 )
 from bladefem.modal.results import ModalResult, Mode, ModeShape
+from bladefem.models.tower_fit import tower_coefficients
 from bladefem.sections import Blade, uniform_sections
 
 DATA = Path(__file__).parent / "data"

@@ -14,7 +14,8 @@ from bladefem.errors import InputError
 from bladefem.io.elastodyn_main import read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower
 from bladefem.io.tower_case import read_tower_case
-from bladefem.models.tower import elastodyn_top_mass, tower_modes
+from bladefem.io.tower_elastodyn import elastodyn_top_mass
+from bladefem.models.tower import tower_modes
 
 CASES = Path(__file__).parent.parent / "cases"
 

@@ -18,8 +18,9 @@ from bladefem.assembly.tower import mass_above
 from bladefem.io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
 from bladefem.io.elastodyn_main import read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
+from bladefem.io.tower_elastodyn import elastodyn_top_mass, elastodyn_tower
 from bladefem.modal.elastodyn_fit import polynomial
-from bladefem.models.tower import elastodyn_top_mass, elastodyn_tower, tower_modes
+from bladefem.models.tower import tower_modes
 
 CASE = Path(__file__).parent.parent / "cases" / "nrel5mw"
 MAIN = CASE / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

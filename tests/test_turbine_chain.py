@@ -20,6 +20,14 @@ import numpy as np
 import pytest
 
 from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.io.turbine_elastodyn import (
+    blade_beam_from_modes,
+    fe_tower_beam,
+    read_elastodyn_tower,
+    rotor_nacelle_body,
+    tower_sections,
+    turbine_from_elastodyn,
+)
 from bladefem.modal import modes
 from bladefem.models.turbine import (
     TurbineModel,
@@ -27,14 +35,6 @@ from bladefem.models.turbine import (
     closed_form_cantilever,
     sample_beam,
     select_dofs,
-)
-from bladefem.models.turbine.elastodyn import (
-    blade_beam_from_modes,
-    fe_tower_beam,
-    read_elastodyn_tower,
-    rotor_nacelle_body,
-    tower_sections,
-    turbine_from_elastodyn,
 )
 from bladefem.models.turbine.linearize import linearize
 

@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
 from bladefem.models.turbine.compiled import compiled_equations
-from bladefem.models.turbine.elastodyn import turbine_from_elastodyn
 
 pytest.importorskip("numba")
 MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import FreeSystem, TurbineModel
-from bladefem.models.turbine.elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine.simulate import simulate
 
 MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"

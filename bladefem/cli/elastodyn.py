@@ -28,8 +28,8 @@ from ..modal.elastodyn_fit import (
     MIN_TIP_RATIO,
     ElastoDynCoefficients,
     blade_coefficients,
-    tower_coefficients,
 )
+from ..models.tower_fit import tower_coefficients
 from ..sections import Blade
 
 DEFAULT_BLADE_NODES = 17

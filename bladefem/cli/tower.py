@@ -17,8 +17,9 @@ from ..io.elastodyn_main import read_elastodyn_main
 from ..io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
 from ..io.results import dumps, modal_to_dict
 from ..io.tower_case import is_tower_case, read_tower_case
+from ..io.tower_elastodyn import elastodyn_tower
 from ..modal.results import ModalResult
-from ..models.tower import elastodyn_tower, tower_modes
+from ..models.tower import tower_modes
 from ..sections.tower import TopMass, Tower
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -101,7 +102,7 @@ def _bare_tower(path: Path, args: argparse.Namespace, main: Any) -> Tower:
 def elastodyn_coefficients(tower: Tower, n_modes: int, elements: int | None, nodes: int = 20) -> dict[str, Any]:
     """ElastoDyn coefficients of the first two fore-aft and side-side modes (the io engineer's fit, which removes
     rigid base motion and evaluates ElastoDyn's own frequency of each polynomial with its gravity term)."""
-    from ..modal.elastodyn_fit import tower_coefficients
+    from ..models.tower_fit import tower_coefficients
     fitted = tower_coefficients(tower, nodes=nodes, n_modes=max(n_modes, FIT_MODES), elements=elements)
     return {name: {"coefficients": [float(c) for c in fit.fit.coefficients], "rms_error": fit.fit.rms_error,
                    "fe_frequency_hz": fit.fe_frequency_hz, "elastodyn_frequency_hz": fit.elastodyn_frequency_hz,

@@ -104,12 +104,12 @@ def initial_state(dofs: tuple[str, ...], entries: list[str]) -> np.ndarray:
 
 
 def build_model(args: argparse.Namespace):
-    from ..models.turbine import TurbineModel
-    from ..models.turbine.elastodyn import (
+    from ..io.turbine_elastodyn import (
         NREL5MW_YAW_DAMPING,
         NREL5MW_YAW_STIFFNESS,
         turbine_from_elastodyn,
     )
+    from ..models.turbine import TurbineModel
 
     for name in ("yaw_stiffness", "yaw_damping"):
         value = getattr(args, name)

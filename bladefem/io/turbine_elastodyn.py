@@ -9,23 +9,23 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import InputError
-from ...io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
-from ...io.elastodyn_main import read_elastodyn_main
-from ...io.elastodyn_tower import (
-    ElastoDynTowerFile,
-    read_elastodyn_tower,
-    tower_from_elastodyn,
-)
-from ...modal.results import ModalResult
-from ...sections import Blade, SectionTable, bending_stiffness, total_angle
-from .parameters import TurbineParameters
-from .shapes import (
+from ..errors import InputError
+from ..modal.results import ModalResult
+from ..models.turbine.parameters import TurbineParameters
+from ..models.turbine.shapes import (
     ModalBeam,
     hermite_evaluator,
     polynomial_evaluator,
     sample_beam,
     twisted_polynomial_nodes,
+)
+from ..sections import Blade, SectionTable, bending_stiffness, total_angle
+from .elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
+from .elastodyn_main import read_elastodyn_main
+from .elastodyn_tower import (
+    ElastoDynTowerFile,
+    read_elastodyn_tower,
+    tower_from_elastodyn,
 )
 
 #: NREL 5MW nacelle-yaw spring and damper (ServoDyn YawSpr, YawDamp; not in the ElastoDyn main file)
@@ -81,7 +81,7 @@ def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArr
     """The rotor-nacelle assembly (yaw bearing, nacelle, hub, generator, undeflected blades at zero azimuth) as
     one rigid body: mass (kg), centre of mass relative to the tower top and inertia tensor about it (kg m^2),
     earth components."""
-    from .kane import TurbineModel
+    from ..models.turbine.kane import TurbineModel
     model = TurbineModel(params)
     zero = np.zeros(model.n)
     motion = model.motion(zero, zero)
@@ -101,7 +101,7 @@ def rotor_nacelle_body(params: TurbineParameters) -> tuple[float, NDArray, NDArr
 def fe_tower(params: TurbineParameters, sections: SectionTable):
     """bladefem's tower model of these sections with the rotor-nacelle assembly of ``params`` as its rigid top
     body (tower frame: x up, y side-side to the right, z downwind) and the same gravity."""
-    from ...sections.tower import OPENFAST_AXES, TopMass, Tower
+    from ..sections.tower import OPENFAST_AXES, TopMass, Tower
 
     mass, cm, inertia = rotor_nacelle_body(params)
     top = TopMass(mass, OPENFAST_AXES @ cm, OPENFAST_AXES @ inertia @ OPENFAST_AXES.T)
@@ -112,7 +112,7 @@ def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_rat
                   gauss_points: int = 4, edges: NDArray | None = None) -> ModalBeam:
     """Tower modes FA1, FA2, SS1, SS2 from bladefem's tower FE (:func:`fe_tower`); the FE shapes themselves are
     the assumed modes."""
-    from ...models.tower import tower_modes
+    from ..models.tower import tower_modes
 
     result = tower_modes(fe_tower(params, sections), n_modes=8)
     chosen = [result.first(kind, number) for kind in ("fore-aft", "side-side") for number in (1, 2)]
@@ -176,8 +176,9 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
     tower_shapes : 'polynomial' (the tower file's), 'fe' (bladefem's tower FE with this rotor-nacelle assembly
         as a rigid top body, and gravity) or 'fe-polynomial' (ElastoDyn polynomials fitted to those)
     """
-    from ...modal import modes
-    from ...modal.elastodyn_fit import blade_coefficients, tower_coefficients
+    from ..modal import modes
+    from ..modal.elastodyn_fit import blade_coefficients
+    from ..models.tower_fit import tower_coefficients
 
     for name, value in (("blade shapes", blade_shapes), ("tower shapes", tower_shapes)):
         if value not in SHAPE_SOURCES:
