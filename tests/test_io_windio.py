@@ -117,3 +117,22 @@ def test_windio_1_layout_is_refused(tmp_path):
     with pytest.raises(InputError) as info:
         read_windio(path)
     assert "converter" in info.value.message and info.value.line == 25
+
+
+def test_outer_shape_chord_gives_the_planform_and_round_trips(tmp_path):
+    # windIO's outer_shape.chord (m) becomes the section table's chord (for the VTK ribbon and pictures), linear
+    # between its grid points, and survives write -> read
+    text = SMALL.read_text().replace(
+        "      twist: {grid: [0.0, 1.0], values: [0.0, 0.0]}\n",
+        "      twist: {grid: [0.0, 1.0], values: [0.0, 0.0]}\n"
+        "      chord: {grid: [0.0, 0.25, 1.0], values: [3.0, 4.0, 1.5]}\n", 1)
+    source = tmp_path / "with_chord.yaml"
+    source.write_text(text)
+    turbine = read_windio(source)
+    blade = blade_from_windio(turbine)
+    fraction = blade.sections.span / blade.length
+    np.testing.assert_allclose(blade.sections.chord, np.interp(fraction, [0.0, 0.25, 1.0], [3.0, 4.0, 1.5]))
+    copy = tmp_path / "copy.yaml"
+    write_windio(turbine, copy)
+    assert read_windio(copy) == turbine
+    assert blade_from_windio(read_windio(SMALL)).sections.chord is None

@@ -9,7 +9,7 @@ Read (every other entry of the file is ignored):
 - ``components.blade`` and ``components.tower``: ``reference_axis`` (x, y, z on normalised arc-length grids),
   ``structure.elastic_properties.stiffness_matrix`` (``grid``, ``K11`` .. ``K66``) and ``inertia_matrix``
   (``grid``, ``mass``, ``cm_x``, ``cm_y``, ``i_edge``, ``i_flap``, ``i_plr``, ``i_cp``); the blade's
-  ``outer_shape.twist`` (deg);
+  ``outer_shape.twist`` (deg) and, if given, ``outer_shape.chord`` (m, for drawing the planform);
 - ``components.drivetrain.elastic_properties.mass`` and ``components.yaw.elastic_properties.mass``.
 
 windIO 1.x files (``elastic_properties_mb``) are recognised and refused with a pointer to windIO's converter.
@@ -55,6 +55,7 @@ class WindIOBeam:
     stiffness : K11 .. K66 present in the file -> values on ``stiffness_grid`` (N, N m^2)
     inertia : mass (kg/m), cm_x, cm_y (m), i_edge, i_flap, i_plr, i_cp (kg m) present -> values on ``inertia_grid``
     twist : the blade's outer_shape twist (rad), or None for a tower
+    chord : the blade's outer_shape chord (m), if given (planform drawing only)
     """
 
     reference_axis: dict[str, Distribution]
@@ -63,6 +64,7 @@ class WindIOBeam:
     inertia_grid: NDArray[np.float64]
     inertia: dict[str, NDArray[np.float64]]
     twist: Distribution | None = None
+    chord: Distribution | None = None
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, WindIOBeam):
@@ -71,6 +73,7 @@ class WindIOBeam:
             return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
 
         return (self.reference_axis == other.reference_axis and self.twist == other.twist
+                and self.chord == other.chord
                 and np.array_equal(self.stiffness_grid, other.stiffness_grid) and same(self.stiffness, other.stiffness)
                 and np.array_equal(self.inertia_grid, other.inertia_grid) and same(self.inertia, other.inertia))
 
@@ -256,7 +259,10 @@ def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
         raise r.error("missing key", elastic + ("inertia_matrix", "mass"))
     r.array(elastic + ("inertia_matrix", "mass"), positive=True)
     beam_twist = r.distribution(key + ("outer_shape", "twist"), math.pi / 180) if twist else None
-    beam = WindIOBeam(axis, stiffness_grid, stiffness, inertia_grid, inertia, beam_twist)
+    shape = r.get(key + ("outer_shape",), None)
+    chord = (r.distribution(key + ("outer_shape", "chord"))
+             if twist and isinstance(shape, dict) and "chord" in shape else None)
+    beam = WindIOBeam(axis, stiffness_grid, stiffness, inertia_grid, inertia, beam_twist, chord)
     if not beam.length > 0:
         raise r.error("reference axis has zero length", key + ("reference_axis",))
     return beam

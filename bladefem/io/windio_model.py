@@ -95,6 +95,7 @@ def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
         flap_inertia=inertia("i_flap"),
         edge_inertia=inertia("i_edge"),
         cm_offset=None if cm_x is None else -cm_x,
+        chord=None if beam.chord is None else np.interp(x, beam.chord.grid, beam.chord.values),
         source=turbine.path,
     )
     return Blade(sections=sections, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
@@ -151,6 +152,8 @@ def _beam_dict(beam: WindIOBeam) -> dict:
     if beam.twist is not None:
         out["outer_shape"] = {"twist": {"grid": [float(v) for v in beam.twist.grid],
                                         "values": [degrees_exact(v) for v in beam.twist.values]}}
+    if beam.chord is not None:
+        out.setdefault("outer_shape", {})["chord"] = _distribution(beam.chord)
     return out
 
 
