@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..io.detect import detect_format
 from ..io.elastodyn_main import read_elastodyn_main
 from ..io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
 from ..io.results import dumps, modal_to_dict
@@ -27,26 +28,13 @@ YAML_SUFFIXES = (".yaml", ".yml")
 FIT_MODES = 8
 
 
-def _head(path: Path, lines: int = 40) -> str:
-    try:
-        with path.open(encoding="utf-8", errors="replace") as stream:
-            return "".join(stream.readline() for _ in range(lines))
-    except OSError:
-        return ""
-
-
-def is_elastodyn_tower_file(path: str | Path) -> bool:
-    """True for an ElastoDyn tower input file (its header or the key NTwInpSt in the first lines)."""
-    head = _head(Path(path))
-    return "TOWER INPUT FILE" in head.upper() or "NTwInpSt" in head
-
-
 def is_tower_input(path: str | Path) -> bool:
     """True if INPUT describes a tower: a YAML case with ``kind: tower`` or an ElastoDyn tower file."""
-    path = Path(path)
-    if path.suffix.lower() in YAML_SUFFIXES:
-        return is_tower_case(path)
-    return path.exists() and is_elastodyn_tower_file(path)
+    try:
+        found = detect_format(path)
+    except InputError:               # missing or unrecognised: the reader chosen instead says so
+        return False
+    return found == "elastodyn-tower" or (found == "case" and is_tower_case(path))
 
 
 def add_tower_options(parser: argparse.ArgumentParser) -> None:

@@ -10,6 +10,7 @@ import numpy as np
 from ..assembly import BladeMatrices, assemble_blade
 from ..sections import Blade
 from .campbell import campbell_sweep, mac_matrix, track_families
+from .refinement import refine_until_converged
 from .results import KINDS, CampbellResult, ModalResult, Mode, ModeFamily, ModeShape
 from .solve import solve_modes
 
@@ -22,28 +23,18 @@ MAX_ELEMENTS = 800
 def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL, rpm: float = 0.0,
                        start: int | None = None, max_elements: int = MAX_ELEMENTS) -> BladeMatrices:
     """Matrices on the coarsest mesh (of ``start`` elements doubled) whose lowest ``n_modes`` frequencies at rotor
-    speed ``rpm`` (rpm) are within ``rtol`` (relative) of the converged ones.
-
-    A mesh is accepted when halving its elements changes the frequencies by less than ``rtol / 2``: its error is
-    then about that change where the error already falls as h^4, and at most twice it where rough section
-    properties keep the mesh pre-asymptotic (error halving per doubling). If ``max_elements`` is reached first
-    (beyond it round-off grows as h^-4), the finest matrices carry a note with the last change.
-    """
-    elements = start or max(24, blade.sections.stations - 1)
-    coarse = assemble_blade(blade, elements)
-    previous = solve_modes(coarse, rpm, n_modes).frequencies_hz
-    while True:
-        elements *= 2
-        fine = assemble_blade(blade, elements)
-        current = solve_modes(fine, rpm, n_modes).frequencies_hz
-        change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), 1e-300))
-        if change < rtol / 2:
-            return coarse
-        if elements >= max_elements:
-            note = (f"mesh refinement stopped at {len(fine.dofs.nodes) - 1} elements with a last frequency change "
-                    f"of {change:.1e} (above {rtol:g}): rough section properties; check with --elements")
-            return replace(fine, notes=fine.notes + (note,))
-        coarse, previous = fine, current
+    speed ``rpm`` (rpm) are within ``rtol`` (relative) of the converged ones (see
+    :func:`~bladefem.modal.refinement.refine_until_converged`); if refinement stops at ``max_elements`` first, the
+    matrices carry a note with the last change."""
+    matrices, change = refine_until_converged(
+        lambda elements: assemble_blade(blade, elements),
+        lambda matrices: solve_modes(matrices, rpm, n_modes).frequencies_hz,
+        start or max(24, blade.sections.stations - 1), rtol, max_elements)
+    if change is None:
+        return matrices
+    note = (f"mesh refinement stopped at {len(matrices.dofs.nodes) - 1} elements with a last frequency change "
+            f"of {change:.1e} (above {rtol:g}): rough section properties; check with --elements")
+    return replace(matrices, notes=matrices.notes + (note,))
 
 
 def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10, rpm: float = 0.0) -> BladeMatrices:

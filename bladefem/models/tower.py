@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 from ..assembly.dofs import DofMap
 from ..assembly.supports import BASE_FIELDS, BASE_SIZE, PLATFORM_KINDS
 from ..assembly.tower import TowerMatrices, assemble_tower
+from ..modal.refinement import refine_until_converged
 from ..modal.results import ModalResult, Mode
 from ..modal.solve import DENSE_LIMIT, eigen_pairs, mode_shape
 from ..sections.tower import (
@@ -46,7 +47,6 @@ SHIFT_ATTEMPTS = 8
 #: extra modes solved so that a degenerate pair straddling the last requested mode is rotated as a whole
 CLUSTER_MARGIN = 2
 MESH_RTOL = 1e-6
-RICHARDSON = 15.0
 
 
 @dataclass(frozen=True)
@@ -121,20 +121,14 @@ def solve_tower(matrices: TowerMatrices, n_modes: int) -> tuple[NDArray, NDArray
 
 def converged_matrices(tower: Tower, n_modes: int = 10, rtol: float = MESH_RTOL,
                        max_elements: int = 800) -> TowerMatrices:
-    """Meshes doubled from ``max(24, stations - 1)`` elements until the lowest ``n_modes`` frequencies change by less
-    than ``15 rtol`` (Richardson: errors fall as h^4); returns the finer mesh's matrices."""
-    elements = max(24, tower.sections.stations - 1)
-    coarse = assemble_tower(tower, elements)
-    previous = _frequencies(solve_tower(coarse, n_modes)[0])
-    while True:
-        elements *= 2
-        fine = assemble_tower(tower, elements)
-        current = _frequencies(solve_tower(fine, n_modes)[0])
-        floor = 1e-6 * np.max(np.abs(current))
-        change = np.max(np.abs(current - previous) / np.maximum(np.abs(current), floor))
-        if change / RICHARDSON < rtol or elements >= max_elements:
-            return fine
-        previous = current
+    """Matrices on the coarsest mesh (from ``max(24, stations - 1)`` elements doubled) whose lowest ``n_modes``
+    frequencies are within ``rtol`` of the converged ones (:func:`bladefem.modal.refinement.refine_until_converged`,
+    the blade's rule too); the finer mesh of the accepted pair is kept, for closed-form checks to 1e-7."""
+    matrices, _ = refine_until_converged(lambda elements: assemble_tower(tower, elements),
+                                         lambda matrices: _frequencies(solve_tower(matrices, n_modes)[0]),
+                                         max(24, tower.sections.stations - 1), rtol, max_elements,
+                                         finer=True)
+    return matrices
 
 
 def fore_aft_selection(matrices: TowerMatrices) -> NDArray[np.int64]:
