@@ -1,0 +1,134 @@
+"""The published JSON Schema of a ``bladefem check`` spec (printed by ``bladefem check --schema``)."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+SCHEMA_ID = "https://bladefem.org/schemas/check-spec-1.json"
+
+_POSITIVE = {"type": "number", "exclusiveMinimum": 0}
+_RPM_RANGE = {"type": "array", "items": {"type": "number", "minimum": 0}, "minItems": 2, "maxItems": 2,
+              "description": "operating rotor-speed range [min, max], rpm"}
+_MODE_NAME = {"type": "string", "pattern": r"^[a-z-]+ [1-9][0-9]*$",
+              "description": "a mode family by kind and number in frequency order, e.g. 'flap 1', 'edge 2', "
+                             "'fore-aft 1', 'side-side 1', 'torsion 1'"}
+
+MODEL = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["input"],
+    "properties": {
+        "input": {"type": "string", "description": "any input bladefem reads, relative to the spec file"},
+        "operating_rpm": _RPM_RANGE,
+        "rpm_points": {"type": "integer", "minimum": 2, "maximum": 200,
+                       "description": "rotor speeds of the Campbell sweep over the operating range (default 16)"},
+        "blades": {"type": "integer", "minimum": 1, "maximum": 10, "description": "number of blades (default 3)"},
+        "n_modes": {"type": "integer", "minimum": 1, "maximum": 30,
+                    "description": "modes solved and tracked (default 8)"},
+        "elements": {"type": "integer", "minimum": 1, "maximum": 5000,
+                     "description": "fixed element count (default: refined until converged)"},
+        "tip_radius_m": _POSITIVE,
+        "hub_radius_m": {"type": "number", "minimum": 0},
+        "precone_deg": {"type": "number", "minimum": -45, "maximum": 45},
+        "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180},
+        "tip_mass_kg": {"type": "number", "minimum": 0},
+        "elastodyn_main": {"type": "string", "description": "ElastoDyn main file for an ElastoDyn blade file"},
+    },
+}
+
+WINDOW = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["mode", "hz"],
+    "properties": {
+        "mode": _MODE_NAME,
+        "hz": {"type": "array", "items": {"type": "number", "minimum": 0}, "minItems": 2, "maxItems": 2,
+               "description": "allowed frequency window [low, high], Hz"},
+        "rpm": {"anyOf": [{"type": "number", "minimum": 0}, {"const": "operating"}],
+                "description": "rotor speed, rpm, or 'operating' for the whole operating range (default 0)"},
+    },
+}
+
+RESONANCE = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["modes", "harmonics", "margin_percent"],
+    "properties": {
+        "modes": {"type": "array", "items": _MODE_NAME, "minItems": 1},
+        "harmonics": {"type": "array", "items": {"type": "integer", "minimum": 1, "maximum": 100}, "minItems": 1,
+                      "description": "rotor harmonics n of the excitations nP"},
+        "margin_percent": {"type": "number", "minimum": 0, "exclusiveMaximum": 100,
+                           "description": "least |f - nP| / nP over the operating range, per cent"},
+    },
+}
+
+SOFT_STIFF = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["margin_percent"],
+    "properties": {
+        "modes": {"type": "array", "items": _MODE_NAME, "minItems": 1,
+                  "description": "tower modes to keep in the band (default fore-aft 1 and side-side 1)"},
+        "margin_percent": {"type": "number", "minimum": 0, "exclusiveMaximum": 100,
+                           "description": "least distance above 1P max and below (blades)P min, per cent"},
+    },
+}
+
+BASELINE = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["file", "tolerance_percent"],
+    "properties": {
+        "file": {"type": "string", "description": "baseline JSON file, relative to the spec file"},
+        "rpm": {"type": "number", "minimum": 0, "description": "rotor speed, rpm (default 0)"},
+        "modes": {"type": "integer", "minimum": 1, "maximum": 30, "description": "lowest modes compared (default 4)"},
+        "tolerance_percent": {"type": "number", "exclusiveMinimum": 0,
+                              "description": "largest relative frequency change per mode, per cent"},
+        "min_mac": {"type": "number", "minimum": 0, "maximum": 1,
+                    "description": "least MAC between the stored and the present shape (default 0.95)"},
+    },
+}
+
+ELASTODYN = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["tolerance_percent"],
+    "properties": {
+        "tolerance_percent": {"type": "number", "exclusiveMinimum": 0,
+                              "description": "largest relative difference between the frequency ElastoDyn derives "
+                                             "from the file's polynomial and the FE frequency, per cent"},
+        "rpm": {"type": "number", "minimum": 0, "description": "rotor speed, rpm (default the main file's)"},
+    },
+}
+
+KINDS = {"window": WINDOW, "resonance": RESONANCE, "soft_stiff": SOFT_STIFF, "baseline": BASELINE,
+         "elastodyn": ELASTODYN}
+
+REQUIREMENT = {
+    "type": "object",
+    "required": ["model"],
+    "properties": {"name": {"type": "string"}, "model": {"type": "string"}, **KINDS},
+    "additionalProperties": False,
+    "oneOf": [{"required": [kind]} for kind in KINDS],
+}
+
+SPEC_SCHEMA: dict[str, Any] = {
+    "$schema": "https://json-schema.org/draft/2020-12/schema",
+    "$id": SCHEMA_ID,
+    "title": "bladefem check spec",
+    "description": "Models and the modal design requirements they must meet (bladefem check).",
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["models", "requirements"],
+    "properties": {
+        "models": {"type": "object", "minProperties": 1, "additionalProperties": MODEL,
+                   "description": "models by name"},
+        "requirements": {"type": "array", "minItems": 1, "items": REQUIREMENT},
+    },
+}
+
+
+def schema_json() -> str:
+    """The schema as indented JSON text."""
+    return json.dumps(SPEC_SCHEMA, indent=2) + "\n"
