@@ -130,8 +130,9 @@ def test_nrel5mw_agrees_with_fe_from_0_to_15_rpm():
     galerkin = galerkin_campbell(blade, rpm, n_modes=4, terms=(40, 40, 0))
     for fe_family, g_family in zip(fe.families, galerkin.families):
         assert fe_family.kind == g_family.kind
-        # acceptance 0.1%: the 40-term Galerkin is converged to about 1e-4 on this blade (kinked properties)
-        np.testing.assert_allclose(g_family.frequencies_hz, fe_family.frequencies_hz, rtol=1e-3)
+        # the 40-term Galerkin is converged to about 1e-4 on this blade (kinked properties; measured 7.7e-5 against
+        # the FE, which is converged to 1e-6); the acceptance was 0.1 %
+        np.testing.assert_allclose(g_family.frequencies_hz, fe_family.frequencies_hz, rtol=1.5e-4)
     assert [family.kind for family in fe.families] == ["flap", "edge", "flap", "edge"]
 
 
@@ -157,14 +158,15 @@ def test_mode_shapes_agree_with_fe():
 def test_nrel5mw_first_torsion_mode_with_assumed_torsion_properties(rpm):
     # the ElastoDyn data carry no GJ or section mass inertias, so this compares the two methods on the 5MW with an
     # ASSUMED torsion distribution (GJ = 0.3 EI_flap; mass radii of gyration 0.25 chord along and 0.06 chord through
-    # the section): the same properties and assumptions in both. First torsion and the first four bending modes
-    # within 0.1 % (measured: torsion 2.3e-5, bending <= 1.6e-4 with 30 terms each)
+    # the section): the same properties and assumptions in both. Measured with 30 terms each: torsion 2.3e-5,
+    # bending <= 1.7e-4 (the polynomial series converges algebraically on the kinked 5MW properties)
     blade = read_case(Path(__file__).resolve().parent.parent / "cases" / "nrel5mw_blade.yaml")
     s = blade.sections
     sections = replace(s, torsion_stiffness=0.3 * s.flap_stiffness, edge_inertia=s.mass * (0.25 * s.chord) ** 2,
                        flap_inertia=s.mass * (0.06 * s.chord) ** 2)
     blade = blade.with_(sections=sections)
     fe, galerkin = modes(blade, rpm, 8), galerkin_modes(blade, rpm, 8, terms=(30, 30, 30))
-    for kind, number in [("torsion", 1), ("flap", 1), ("edge", 1), ("flap", 2), ("edge", 2)]:
+    for kind, number, bound in [("torsion", 1, 5e-5), ("flap", 1, 3e-4), ("edge", 1, 3e-4), ("flap", 2, 3e-4),
+                                ("edge", 2, 3e-4)]:
         assert galerkin.first(kind, number).frequency_hz == pytest.approx(fe.first(kind, number).frequency_hz,
-                                                                          rel=1e-3), (kind, number)
+                                                                          rel=bound), (kind, number)
