@@ -4,6 +4,7 @@ they are computed, no overlapping text anywhere in the figure, and the file writ
 from __future__ import annotations
 
 import itertools
+from pathlib import Path
 
 import matplotlib
 import numpy as np
@@ -107,7 +108,7 @@ def test_families_above_the_frequency_limit_are_left_out():
     matplotlib.pyplot.close(fig)
 
 
-def test_plot_file_is_written_atomically(tmp_path):
+def test_plot_file_is_written_whole(tmp_path):
     iio = pytest.importorskip("imageio.v3")
     path = tmp_path / "campbell.png"
     save_campbell_plot(SWEEP, path, title="test", operating_rpm=12.1)
@@ -117,3 +118,25 @@ def test_plot_file_is_written_atomically(tmp_path):
     save_campbell_plot(SWEEP, tmp_path / "campbell.pdf")
     assert (tmp_path / "campbell.pdf").read_bytes().startswith(b"%PDF")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["campbell.pdf", "campbell.png"]
+
+
+def test_a_write_failing_midway_leaves_the_old_file_intact(tmp_path, monkeypatch):
+    """The writer dies after half the bytes (a full disk, a crash): the previous diagram stays as it was and no
+    partial or temporary file is left behind."""
+    path = tmp_path / "campbell.png"
+    save_campbell_plot(SWEEP, path, title="old")
+    old = path.read_bytes()
+    written = []
+
+    def half_then_fail(self: Path, data: bytes) -> int:
+        with open(self, "wb") as handle:
+            written.append(handle.write(data[: len(data) // 2]))
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(Path, "write_bytes", half_then_fail)
+    with pytest.raises(OSError, match="No space"):
+        save_campbell_plot(SWEEP, path, title="new", operating_rpm=12.1)
+    assert written and written[0] > 10_000                        # the failure did strike mid-way through the image
+    monkeypatch.undo()
+    assert path.read_bytes() == old
+    assert [p.name for p in tmp_path.iterdir()] == ["campbell.png"]

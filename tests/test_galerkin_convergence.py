@@ -12,6 +12,9 @@ from bladefem.models.galerkin import galerkin_modes, galerkin_system
 from bladefem.sections import Blade, SectionTable
 
 MAIN_FILE = Path(__file__).parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
+#: Relative round-off of the dense generalized eigen-solve on these systems: the lowest frequencies of the coupled
+#: twisted blade move by up to 6e-10 when its section properties change only by round-off (1e-16); 16x margin.
+ROUND_OFF = 1e-8
 
 
 @pytest.fixture(scope="module")
@@ -33,9 +36,10 @@ def twisted_blade() -> Blade:
 def test_nrel5mw_frequencies_decrease_monotonically_with_terms(nrel5mw, rpm):
     counts = [4, 8, 12, 16, 24, 32]
     frequencies = np.array([galerkin_modes(nrel5mw, rpm, 6, (n, n, 0)).frequencies_hz for n in counts])
-    # nested trial spaces (Rayleigh-Ritz): every eigenvalue is non-increasing; 1e-12 allows eigen-solver round-off
-    assert np.all(np.diff(frequencies, axis=0) <= 1e-12 * frequencies[1:])
-    assert np.all(np.diff(frequencies, axis=0)[0] < 0)
+    # nested trial spaces (Rayleigh-Ritz): every eigenvalue is non-increasing. The kinked 5MW properties keep every
+    # step a real decrease (measured >= 2.9e-5 relative, 32 vs 24 terms), far above the eigen-solver's round-off
+    # (ROUND_OFF): each step must fall by more than that
+    assert np.all(np.diff(frequencies, axis=0) < -ROUND_OFF * frequencies[1:])
 
 
 @pytest.mark.parametrize("rpm", [0.0, 30.0])
@@ -43,7 +47,12 @@ def test_coupled_twisted_blade_frequencies_decrease_with_terms(rpm):
     blade = twisted_blade()
     counts = [(4, 4, 2), (6, 6, 3), (8, 8, 5), (12, 12, 8), (16, 16, 12)]
     frequencies = np.array([galerkin_modes(blade, rpm, 8, terms).frequencies_hz for terms in counts])
-    assert np.all(np.diff(frequencies, axis=0) <= 1e-12 * frequencies[1:])
+    steps = np.diff(frequencies, axis=0) / frequencies[1:]
+    # nested trial spaces: non-increasing up to the eigen-solver's round-off (the last step of the lowest modes is
+    # at that level, measured |change| <= 3.5e-10); every mode that is not yet converged falls (first step: the
+    # smallest drop is 1.6e-5, measured)
+    assert np.all(steps <= ROUND_OFF)
+    assert np.all(steps[0] < -1e-6)
 
 
 def test_nrel5mw_error_falls_at_least_quadratically(nrel5mw):

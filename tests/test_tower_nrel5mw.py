@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 import scipy.linalg as la
 
-from bladefem.assembly.tower import mass_above
 from bladefem.io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
 from bladefem.io.elastodyn_main import read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
@@ -24,6 +23,19 @@ from bladefem.models.tower import tower_modes
 
 CASE = Path(__file__).parent.parent / "cases" / "nrel5mw"
 MAIN = CASE / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
+
+
+def beam_mass_above(sections, x: np.ndarray) -> np.ndarray:
+    """int_x^H m, kg: each station interval clipped to [x, H] and integrated by 2-point Gauss (exact for the mass
+    linear between stations); written here independently of the tower model's own ``mass_above``."""
+    t, w = np.polynomial.legendre.leggauss(2)
+    total = np.zeros_like(x)
+    for x0, x1 in zip(sections.span[:-1], sections.span[1:]):
+        a = np.clip(x, x0, x1)                      # the part of [x0, x1] above x is [a, x1]
+        half = (x1 - a) / 2
+        points = (a + x1)[:, None] / 2 + half[:, None] * t
+        total += half * (np.interp(points, sections.span, sections.mass) @ w)
+    return total
 
 
 def ritz_frequencies(tower, coefficients: list[np.ndarray], stiffness: str) -> np.ndarray:
@@ -38,8 +50,8 @@ def ritz_frequencies(tower, coefficients: list[np.ndarray], stiffness: str) -> n
     x = ((a + b) / 2 + (b - a) / 2 * xi).ravel()
     w = ((b - a) / 2 * wi).ravel()
     shapes = [[polynomial(c, x / length, k) / length**k for k in range(3)] for c in coefficients]
-    compression = tower.gravity * mass_above(tower, x)
     top = tower.top_mass.mass
+    compression = tower.gravity * (beam_mass_above(s, x) + top)
     M = np.array([[np.sum(w * s.at(x, "mass") * p[0] * q[0]) + top for q in shapes] for p in shapes])
     K = np.array([[np.sum(w * (s.at(x, stiffness) * p[2] * q[2] - compression * p[1] * q[1])) for q in shapes]
                   for p in shapes])

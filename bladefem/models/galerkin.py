@@ -4,7 +4,8 @@ The second, independent solution path next to the finite elements (seed paper 00
 of docs/THEORY.md): flap ``w``, lead-lag ``v`` and torsion ``phi`` expanded in shape functions that satisfy the
 clamped-root conditions, mass and stiffness from Galerkin integrals over the span, natural frequencies from
 ``det(K0 + Omega^2 K2 - omega^2 M) = 0``. The blade is inextensible (no axial DOF); without GJ the torsion is rigid.
-It shares only the section-property input (:mod:`bladefem.sections`) with the finite-element code.
+It shares only the raw section table and blade geometry (:class:`bladefem.sections.SectionTable`, :class:`Blade`)
+with the finite-element code; section stiffness and mass moments are its own (:mod:`.galerkin_sections`).
 """
 
 from __future__ import annotations

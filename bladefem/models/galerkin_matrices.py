@@ -3,7 +3,9 @@
 Generalized coordinates ``q = (a_1..a_Nw, b_1..b_Nv, c_1..c_Nphi)``: ``w = sum a_j psi_j``, ``v = sum b_j psi_j``,
 ``phi = sum c_j chi_j`` (:mod:`bladefem.models.galerkin_basis`). The energies of docs/THEORY.md are integrated by
 Gauss-Legendre quadrature on every station interval (subdivided so that the span has at least ``MIN_CELLS`` cells),
-with the section properties interpolated linearly between stations exactly as :class:`SectionTable` defines them.
+with the section columns interpolated linearly between stations exactly as :class:`SectionTable` defines them.
+The section stiffness and mass moments are derived from those raw columns in :mod:`.galerkin_sections`, not taken
+from :mod:`bladefem.sections.moments` (the finite elements' source), so that FE-Galerkin agreement checks them.
 ``K(Omega) = K0 + Omega^2 K2``.
 """
 
@@ -14,8 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..sections import Blade, bending_stiffness, mass_moments
+from ..sections import Blade
 from .galerkin_basis import Basis, bending_shapes, torsion_shapes
+from .galerkin_sections import body_second_moment, column, section_properties
 from .galerkin_terms import (
     axial_centrifugal_force,
     kinetic_form,
@@ -84,8 +87,8 @@ def gauss_on_cells(edges: NDArray, order: int) -> SpanQuadrature:
 
 def axial_force_density(blade: Blade, x: NDArray) -> NDArray:
     """Centrifugal axial force per length and per Omega^2 at span positions ``x``, kg."""
-    moments = mass_moments(blade.sections, x, blade.pitch)
-    return axial_centrifugal_force(moments.m, moments.S, blade.hub_radius + x, blade.shaft_axis)
+    section = section_properties(blade, x)
+    return axial_centrifugal_force(section.m, section.S, blade.hub_radius + x, blade.shaft_axis)
 
 
 def tip_axial_force(blade: Blade) -> float:
@@ -156,24 +159,23 @@ def galerkin_matrices(blade: Blade, terms: Terms, basis: Basis = "jacobi", order
     quad = gauss_on_cells(edges, order)
     x, weights = quad.x, quad.weights
     G, slopes, curvatures, twist_rate = kinematics(x, length, terms, basis)
-    moments = mass_moments(sections, x, blade.pitch)
+    section = section_properties(blade, x)
     X = blade.hub_radius + x
 
-    M = integrate(G, kinetic_form(moments.m, moments.S, moments.J), weights)
-    D = np.moveaxis(np.moveaxis(bending_stiffness(sections, x, blade.pitch), 0, -1), 0, -2)
-    K0 = integrate(curvatures, D, weights)
+    M = integrate(G, kinetic_form(section.m, section.S, section.J), weights)
+    K0 = integrate(curvatures, section.D, weights)
     if terms.torsion:
-        GJ = sections.at(x, "torsion_stiffness")
+        GJ = column(sections, "torsion_stiffness", x)
         K0 += np.einsum("q,qi,qj->ij", weights * GJ, twist_rate, twist_rate)
     tension = centrifugal_tension(blade, edges, x, order)
     K2 = (integrate(slopes, tension_form(tension), weights)
-          + integrate(G, spin_softening_form(moments.m, moments.S, moments.J, axis), weights)
-          + integrate(G, rotation_second_order_form(X, moments.S, moments.J, axis), weights))
+          + integrate(G, spin_softening_form(section.m, section.S, section.J, axis), weights)
+          + integrate(G, rotation_second_order_form(X, section.S, section.J, axis), weights))
 
     if blade.tip_mass is not None:
         tip = blade.tip_mass
         G_tip = kinematics(np.array([length]), length, terms, basis)[0]
-        S_tip, J_tip = tip.mass * tip.offset, tip.second_moment
+        S_tip, J_tip = tip.mass * tip.offset, body_second_moment(tip.mass, tip.offset, tip.inertia)
         one = np.ones(1)
         M += integrate(G_tip, kinetic_form(tip.mass, S_tip, J_tip)[None], one)
         K2 += integrate(G_tip, (spin_softening_form(tip.mass, S_tip, J_tip, axis)

@@ -1,0 +1,83 @@
+"""Section stiffness and mass moments of the Galerkin model, derived here from the raw section table.
+
+The Galerkin model computes its own section properties so that agreement with the finite elements (which use
+:mod:`bladefem.sections.moments`) checks those too: only the raw columns of :class:`SectionTable` are shared.
+
+The section frame ``(eta, zeta)`` (chord toward the leading edge, thickness toward the pressure side) is turned
+about the span axis by ``theta`` = structural twist + pitch; positive ``theta`` turns the leading edge upwind
+(``-z``). The rotation ``R(theta)`` maps section coordinates to blade coordinates ``(y, z)``:
+``(y, z) = R (eta, zeta)``, ``R = [[cos, sin], [-sin, cos]]``.
+
+- Bending (seed paper 002 eqs. 25-26 after Hodges and Dowell; Euler-Bernoulli): a fibre at ``(y, z)`` strains by
+  ``-(y v'' + z w'') = -(eta, zeta) . R^T (v'', w'')``, so the curvatures in the section frame are
+  ``R^T (v'', w'')`` and the stiffness for ``(v'', w'')`` is ``R diag(EI_edge, EI_flap) R^T``
+  (``EI_edge = int E eta^2``, ``EI_flap = int E zeta^2`` about the tension centre).
+- Mass: a section symmetric about its chord (the seed's assumption) has its centre of mass at ``(e_g, 0)`` and the
+  second moments ``diag(i_edge, i_flap)`` about it in the section frame; about the reference axis
+  ``J_section = diag(i_edge, i_flap) + m (e_g, 0)(e_g, 0)^T`` (parallel axes), turned into the blade frame as
+  ``R J_section R^T``; the first moment is ``S = m R (e_g, 0)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..sections import Blade, SectionTable
+
+
+@dataclass(frozen=True)
+class SectionProperties:
+    """Galerkin section properties at points ``x`` (n,): mass ``m`` (kg/m), first moment ``S`` (3, n) in kg,
+    second moment ``J`` (3, 3, n) in kg m, both about the reference axis in the blade frame, and the bending
+    stiffness ``D`` (n, 2, 2) for the curvatures ``(v'', w'')``, N m^2."""
+
+    m: NDArray[np.float64]
+    S: NDArray[np.float64]
+    J: NDArray[np.float64]
+    D: NDArray[np.float64]
+
+
+def column(sections: SectionTable, name: str, x: NDArray) -> NDArray:
+    """Column ``name`` of the raw table, linear between stations, at span positions ``x`` (m)."""
+    return np.interp(x, sections.span, getattr(sections, name))
+
+
+def section_rotation(theta: NDArray) -> NDArray:
+    """``R(theta)`` of shape (..., 2, 2): section coordinates ``(eta, zeta)`` to blade coordinates ``(y, z)``."""
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([np.stack([c, s], -1), np.stack([-s, c], -1)], -2)
+
+
+def principal_to_blade(R: NDArray, first: NDArray, second: NDArray) -> NDArray:
+    """``R diag(first, second) R^T`` (..., 2, 2): a symmetric tensor given on the section axes, in the blade
+    frame."""
+    return np.einsum("...ik,...k,...jk->...ij", R, np.stack([first, second], -1), R)
+
+
+def section_properties(blade: Blade, x: NDArray) -> SectionProperties:
+    """Mass moments and bending stiffness of ``blade`` at span positions ``x`` (m), see the module text."""
+    sections = blade.sections
+    x = np.asarray(x, dtype=float)
+    R = section_rotation(column(sections, "twist", x) + blade.pitch)
+    m = column(sections, "mass", x)
+    e_g = column(sections, "cm_offset", x)
+    D = principal_to_blade(R, column(sections, "edge_stiffness", x), column(sections, "flap_stiffness", x))
+    J_yz = principal_to_blade(R, column(sections, "edge_inertia", x) + m * e_g**2, column(sections, "flap_inertia", x))
+    S_yz = R[..., 0] * (m * e_g)[..., None]                 # m R (e_g, 0): the first column of R times m e_g
+    S = np.zeros((3,) + m.shape)
+    S[1:] = np.moveaxis(S_yz, -1, 0)
+    J = np.zeros((3, 3) + m.shape)
+    J[1:, 1:] = np.moveaxis(J_yz, (-2, -1), (0, 1))
+    return SectionProperties(m=m, S=S, J=J, D=D)
+
+
+def body_second_moment(mass: float, offset: NDArray, inertia: NDArray) -> NDArray:
+    """``int rho s s^T`` (kg m^2) of a rigid body about its attachment point, from its inertia tensor about its
+    centre of mass ``I`` (kg m^2) and the offset ``p`` (m): ``int rho s' s'^T = tr(I)/2 1 - I`` about the centre
+    (since ``I = int rho (|s'|^2 1 - s' s'^T)``) plus ``mass p p^T``."""
+    inertia = np.asarray(inertia, dtype=float)
+    offset = np.asarray(offset, dtype=float)
+    return 0.5 * np.trace(inertia) * np.eye(3) - inertia + mass * np.outer(offset, offset)
