@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
@@ -15,6 +16,17 @@ from ..io.tower_elastodyn import elastodyn_tower
 from ..modal.results import ModalResult, Mode
 from ..sections import Blade
 from .spec import ModelSpec
+
+
+def read_structure(path: Path, elastodyn_main: Path | None = None, geometry: dict[str, float] | None = None):
+    """The blade or tower an input file describes, with geometry overrides (SI: tip_radius, hub_radius, precone,
+    pitch, tip_mass)."""
+    kind = detect_format(path)
+    if kind == "case" and is_tower_case(path):
+        return read_tower_case(path)
+    if kind == "elastodyn-tower" and elastodyn_main is not None:
+        return elastodyn_tower(elastodyn_main)
+    return read_model(path, None, Geometry(elastodyn_main=elastodyn_main, **(geometry or {})))
 
 
 def ordinal_names(kinds: list[str]) -> list[str]:
@@ -46,13 +58,7 @@ class ModelRun:
     @cached_property
     def structure(self) -> object:
         """The blade or tower the model's input describes (with the spec's geometry overrides)."""
-        path, main = self.spec.input, self.spec.elastodyn_main
-        kind = detect_format(path)
-        if kind == "case" and is_tower_case(path):
-            return read_tower_case(path)
-        if kind == "elastodyn-tower" and main is not None:
-            return elastodyn_tower(main)
-        return read_model(path, None, Geometry(elastodyn_main=main, **self.spec.geometry))
+        return read_structure(self.spec.input, self.spec.elastodyn_main, self.spec.geometry)
 
     @property
     def is_blade(self) -> bool:

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from typing import NoReturn
 
 from ..errors import InputError
-from . import blade, check, elastodyn, export, report, turbine, verify
+from . import batch, blade, check, elastodyn, export, report, turbine, verify
 
 
 class Parser(argparse.ArgumentParser):
@@ -36,7 +36,7 @@ def _version() -> str:
     return __version__
 
 
-SUBCOMMANDS = [blade, verify, elastodyn, export, report, turbine, check]
+SUBCOMMANDS = [blade, verify, elastodyn, export, report, turbine, check, batch]
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,0 +1,224 @@
+"""A batch plan: the base model, what varies (a grid, random samples or a list of files) and the analysis per case,
+read from YAML, validated against a JSON Schema (errors name the line), and expanded into cases.
+
+    model: nrel5mw_blade.yaml                 # any input bladefem reads, relative to the plan
+    analysis: {type: modes, rpm: 12.1, n_modes: 6}
+    samples:                                  # or grid: {flap_stiffness_scale: [0.9, 1, 1.1], rpm: [6.9, 12.1]}
+      count: 64                               # or files: [a.yaml, b.bmi]
+      seed: 2026
+      properties:
+        mass: {distribution: uniform, half_width_percent: 5}
+        flap_stiffness: {distribution: normal, std_percent: 5, correlation_length: 0.3}
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..io.yamlnodes import load_yaml
+from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
+
+ANALYSES = ("modes", "campbell", "check")
+DISTRIBUTIONS = ("normal", "uniform", "lognormal")
+MAX_CASES = 1_000_000
+
+_NUMBER = {"type": "number"}
+_NUMBERS = {"type": "array", "items": _NUMBER, "minItems": 1}
+PLAN_SCHEMA: dict[str, Any] = {
+    "$schema": "https://json-schema.org/draft/2020-12/schema",
+    "title": "bladefem batch plan",
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["analysis"],
+    "properties": {
+        "model": {"type": "string"},
+        "elastodyn_main": {"type": "string"},
+        "analysis": {
+            "type": "object", "additionalProperties": False, "required": ["type"],
+            "properties": {
+                "type": {"enum": list(ANALYSES)},
+                "rpm": {"anyOf": [{"type": "number", "minimum": 0},
+                                  {"type": "array", "items": _NUMBER, "minItems": 3, "maxItems": 3}]},
+                "n_modes": {"type": "integer", "minimum": 1, "maximum": 30},
+                "elements": {"type": "integer", "minimum": 1, "maximum": 5000},
+                "spec": {"type": "string"}, "spec_model": {"type": "string"},
+            },
+        },
+        "grid": {"type": "object", "minProperties": 1,
+                 "propertyNames": {"enum": [f"{c}_scale" for c in SCALES] + ["tip_mass_kg", "precone_deg",
+                                                                             "pitch_deg", "rpm"]},
+                 "additionalProperties": _NUMBERS},
+        "samples": {
+            "type": "object", "additionalProperties": False, "required": ["count", "seed", "properties"],
+            "properties": {
+                "count": {"type": "integer", "minimum": 1, "maximum": MAX_CASES},
+                "seed": {"type": "integer", "minimum": 0},
+                "properties": {
+                    "type": "object", "minProperties": 1, "propertyNames": {"enum": list(SCALES)},
+                    "additionalProperties": {
+                        "type": "object", "additionalProperties": False, "required": ["distribution"],
+                        "properties": {
+                            "distribution": {"enum": list(DISTRIBUTIONS)},
+                            "std_percent": {"type": "number", "exclusiveMinimum": 0, "maximum": 50},
+                            "half_width_percent": {"type": "number", "exclusiveMinimum": 0, "maximum": 90},
+                            "sigma": {"type": "number", "exclusiveMinimum": 0, "maximum": 2},
+                            "correlation_length": {"type": "number", "exclusiveMinimum": 0,
+                                                   "description": "along the span, as a fraction of its length"},
+                        },
+                    },
+                },
+            },
+        },
+        "files": {"type": "array", "items": {"type": "string"}, "minItems": 1},
+    },
+    "oneOf": [{"required": ["grid"]}, {"required": ["samples"]}, {"required": ["files"]}],
+}
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """What each case computes: 'modes' at ``rpm`` (rpm), a 'campbell' sweep over ``sweep`` (start, stop, count
+    rpm), or the requirements of ``spec`` (a check spec) on its model ``spec_model``."""
+
+    type: str
+    rpm: float = 0.0
+    sweep: tuple[float, float, int] | None = None
+    n_modes: int = 6
+    elements: int | None = None
+    spec: Path | None = None
+    spec_model: str | None = None
+
+    def key(self) -> dict[str, Any]:
+        return {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
+                "elements": self.elements, "spec": None if self.spec is None else file_digest(self.spec),
+                "spec_model": self.spec_model}
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A plan read from ``path``: the analysis and its expanded cases (in a fixed order)."""
+
+    path: Path
+    analysis: Analysis
+    cases: list[Case] = field(repr=False)
+    varied: tuple[str, ...] = ()
+
+
+def _validate(data: Any, path: Path, lines: dict) -> None:
+    import jsonschema
+    error = jsonschema.exceptions.best_match(jsonschema.Draft202012Validator(PLAN_SCHEMA).iter_errors(data))
+    if error is not None:
+        where = tuple(error.absolute_path)
+        raise InputError(f"plan schema: {error.message}", file=str(path),
+                         line=_line(lines, where), field=".".join(map(str, where)) or None)
+
+
+def _line(lines: dict, where: tuple) -> int | None:
+    while where:
+        if where in lines:
+            return lines[where]
+        where = where[:-1]
+    return None
+
+
+def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> Analysis:
+    kind = entry["type"]
+    rpm = entry.get("rpm", 0.0)
+    sweep = None
+    if kind == "campbell":
+        if not isinstance(rpm, list):
+            raise InputError("a campbell analysis needs rpm: [START, STOP, COUNT]", file=str(path),
+                             line=_line(lines, ("analysis",)), field="analysis.rpm")
+        start, stop, count = rpm
+        if not (0 <= start <= stop and float(count).is_integer() and 1 <= count <= 1000):
+            raise InputError(f"need 0 <= START <= STOP and 1 <= COUNT <= 1000, got {rpm}", file=str(path),
+                             line=_line(lines, ("analysis", "rpm")), field="analysis.rpm")
+        sweep, rpm = (float(start), float(stop), int(count)), 0.0
+    elif isinstance(rpm, list):
+        raise InputError(f"a {kind} analysis takes one rotor speed", file=str(path),
+                         line=_line(lines, ("analysis", "rpm")), field="analysis.rpm")
+    spec = entry.get("spec")
+    if kind == "check" and (spec is None or "spec_model" not in entry):
+        raise InputError("a check analysis needs spec (a check spec file) and spec_model (its model)",
+                         file=str(path), line=_line(lines, ("analysis",)), field="analysis")
+    return Analysis(kind, float(rpm), sweep, int(entry.get("n_modes", 6)), entry.get("elements"),
+                    None if spec is None else folder / spec, entry.get("spec_model"))
+
+
+def correlated_normals(rng: np.random.Generator, stations: np.ndarray, length: float | None) -> np.ndarray:
+    """Standard normal values at the station positions (fractions of the span): one shared value when
+    ``length`` is None (fully correlated), else a Gaussian field with correlation exp(-|dx| / length)."""
+    if length is None:
+        return np.full(len(stations), rng.standard_normal())
+    covariance = np.exp(-np.abs(stations[:, None] - stations[None, :]) / length)
+    return np.linalg.cholesky(covariance + 1e-12 * np.eye(len(stations))) @ rng.standard_normal(len(stations))
+
+
+def factors(spec: dict[str, Any], z: np.ndarray) -> np.ndarray:
+    """Multiplicative factors from standard normal values ``z`` for one property's distribution."""
+    kind = spec["distribution"]
+    if kind == "normal":
+        return 1.0 + spec.get("std_percent", 5.0) / 100.0 * z
+    if kind == "lognormal":
+        return np.exp(spec.get("sigma", 0.05) * z)
+    from scipy.special import ndtr               # uniform: the normal's probability, mapped to the interval
+    return 1.0 + spec.get("half_width_percent", 5.0) / 100.0 * (2.0 * ndtr(z) - 1.0)
+
+
+def _sample_cases(samples: dict[str, Any], base: Path, stations: np.ndarray) -> list[dict[str, Any]]:
+    rng = np.random.default_rng(samples["seed"])
+    cases = []
+    for _ in range(samples["count"]):
+        inputs: dict[str, Any] = {}
+        for name, spec in samples["properties"].items():
+            field_ = factors(spec, correlated_normals(rng, stations, spec.get("correlation_length")))
+            if np.any(field_ <= 0):
+                raise InputError(f"a sampled factor of '{name}' is not positive: narrow the distribution",
+                                 file=str(base), field=f"samples.properties.{name}")
+            inputs[f"{name}_scale"] = field_ if spec.get("correlation_length") else float(field_[0])
+        cases.append(inputs)
+    return cases
+
+
+def read_plan(path: str | Path) -> Plan:
+    """Read, validate and expand a plan; :class:`InputError` names the file, line and field of a problem."""
+    from .cases import station_fractions
+    path = Path(path)
+    data, lines = load_yaml(path)
+    _validate(data, path, lines)
+    folder = path.parent
+    analysis = _analysis(data["analysis"], folder, path, lines)
+    main = data.get("elastodyn_main")
+    main = None if main is None else folder / main
+    if "files" in data:
+        variants = [{"file": str(folder / name)} for name in data["files"]]
+        base = None
+    else:
+        if "model" not in data:
+            raise InputError("a grid or samples plan needs 'model' (the base input)", file=str(path), line=1,
+                             field="model")
+        base = folder / data["model"]
+        if "grid" in data:
+            names = list(data["grid"])
+            variants = [dict(zip(names, values)) for values in itertools.product(*data["grid"].values())]
+        else:
+            variants = _sample_cases(data["samples"], path, station_fractions(base, main))
+    if len(variants) > MAX_CASES:
+        raise InputError(f"{len(variants)} cases: at most {MAX_CASES}", file=str(path), field="grid")
+    varied = tuple(variants[0])
+    cases = []
+    for index, inputs in enumerate(variants):
+        model = Path(inputs["file"]) if "file" in inputs else base
+        cases.append(Case(index=index, model=model, elastodyn_main=main, inputs=inputs, analysis=analysis,
+                          hash=case_hash(model, main, inputs, analysis.key())))
+    return Plan(path=path, analysis=analysis, cases=cases, varied=tuple(v for v in varied if v in COLUMNS or
+                                                                        v == "file" or v.endswith("_scale")))
+
+
+__all__ = ["ANALYSES", "Analysis", "PLAN_SCHEMA", "Plan", "correlated_normals", "factors", "read_plan"]

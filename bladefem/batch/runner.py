@@ -1,0 +1,130 @@
+"""Run the cases of a plan as Dask tasks (``dask.distributed``): on a local cluster of worker processes, or on an
+existing cluster through its scheduler address; results go to a Parquet dataset in chunks as tasks finish.
+
+A worker that dies takes its running task with it; the scheduler gives the task to another worker, and the client
+writes each case exactly once (the first result of its hash). ``resume`` skips the cases already in the results.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError
+from .cases import Case
+from .plan import Plan
+from .store import ResultStore
+from .worker import input_columns, run_case
+
+#: results are written when this many cases have finished, or after FLUSH_SECONDS
+CHUNK_CASES = 64
+FLUSH_SECONDS = 5.0
+
+
+@dataclass(frozen=True)
+class BatchRun:
+    """What a batch run did: cases in the plan, skipped (already in the results), run, failed; wall time, s."""
+
+    total: int
+    skipped: int
+    finished: int
+    failed: int
+    seconds: float
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Any]:
+    """A client of the cluster at ``scheduler`` (e.g. tcp://host:8786), or of a new local cluster of ``workers``
+    single-threaded worker processes (default: one per core)."""
+    from dask.distributed import Client, LocalCluster
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except OSError as error:
+            raise InputError(f"cannot reach the Dask scheduler ({error})", field="--scheduler") from None
+        with client:
+            yield client
+        return
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                           silence_logs=logging.ERROR, env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
+    with cluster, Client(cluster) as client:
+        yield client
+
+
+def dashboard_address(client: Any) -> str | None:
+    """The Dask dashboard's address, or None when it is not running (it needs bokeh)."""
+    try:
+        return client.dashboard_link if "dashboard" in client.scheduler_info().get("services", {}) else None
+    except Exception:                                   # pragma: no cover - informational only
+        return None
+
+
+def _failure_rows(case: Case, error: BaseException) -> list[dict[str, Any]]:
+    return [{"case_index": case.index, "case_hash": case.hash, **input_columns(case), "status": "error",
+             "error": f"{type(error).__name__}: {error}"}]
+
+
+def run_batch(plan: Plan, results: str | Path, *, scheduler: str | None = None, workers: int | None = None,
+              resume: bool = False, progress: Callable[[int, int, int], None] | None = None,
+              on_result: Callable[[Any, Case], None] | None = None, chunk: int = CHUNK_CASES) -> BatchRun:
+    """Run every case of ``plan`` not yet in ``results`` (with ``resume``) on Dask and write their rows.
+
+    ``progress(done, failed, remaining)`` is called after each case; ``on_result(client, case)`` too (a hook for
+    tests and tools). A case that raises records its error and the batch goes on; finished results are written
+    even when the run is interrupted.
+    """
+    from dask.distributed import as_completed
+    store = ResultStore(results)
+    if store.parts() and not resume:
+        raise InputError("already holds batch results: add --resume to finish that batch, or choose another "
+                         "folder", file=str(store.path), field="-o")
+    done = store.done_hashes() if resume else set()
+    todo = [case for case in plan.cases if case.hash not in done]
+    start = time.perf_counter()
+    written: set[str] = set()
+    buffer: list[dict[str, Any]] = []
+    failed = 0
+    last_flush = time.monotonic()
+
+    def flush() -> None:
+        nonlocal last_flush
+        store.append(buffer)
+        buffer.clear()
+        last_flush = time.monotonic()
+
+    with dask_client(scheduler, workers) as client:
+        by_key = {}
+        futures = []
+        for case in todo:
+            future = client.submit(run_case, case, key=f"bladefem-case-{case.hash}", pure=False)
+            by_key[future.key] = case
+            futures.append(future)
+        try:
+            for future in as_completed(futures):
+                case = by_key[future.key]
+                try:
+                    rows = future.result()
+                except Exception as error:                 # e.g. KilledWorker after repeated worker deaths
+                    rows = _failure_rows(case, error)
+                if case.hash in written:
+                    continue
+                written.add(case.hash)
+                failed += any(row["status"] == "error" for row in rows)
+                buffer += rows
+                if len(written) % chunk == 0 or time.monotonic() - last_flush > FLUSH_SECONDS:
+                    flush()
+                if progress is not None:
+                    progress(len(written), failed, len(todo) - len(written))
+                if on_result is not None:
+                    on_result(client, case)
+        finally:
+            flush()
+            for future in futures:
+                future.cancel()
+    return BatchRun(len(plan.cases), len(plan.cases) - len(todo), len(written), failed,
+                    time.perf_counter() - start)

@@ -1,0 +1,167 @@
+"""Statistics of a batch's results: per mode (or family and speed, or requirement) the mean, standard deviation
+and 5/95 % quantiles, and the sensitivity of each to each varied input (Pearson correlation and the linear swing
+over the input's 5-95 % range); histograms and a tornado chart."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+RESULT_COLUMNS = {"case_index", "case_hash", "status", "error", "mode", "name", "kind", "frequency_hz",
+                  "residual", "damping_ratio", "requirement", "check", "passed", "measured", "margin", "rpm"}
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One summarised quantity over the cases: its label, unit, values (by case), and per input the correlation
+    and the linear swing (value change over the input's 5-95 % range, same unit as the values)."""
+
+    label: str
+    unit: str
+    values: NDArray[np.float64]
+    correlation: dict[str, float]
+    swing: dict[str, float]
+
+    @property
+    def statistics(self) -> dict[str, float]:
+        v = self.values
+        return {"count": len(v), "mean": float(np.mean(v)), "std": float(np.std(v, ddof=1)) if len(v) > 1 else 0.0,
+                "q05": float(np.quantile(v, 0.05)), "q95": float(np.quantile(v, 0.95))}
+
+
+@dataclass(frozen=True)
+class BatchSummary:
+    cases: int
+    failed: int
+    inputs: tuple[str, ...]
+    quantities: list[Quantity]
+
+
+def _columns(table: Any) -> dict[str, list]:
+    return {name: table[name].to_pylist() for name in table.column_names}
+
+
+def _varied_inputs(data: dict[str, list], ok: NDArray[np.bool_]) -> list[str]:
+    names = []
+    for name, values in data.items():
+        if name in RESULT_COLUMNS - {"rpm"} or name.endswith("_stations") or name == "file":
+            continue
+        column = np.array([np.nan if v is None else v for v in values], dtype=float)[ok]
+        if column.size and np.all(np.isfinite(column)) and np.ptp(column) > 0:
+            names.append(name)
+    return names
+
+
+def _sensitivity(x: NDArray, y: NDArray) -> tuple[float, float]:
+    if np.ptp(x) == 0 or np.ptp(y) == 0 or len(x) < 3:
+        return 0.0, 0.0
+    correlation = float(np.corrcoef(x, y)[0, 1])
+    slope = np.polyfit(x, y, 1)[0]
+    return correlation, float(slope * (np.quantile(x, 0.95) - np.quantile(x, 0.05)))
+
+
+def summarize(table: Any) -> BatchSummary:
+    """The summary of a results table (see :class:`bladefem.batch.store.ResultStore.table`)."""
+    data = _columns(table)
+    status = np.array(data.get("status", []))
+    ok = status == "ok"
+    hashes = np.array(data.get("case_hash", []))
+    failed = len(set(hashes[~ok]))
+    checks = "measured" in data and "frequency_hz" not in data
+    value_name = "measured" if checks else "frequency_hz"
+    values = np.array([np.nan if v is None else v for v in data.get(value_name, [])], dtype=float)
+    inputs = [name for name in _varied_inputs(data, ok) if not (name == "rpm" and _rpm_is_sweep(data, ok))]
+    if checks:
+        labels = [f"{r} / {c}" for r, c in zip(data["requirement"], data["check"])]
+    elif _rpm_is_sweep(data, ok):
+        labels = [f"{n} at {r:g} rpm" for n, r in zip(data["name"], data["rpm"])]
+    else:
+        labels = list(data.get("name", []))
+    quantities = []
+    for label in dict.fromkeys(label for label, good in zip(labels, ok) if good):
+        rows = np.array([good and this == label for this, good in zip(labels, ok)])
+        y = values[rows]
+        correlation, swing = {}, {}
+        for name in inputs:
+            x = np.array(data[name], dtype=float)[rows]
+            correlation[name], swing[name] = _sensitivity(x, y)
+        unit = "" if checks else "Hz"
+        quantities.append(Quantity(label, unit, y, correlation, swing))
+    return BatchSummary(len(set(hashes)), failed, tuple(inputs), quantities)
+
+
+def _rpm_is_sweep(data: dict[str, list], ok: NDArray[np.bool_]) -> bool:
+    """True when one case holds several speeds (a Campbell analysis)."""
+    if "rpm" not in data or "name" not in data:
+        return False
+    seen: dict[tuple, set] = {}
+    for case, name, rpm, good in zip(data["case_hash"], data["name"], data["rpm"], ok):
+        if good:
+            seen.setdefault((case, name), set()).add(rpm)
+    return any(len(speeds) > 1 for speeds in seen.values())
+
+
+def format_summary(summary: BatchSummary) -> str:
+    """Statistics per quantity, then the correlation of each with each varied input."""
+    lines = [f"# {summary.cases} cases, {summary.failed} failed; varied inputs: {', '.join(summary.inputs) or '-'}",
+             f"{'quantity':<28} {'n':>5} {'mean':>12} {'std':>11} {'q05':>12} {'q95':>12}"]
+    for q in summary.quantities:
+        s = q.statistics
+        lines.append(f"{q.label:<28} {s['count']:>5d} {s['mean']:>12.6g} {s['std']:>11.4g} {s['q05']:>12.6g} "
+                     f"{s['q95']:>12.6g}")
+    if summary.inputs:
+        lines += ["", "# correlation with each varied input (linear swing over its 5-95 % range in brackets)",
+                  f"{'quantity':<28} " + " ".join(f"{name:>26}" for name in summary.inputs)]
+        for q in summary.quantities:
+            cells = [f"{q.correlation[n]:+.3f} ({q.swing[n]:+.3g} {q.unit})".rjust(26) for n in summary.inputs]
+            lines.append(f"{q.label:<28} " + " ".join(cells))
+    return "\n".join(lines)
+
+
+def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6) -> list[Path]:
+    """``histograms.png`` (one panel per quantity) and, when inputs vary, ``tornado.png`` (per quantity the
+    linear swing of each input, largest first); written whole or not at all. Returns the files written."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..files import atomic_path
+    folder = Path(folder)
+    shown = summary.quantities[:most]
+    written = []
+    columns = min(3, len(shown)) or 1
+    rows = (len(shown) + columns - 1) // columns or 1
+    figure, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3 * rows), squeeze=False)
+    for axis, q in zip(axes.flat, shown):
+        axis.hist(q.values, bins="auto", color="#4c72b0", edgecolor="white")
+        axis.set_title(q.label, fontsize=9)
+        axis.set_xlabel(f"value ({q.unit})" if q.unit else "value")
+    for axis in list(axes.flat)[len(shown):]:
+        axis.set_visible(False)
+    figure.tight_layout()
+    with atomic_path(folder / "histograms.png") as temporary:
+        figure.savefig(temporary, dpi=120)
+    written.append(folder / "histograms.png")
+    plt.close(figure)
+    if summary.inputs:
+        figure, axes = plt.subplots(rows, columns, figsize=(4.5 * columns, 2.2 + 0.4 * len(summary.inputs) * rows),
+                                    squeeze=False)
+        for axis, q in zip(axes.flat, shown):
+            order = sorted(summary.inputs, key=lambda n: abs(q.swing[n]))
+            axis.barh(order, [q.swing[n] for n in order], color=["#c44e52" if q.swing[n] < 0 else "#55a868"
+                                                                  for n in order])
+            axis.axvline(0, color="black", linewidth=0.8)
+            axis.set_title(q.label, fontsize=9)
+            axis.set_xlabel(f"swing over the input's 5-95 % range ({q.unit})")
+        for axis in list(axes.flat)[len(shown):]:
+            axis.set_visible(False)
+        figure.tight_layout()
+        with atomic_path(folder / "tornado.png") as temporary:
+            figure.savefig(temporary, dpi=120)
+        written.append(folder / "tornado.png")
+        plt.close(figure)
+    return written
