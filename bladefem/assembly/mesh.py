@@ -13,8 +13,9 @@ from skfem import MeshLine
 
 def span_nodes(stations: NDArray, elements: int) -> NDArray:
     """Node positions (m): each station interval split into ``ceil(interval / h)`` equal elements, with the target
-    element size ``h = length / elements``; at least one element per interval."""
-    stations = np.asarray(stations, dtype=float)
+    element size ``h = length / elements``; at least one element per interval (a station given twice, a property
+    step, is one node)."""
+    stations = np.unique(np.asarray(stations, dtype=float))
     h = (stations[-1] - stations[0]) / max(int(elements), 1)
     counts = np.maximum(np.ceil(np.diff(stations) / h - 1e-9).astype(int), 1)
     pieces = [np.linspace(a, b, n, endpoint=False) for a, b, n in zip(stations[:-1], stations[1:], counts)]

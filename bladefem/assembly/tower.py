@@ -34,12 +34,15 @@ from .mesh import span_mesh, span_nodes
 from .parameters import SectionParameters
 from .supports import (
     BASE_SIZE,
+    added_mass_parameters,
     base_constraint,
     base_height,
     base_matrices,
+    lateral_added_mass,
     node_matrix,
     soil_parameters,
     soil_springs,
+    weight_in_restoring,
     wire_stiffness,
 )
 
@@ -155,7 +158,7 @@ class TowerMatrices:
     @property
     def n_elastic(self) -> int:
         """Number of elastic coordinates (the first columns of Z; the last six move the base, if it moves)."""
-        return self.n_free - (BASE_SIZE if self.tower.supports.moving_base else 0)
+        return self.n_free - len(self.tower.supports.free_base)
 
     def reduced(self, load_factor: float = 1.0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(K, M) on the independent coordinates, with ``load_factor`` times the gravity load."""
@@ -192,13 +195,19 @@ def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
     K = (_pad(assemble_terms(basis, fields, soil_parameters(tower.supports, x), [soil_springs]), size)
          + wire_stiffness(tower.supports, dofs, size) + _base_block(base.stiffness, size))
     M = _pad(assemble_terms(basis, fields, sections, [terms.inertia]), size) + M_top + _base_block(base.mass, size)
+    if tower.supports.added_mass is not None:
+        M = M + _pad(assemble_terms(basis, fields, added_mass_parameters(tower.supports, x), [lateral_added_mass]),
+                     size)
     if tower.gravity > 0:
         gravity = gravity_parameters(tower, x)
         K_gravity = (_pad(assemble_terms(basis, fields, gravity, [terms.axial_force_stiffness,
                                                                   terms.rotation_second_order]), size)
                      + G_top + _base_block(base.gravity, size))
+        platform = tower.supports.platform
+        if platform is not None and platform.restoring_includes_weight:
+            K_gravity = K_gravity + weight_in_restoring(K_gravity, dofs, base_height(tower.supports))
     else:
         K_gravity = sp.csr_matrix((size, size))
-    Z = base_constraint(dofs, rigid_fields(tower), tower.supports.moving_base, base_height(tower.supports))
+    Z = base_constraint(dofs, rigid_fields(tower), tower.supports.free_base, base_height(tower.supports))
     return TowerMatrices(K_elastic=K_elastic, K=K.tocsr(), K_gravity=K_gravity.tocsr(), M=M.tocsr(), Z=Z,
                          dofs=dofs, tower=tower)

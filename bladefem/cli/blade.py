@@ -14,6 +14,8 @@ from ..sections import Blade
 from ..sections.tower import as_tower
 from .inputs import (
     add_blade_options,
+    apply_deck_settings,
+    deck_settings,
     finite_float,
     positive_int,
     read_blade,
@@ -31,8 +33,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                                   description="Natural frequencies (Hz) and mode shapes at one rotor speed.")
     add_blade_options(modes)
     add_tower_options(modes)
-    modes.add_argument("--rpm", type=finite_float, default=0.0, help="rotor speed, rpm (default 0)")
-    modes.add_argument("--n-modes", type=positive_int, default=10, metavar="N", help="number of modes (default 10)")
+    modes.add_argument("--rpm", type=finite_float,
+                       help="rotor speed, rpm (default: a BModes deck's rot_rpm x rpm_mult, else 0)")
+    modes.add_argument("--n-modes", type=positive_int, metavar="N",
+                       help="number of modes (default: a BModes deck's modepr, else 10)")
     modes.add_argument("--method", choices=METHODS, default="fe",
                        help="fe: finite elements (default); galerkin: the analytical assumed-modes model")
     modes.add_argument("--terms", metavar="NW,NV,NPHI", default="5,5,3",
@@ -46,7 +50,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     campbell.add_argument("--rpm", type=rpm_range, required=True, metavar="START:STOP:COUNT",
                           help="rotor speeds, rpm (e.g. 0:15:16)")
     campbell.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="families (default 6)")
-    campbell.add_argument("--operating-rpm", type=finite_float, metavar="RPM", help="operating speed to mark")
+    campbell.add_argument("--operating-rpm", type=finite_float, metavar="RPM",
+                          help="operating speed to mark (default: a BModes deck's rot_rpm x rpm_mult)")
     campbell.add_argument("--plot", metavar="FILE.png", help="write the Campbell diagram to this image")
     campbell.add_argument("--json", action="store_true", help="print JSON instead of a table")
     campbell.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -67,6 +72,7 @@ def compute_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
 
 
 def run_modes(args: argparse.Namespace) -> int:
+    apply_deck_settings(args, n_modes=True)
     if is_tower_input(args.input):
         return tower_modes_command(args)
     blade = read_structure(args)
@@ -82,6 +88,8 @@ def run_modes(args: argparse.Namespace) -> int:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
+    if args.operating_rpm is None:
+        args.operating_rpm = deck_settings(args.input)[0] or None
     blade = read_blade(args)
     matrices = blade_matrices(blade, args.elements, args.n_modes, float(args.rpm.max()))
     result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes,

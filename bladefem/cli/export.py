@@ -12,7 +12,7 @@ import numpy as np
 from ..errors import InputError
 from ..modal import ModalResult, blade_matrices, solve_modes
 from ..sections import Blade
-from .inputs import add_blade_options, positive_int, read_blade
+from .inputs import add_blade_options, apply_deck_settings, positive_int, read_blade
 
 
 def rotor_speeds(text: str) -> np.ndarray:
@@ -51,8 +51,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                     "deformed blade and animated GIFs. With none of --vtk/--png/--gif, writes VTK.")
     add_blade_options(export)
     add_planform_option(export)
-    export.add_argument("--rpm", type=rotor_speeds, default=np.array([0.0]), metavar="R|START:STOP:COUNT",
-                        help="rotor speed, rpm (default 0), or a sweep (VTK collection and Campbell diagram)")
+    export.add_argument("--rpm", type=rotor_speeds, metavar="R|START:STOP:COUNT",
+                        help="rotor speed, rpm (default: a BModes deck's rot_rpm x rpm_mult, else 0), or a sweep "
+                             "(VTK collection and Campbell diagram)")
     export.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     export.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="modes (default 6)")
     export.add_argument("--vtk", action="store_true", help="VTU files, a .pvd collection and a JSON sidecar")
@@ -74,6 +75,8 @@ def require_pyvista(option: str) -> None:
 def run_export(args: argparse.Namespace) -> int:
     from ..report import progress_bar, sweep
 
+    apply_deck_settings(args)
+    args.rpm = np.atleast_1d(np.asarray(args.rpm, dtype=float))
     if args.gif and len(args.rpm) > 1:
         raise InputError("animated GIFs are drawn at one rotor speed; give --rpm R", field="--gif")
     vtk = args.vtk or not (args.png or args.gif)

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import InputError
 from .export import add_planform_option, read_drawn_blade
-from .inputs import add_blade_options, finite_float, positive_int, rpm_range
+from .inputs import add_blade_options, apply_deck_settings, finite_float, positive_int, rpm_range
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
@@ -21,8 +21,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     add_blade_options(report)
     add_planform_option(report)
     report.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
-    report.add_argument("--rpm", type=finite_float, default=0.0, metavar="RPM",
-                        help="operating rotor speed, rpm (frequency table, pictures, coefficients; default 0)")
+    report.add_argument("--rpm", type=finite_float, metavar="RPM",
+                        help="operating rotor speed, rpm (frequency table, pictures, coefficients; default: a BModes "
+                             "deck's rot_rpm x rpm_mult, else 0)")
     report.add_argument("--sweep", type=rpm_range, metavar="START:STOP:COUNT",
                         help="Campbell sweep, rpm (default 0 to 1.25 x RPM, or 0 to 15 rpm, 16 speeds)")
     report.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="modes (default 6)")
@@ -39,6 +40,7 @@ def default_sweep(rpm: float) -> np.ndarray:
 def run_report(args: argparse.Namespace) -> int:
     from ..report import write_report
 
+    apply_deck_settings(args)
     if args.rpm < 0:
         raise InputError(f"must not be negative, got {args.rpm}", field="--rpm")
     blade = read_drawn_blade(args)

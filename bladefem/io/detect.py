@@ -66,7 +66,7 @@ def detect_format(path: str | Path) -> str:
 def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None,
                **options: object) -> Blade | Tower:
     """The blade (default) or tower (``part='tower'``) described by ``path``, in any supported format. A BModes
-    tower on tension wires comes as the tower model's :class:`bladefem.sections.tower.Tower` (with supports).
+    tower comes as the tower model's :class:`bladefem.sections.tower.Tower` (with its supports).
 
     Geometry for files that lack it, and overrides, as a :class:`Geometry` or as keyword options with the same
     names (``tip_radius=63.0, elastodyn_main="main.dat"``; SI units, angles in rad)."""
@@ -85,14 +85,11 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry)
     if kind == "bmodes":
         from .bmodes import read_bmodes
-        from .bmodes_model import (
-            blade_from_bmodes,
-            tower_from_bmodes,
-            tower_model_from_bmodes,
-        )
+        from .bmodes_model import blade_from_bmodes
+        from .bmodes_tower import tower_from_bmodes
         deck = read_bmodes(path)
         if deck.beam_type == 2:
-            return tower_model_from_bmodes(deck) if deck.wires is not None else tower_from_bmodes(deck)
+            return tower_from_bmodes(deck)
         return _overrides(blade_from_bmodes(deck), geometry)
     if kind == "windio":
         from .windio import read_windio

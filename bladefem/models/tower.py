@@ -20,7 +20,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..assembly.dofs import DofMap
-from ..assembly.supports import BASE_FIELDS, BASE_SIZE, PLATFORM_KINDS
+from ..assembly.supports import BASE_FIELDS, PLATFORM_KINDS
 from ..assembly.tower import TowerMatrices, assemble_tower
 from ..modal.refinement import refine_until_converged
 from ..modal.results import ModalResult, Mode
@@ -168,12 +168,12 @@ def energy_shares(matrices: TowerMatrices, vectors: NDArray) -> list[dict[str, f
     supports = matrices.tower.supports
     shares = {kind: np.zeros(vectors.shape[1]) for kind in TOWER_KINDS}
     if supports.platform is not None:
-        q = vectors[-BASE_SIZE:]
+        q = vectors[matrices.n_elastic:]
         full = matrices.Z[:, :matrices.n_elastic] @ vectors[:matrices.n_elastic]
         _, M_r = matrices.reduced()
-        diagonal = M_r.diagonal()[-BASE_SIZE:]
-        for k, kind in enumerate(PLATFORM_KINDS):
-            shares[kind] += diagonal[k] * q[k] ** 2
+        diagonal = M_r.diagonal()[matrices.n_elastic:]
+        for k, index in enumerate(supports.free_base):
+            shares[PLATFORM_KINDS[index]] += diagonal[k] * q[k] ** 2
     elif supports.foundation is not None:
         diagonal = matrices.M.diagonal()[n:]
         for k, name in enumerate(BASE_FIELDS):
