@@ -127,6 +127,9 @@ def supports(bmodes: BModesInput) -> tuple[Supports, float, list[str]]:
                          "(BModes has no gravity); gravity acts on the tower's deformation relative to the platform")
     else:
         base["foundation"] = Foundation(stiffness=np.zeros((6, 6)))
+    if bmodes.hub_conn == 2 and not _yaw_inertia(bmodes):
+        raise bmodes.error("a free-free tower (hub_conn = 2) needs inertia about its axis (flp_iner, edge_iner, "
+                           "izz_tip or the platform's): its yaw would be undetermined", "hub_conn")
     if bmodes.hub_conn == 2 and not restoring:
         gravity = 0.0
         notes.append("free-free tower without restoring: nothing carries its weight, so gravity is left out")
@@ -148,6 +151,13 @@ def supports(bmodes: BModesInput) -> tuple[Supports, float, list[str]]:
                      "horizontal (lateral stiffness n k cos^2(th)/2 in every direction, n k sin^2(th) vertically); "
                      "BModes puts n k cos^2(th) on each lateral axis")
     return Supports(wires=wires, soil=soil, added_mass=added, base_held=held, **base), gravity, notes  # type: ignore
+
+
+def _yaw_inertia(bmodes: BModesInput) -> bool:
+    """True when something has inertia about the tower axis (sections, top mass, platform)."""
+    c, p = file_columns(bmodes), bmodes.platform
+    platform = p is not None and (p.i_matrix_pform[2, 2] > 0 or p.hydro_M[5, 5] > 0)
+    return bool(np.any(c["flp_iner"] + c["edge_iner"] > 0) or bmodes.tip["izz_tip"] > 0 or platform)
 
 
 def tower_notes(bmodes: BModesInput) -> list[str]:
