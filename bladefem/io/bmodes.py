@@ -189,6 +189,8 @@ def read_bmodes(path: str | os.PathLike) -> BModesInput:
     from .bmodes_support import read_support
 
     text = FastText.read(path)
+    _one_value_each(text, ("beam_type", "radius", "hub_rad", "precone", "bl_thp", "hub_conn", "modepr", "id_mat",
+                           "nselt", *TIP_KEYS, *MULTIPLIERS))
     beam_type = text.int("beam_type")
     if beam_type not in (1, 2):
         raise text.error(f"must be 1 (blade) or 2 (tower), got {beam_type}", text.line_of("beam_type"), "beam_type")
@@ -241,6 +243,17 @@ def read_bmodes(path: str | os.PathLike) -> BModesInput:
         path=text.path,
         key_lines=key_lines,
     )
+
+
+def _one_value_each(text: FastText, keys: tuple[str, ...]) -> None:
+    """A key written after several values (``60.0 99  rot_rpm``) is an error at its line, not a missing key."""
+    for key in keys:
+        if text.has(key):
+            continue
+        for number, line in enumerate(text.lines, start=1):
+            words = [word.rstrip(":") for word in line.split()]
+            if key in words[1:] and all(is_number(word) for word in words[:words.index(key)]):
+                raise text.error(f"expected one value before the key, found {words.index(key)}", number, key)
 
 
 def _key(text: FastText, name: str) -> str:
