@@ -109,13 +109,13 @@ def main(names: list[str]) -> None:
     import pybmodes
     decks = reference_decks()
     stored = json.loads(REFERENCE.read_text()) if REFERENCE.exists() else {"decks": {}}
-    for name in names or list(decks):
-        print(name, flush=True)
-        stored["decks"][name] = converged(decks[name])
     stored["provenance"] = (f"pybmodes {pybmodes.__version__} (PyPI), decks rewritten by bladefem's BModes writer on "
                             f"nested meshes (PIECES = {PIECES}, levels {list(LEVELS)}), Richardson-extrapolated: "
                             "tests/pybmodes_reference.py")
-    REFERENCE.write_text(json.dumps(stored, indent=1) + "\n")
+    for name in names or list(decks):
+        print(name, flush=True)
+        stored["decks"][name] = converged(decks[name])
+        REFERENCE.write_text(json.dumps(stored, indent=1) + "\n")
 
 
 if __name__ == "__main__":

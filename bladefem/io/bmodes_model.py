@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..sections import Blade, SectionTable, TipMass
+from ..sections.table import MIN_STATION_GAP
 from .bmodes import BModesInput
 
 #: BModes chordwise quantities are positive toward the trailing edge; bladefem's toward the leading edge.
@@ -101,9 +102,11 @@ def _line_of_station(bmodes: BModesInput, index: int) -> int | None:
 
 def with_stations(table: SectionTable, points: NDArray) -> SectionTable:
     """``table`` with ``points`` (m) added as stations, every column evaluated there by the table's own
-    interpolation, so that the property distribution is unchanged."""
+    interpolation, so that the property distribution is unchanged (points closer to a station than the table
+    allows are that station)."""
     new = np.setdiff1d(points, table.span)
-    new = new[np.min(np.abs(new[:, None] - table.span[None, :]), axis=1, initial=np.inf) > 1e-9 * table.length]
+    gap = np.min(np.abs(new[:, None] - table.span[None, :]), axis=1, initial=np.inf)
+    new = new[gap >= MIN_STATION_GAP * table.length]
     if not new.size:
         return table
     order = np.argsort(np.concatenate([table.span, new]), kind="stable")     # a step's pair keeps its order

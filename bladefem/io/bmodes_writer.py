@@ -128,8 +128,12 @@ def _platform_lines(platform: BModesPlatform | None) -> list[str]:
 
 
 def _wire_lines(wires: BModesWires | None) -> list[str]:
-    if wires is None:
-        return [_entry(0, "n_attachments", "no of wire-attachment locations on tower [0: no tension wires] (-)")]
+    if wires is None:        # the wire lines are still there: BModes reads them whatever n_attachments says
+        return [_entry(0, "n_attachments", "no of wire-attachment locations on tower [0: no tension wires] (-)"),
+                f"{'0':<24} n_wires: no of wires attached at each location (-)\n",
+                f"{'0':<24} node_attach: node numbers of attachment locations (-)\n",
+                f"{'0.':<24} wire_stfness: wire spring constant in each set (N/m)\n",
+                f"{'0.':<24} th_wire: angle of the wires from the horizontal plane (deg)\n"]
 
     def row(values: tuple, key: str, description: str) -> str:
         return f"{' '.join(format_number(v) if isinstance(v, float) else str(v) for v in values):<24} {key}: " \
@@ -139,7 +143,8 @@ def _wire_lines(wires: BModesWires | None) -> list[str]:
             row(wires.n_wires, "n_wires", "no of wires attached at each location (-)"),
             row(wires.node_attach, "node_attach", "node numbers of attachment locations (-)"),
             row(wires.stiffness, "wire_stfness", "wire spring constant in each set (N/m)"),
-            row(tuple(degrees_exact(a) for a in wires.angle), "th_wire", "angle of the wires at each attachment (deg)")]
+            row(tuple(degrees_exact(a) for a in wires.angle), "th_wire",
+                "angle of the wires from the horizontal plane at each attachment (deg)")]
 
 
 def bmodes_sections_text(sections: BModesSections) -> str:
