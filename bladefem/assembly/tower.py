@@ -174,11 +174,19 @@ class TowerMatrices:
         return self.Z @ vectors
 
 
+#: support points closer than this (fraction of the height) to a section station are placed at the station
+SNAP = 1e-3
+
+
 def tower_nodes(tower: Tower, elements: int) -> NDArray:
-    """Mesh nodes: section stations, wire heights and soil points are all nodes."""
-    points = np.union1d(tower.sections.span, tower.supports.mesh_points())
-    keep = np.concatenate([[True], np.diff(points) > 1e-9 * tower.height])
-    return span_nodes(points[keep], elements)
+    """Mesh nodes: section stations, wire heights and soil points are all nodes (a support point within
+    :data:`SNAP` of the height from a station is that station: a sliver element would ruin the conditioning)."""
+    stations, support = tower.sections.nodes, np.unique(tower.supports.mesh_points())
+    if support.size:
+        gap = np.min(np.abs(support[:, None] - stations[None, :]), axis=1)
+        apart = np.concatenate([[True], np.diff(support) > SNAP * tower.height])
+        support = support[(gap > SNAP * tower.height) & apart]
+    return span_nodes(np.union1d(stations, support), elements)
 
 
 def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:

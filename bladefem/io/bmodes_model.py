@@ -19,8 +19,9 @@ The section table is mapped so that bladefem's equations reproduce BModes' where
   tip section's chord (toward the trailing edge), inertias about its centre of mass in the tip section frame
   (x flapwise, y toward the trailing edge, z along the span), the products ``ixy_tip`` .. ``iyz_tip`` being
   inertia-tensor entries as BModes' mass matrix uses them. Towers: see :mod:`bladefem.io.bmodes_tower`.
-- ``el_loc``: every element boundary becomes a station (which leaves the property distribution unchanged), so the
-  FE mesh contains BModes' nodes; bladefem refines between them until converged.
+- ``el_loc``: BModes' own mesh is not used. bladefem meshes from the stations and refines until converged; BModes'
+  element boundaries often lie within millimetres of a station (rounded fractions), and such sliver elements ruin
+  the conditioning.
 
 Where BModes' physics or code differs, bladefem keeps the right physics and the model's notes name the difference:
 see :func:`blade_notes`.
@@ -35,7 +36,6 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..sections import Blade, SectionTable, TipMass
-from ..sections.table import MIN_STATION_GAP
 from .bmodes import BModesInput
 
 #: BModes chordwise quantities are positive toward the trailing edge; bladefem's toward the leading edge.
@@ -69,7 +69,7 @@ def scaled_columns(bmodes: BModesInput) -> dict[str, NDArray]:
 
 
 def bmodes_sections(bmodes: BModesInput) -> SectionTable:
-    """The section table (SI, bladefem's conventions) at the file's stations and the ``el_loc`` nodes."""
+    """The section table (SI, bladefem's conventions) at the file's stations."""
     c = file_columns(bmodes)
     m, e = c["mass_den"], CHORDWISE_SIGN * c["cg_offst"]
     turn = c["str_tw"] - c["tw_iner"]                      # inertia axes onto the structural axes
@@ -92,37 +92,12 @@ def bmodes_sections(bmodes: BModesInput) -> SectionTable:
         flap_inertia=flap, edge_inertia=np.maximum(edge, 0.0), cm_offset=e,
         shear_centre_offset=CHORDWISE_SIGN * c["sc_offst"], tension_centre_offset=CHORDWISE_SIGN * ea,
         inertia_per_mass=True, source=bmodes.sections.path, lines=bmodes.sections.station_lines or None)
-    return with_stations(table, bmodes.el_loc * bmodes.length)
+    return table
 
 
 def _line_of_station(bmodes: BModesInput, index: int) -> int | None:
     lines = bmodes.sections.station_lines
     return lines[index] if index < len(lines) else None
-
-
-def with_stations(table: SectionTable, points: NDArray) -> SectionTable:
-    """``table`` with ``points`` (m) added as stations, every column evaluated there by the table's own
-    interpolation, so that the property distribution is unchanged (points closer to a station than the table
-    allows are that station)."""
-    new = np.setdiff1d(points, table.span)
-    gap = np.min(np.abs(new[:, None] - table.span[None, :]), axis=1, initial=np.inf)
-    new = new[gap >= MIN_STATION_GAP * table.length]
-    if not new.size:
-        return table
-    order = np.argsort(np.concatenate([table.span, new]), kind="stable")     # a step's pair keeps its order
-    span = np.concatenate([table.span, new])[order]
-    columns = {}
-    for name in ("mass", "flap_stiffness", "edge_stiffness", "torsion_stiffness", "axial_stiffness", "twist",
-                 "flap_inertia", "edge_inertia", "cm_offset", "shear_centre_offset", "tension_centre_offset"):
-        old = getattr(table, name)
-        if old is not None:
-            columns[name] = np.concatenate([old, table.at(new, name)])[order]
-    lines = None
-    if table.lines is not None:
-        below = np.clip(np.searchsorted(table.span, new) - 1, 0, len(table.lines) - 1)
-        lines = tuple(int(v) for v in np.concatenate([table.lines, np.asarray(table.lines)[below]])[order])
-    return SectionTable(span=span, inertia_per_mass=table.inertia_per_mass, source=table.source, lines=lines,
-                        **columns)
 
 
 def tip_frame(theta: float) -> NDArray:
@@ -162,7 +137,7 @@ def blade_tip(bmodes: BModesInput, theta: float) -> TipMass | None:
 def common_notes(bmodes: BModesInput) -> list[str]:
     scaled = ", ".join(f"{k} = {v:g}" for k, v in bmodes.multipliers.items() if v != 1.0)
     notes = [f"BModes deck ({bmodes.layout} layout, hub_conn {bmodes.hub_conn}): multipliers applied: "
-             f"{scaled or 'none other than 1'}; the {len(bmodes.el_loc) - 1} BModes elements' nodes are FE nodes"]
+             f"{scaled or 'none other than 1'}; its el_loc mesh is not used (bladefem refines from the stations)"]
     t = bmodes.tip
     if t["tip_mass"] and (t["cm_axial"] or t["cm_loc"]):
         notes.append(f"tip mass: cm_axial is the offset along the beam axis and cm_loc the transverse one; BModes "
