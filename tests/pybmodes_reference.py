@@ -1,4 +1,4 @@
-"""Mesh-converged pybmodes frequencies of the reference BModes decks: the peer reference of tests/test_pybmodes_decks.py.
+"""Mesh-converged pybmodes frequencies of the reference BModes decks, the peer reference of test_pybmodes_decks.py.
 
 pybmodes (Apache-2.0, on the package index) is a Python port of BModes: on the native meshes of BModes' CertTest it
 reproduces BModes' printed frequencies to all five printed digits (``test_pybmodes_is_bmodes`` checks it). Like
@@ -151,8 +151,8 @@ def causes(elements: int = 160) -> str:
         deck = read_bmodes(decks[name])
         expected, count = np.array(entry["frequencies_hz"]), len(entry["frequencies_hz"])
         switched = frequencies(deck, count, elements, NAMES)
-        effects = [np.abs(frequencies(deck, count, elements, tuple(n for n in NAMES if n != cause)) / switched - 1).max()
-                   for cause in NAMES]
+        effects = [np.abs(frequencies(deck, count, elements, tuple(n for n in NAMES if n != cause)) / switched - 1)
+                   .max() for cause in NAMES]
         own = np.abs(frequencies(deck, count, elements) / expected - 1).max()
         cells = [f"{own:.1e}", f"{np.abs(switched / expected - 1).max():.1e}"]
         cells += [f"{effect:.1e}" if effect > 1e-7 else "-" for effect in effects]
