@@ -28,7 +28,8 @@ from ..elements.rigid_slice import uniform_field_second_order
 from ..sections import bending_stiffness, extension_bending_stiffness, mass_moments
 from ..sections.tower import Tower
 from . import terms
-from .blade import QUADRATURE_ORDER, Term, assemble_terms
+from .blade import QUADRATURE_ORDER
+from .forms import Term, assemble_terms
 from .dofs import DofMap
 from .mesh import span_mesh, span_nodes
 from .parameters import SectionParameters

@@ -5,10 +5,11 @@ from .beam import (
            BENDING_FIELDS,
            FIELD_KINDS,
            SectionMotion,
+           basis_motions,
            beam_element,
-           section_motion,
+           interpolated_motion,
 )
 from .rigid_slice import projected_inertia, rotation_second_order, skew
 
-__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "beam_element", "projected_inertia",
-           "rotation_second_order", "section_motion", "skew"]
+__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_motions", "beam_element",
+           "interpolated_motion", "projected_inertia", "rotation_second_order", "skew"]

@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from skfem import ElementComposite, ElementLineHermite, ElementLineP2
-from skfem.element import Element
+from skfem import CellBasis, ElementComposite, ElementLineHermite, ElementLineP2
+from skfem.element import DiscreteField, Element
 
 BENDING_FIELDS: tuple[str, ...] = ("v", "w")
 ALL_FIELDS: tuple[str, ...] = ("v", "w", "phi", "u")
@@ -65,20 +65,40 @@ class SectionMotion:
         return np.stack([self.u_x, self.v_xx, self.w_xx])
 
 
-def section_motion(fields: tuple[str, ...], values: tuple) -> SectionMotion:
-    """Build a :class:`SectionMotion` from scikit-fem DiscreteFields given in the order of ``fields``."""
-    by_name = dict(zip(fields, values))
-    zero = np.zeros(np.shape(values[0]))
+def _derivative(field: DiscreteField, order: int) -> NDArray:
+    """Value, span derivative or second span derivative of a scikit-fem field at the quadrature points."""
+    if order == 0:
+        return np.asarray(field)
+    return field.grad[0] if order == 1 else field.hess[0, 0]
 
-    def value(name: str) -> NDArray:
-        return np.asarray(by_name[name]) if name in by_name else zero
 
-    def slope(name: str) -> NDArray:
-        return by_name[name].grad[0] if name in by_name else zero
+def basis_motions(fields: tuple[str, ...], basis: CellBasis) -> tuple[SectionMotion, SectionMotion]:
+    """The motions of all local basis functions of ``basis`` at once, as (test, trial) with arrays of shape
+    (local, 1, elements, points) and (1, local, elements, points).
 
-    def curvature(name: str) -> NDArray:
-        return by_name[name].hess[0, 0]
+    A weak-form term evaluated on them broadcasts to every (test, trial) pair of every element in one vectorised
+    call, where scikit-fem's forms call the integrand once per pair. Absent fields are zero.
+    """
+    zero = np.zeros((basis.Nbfun,) + np.shape(basis.basis[0][0]))
 
-    return SectionMotion(u=value("u"), v=value("v"), w=value("w"), phi=value("phi"), u_x=slope("u"),
-                         v_x=slope("v"), w_x=slope("w"), phi_x=slope("phi"), v_xx=curvature("v"),
-                         w_xx=curvature("w"))
+    def stacked(name: str, order: int) -> NDArray:
+        if name not in fields or order == 2 and name not in BENDING_FIELDS:
+            return zero
+        k = fields.index(name)
+        return np.stack([_derivative(local[k], order) for local in basis.basis])
+
+    arrays = {"u": stacked("u", 0), "v": stacked("v", 0), "w": stacked("w", 0), "phi": stacked("phi", 0),
+              "u_x": stacked("u", 1), "v_x": stacked("v", 1), "w_x": stacked("w", 1), "phi_x": stacked("phi", 1),
+              "v_xx": stacked("v", 2), "w_xx": stacked("w", 2)}
+    test = SectionMotion(**{name: value[:, None] for name, value in arrays.items()})
+    trial = SectionMotion(**{name: value[None, :] for name, value in arrays.items()})
+    return test, trial
+
+
+def interpolated_motion(fields: tuple[str, ...], basis: CellBasis, vectors: NDArray) -> SectionMotion:
+    """The motion of DOF vectors (columns over all of ``basis``'s DOFs) at the quadrature points, arrays of shape
+    (vectors, elements, points): curvatures formed point by point from the element's nodal values and slopes."""
+    test, _ = basis_motions(fields, basis)
+    local = np.asarray(vectors)[basis.element_dofs]                  # (local, elements, vectors)
+    return SectionMotion(**{name: np.einsum("ieq,iem->meq", getattr(test, name)[:, 0], local)
+                            for name in SectionMotion.__dataclass_fields__})

@@ -12,7 +12,7 @@ from scipy.optimize import linear_sum_assignment
 
 from ..assembly import BladeMatrices
 from .results import CampbellResult, ModalResult, ModeFamily
-from .solve import modal_result, relative_residuals, rpm_to_rad_s, solve_modes
+from .solve import modal_result, rayleigh_quotients, relative_residuals, rpm_to_rad_s, solve_modes
 
 #: extra modes computed at every speed so that a family that drifts upward past the window is still matched
 TRACKING_MARGIN = 4
@@ -86,6 +86,8 @@ def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int =
             basis = ritz_basis([basis, full.vectors], M)
             results.append(full)
         else:
-            results.append(modal_result(matrices, speed, values, vectors, notes))
+            values = rayleigh_quotients(matrices, speed, vectors)
+            order = np.argsort(values)
+            results.append(modal_result(matrices, speed, values[order], vectors[:, order], notes))
     n_families = min(n_modes, len(results[0].modes))
     return CampbellResult(rpm=rpm, families=track_families(results, M, n_families), results=results, notes=notes)
