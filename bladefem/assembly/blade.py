@@ -19,7 +19,7 @@ from ..sections import Blade
 from ..sections.table import OPTIONAL_STIFFNESS, POSITIVE, ZERO_DEFAULT
 from . import terms
 from .dofs import DofMap
-from .forms import EnergyForms, Term, assemble_terms
+from .forms import Quadrature, Term, assemble_terms, gram_matrix
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
 from .parameters import SectionParameters, plane_of_rotation, section_parameters
 
@@ -38,7 +38,8 @@ class BladeMatrices:
     K2 : stiffness per Omega^2 (centrifugal tension, spin softening, rotation second order), kg-type units
     M : mass matrix
     free : DOFs left free by the root condition
-    forms : the weak forms behind K0, K2 and M, for energies evaluated at the quadrature points
+    quadrature, parameters : the mesh's quadrature and the section parameters there, to evaluate K0's form on
+        given vectors (:meth:`stiffness_gram`)
     notes : statements about the mesh (e.g. refinement stopped before convergence)
     eigenpairs : rotor speed (rpm) -> lowest eigenpairs (omega^2, M-normalised vectors) already solved on these
         matrices, kept for re-use
@@ -50,7 +51,8 @@ class BladeMatrices:
     dofs: DofMap
     free: NDArray[np.int64]
     blade: Blade
-    forms: EnergyForms
+    quadrature: Quadrature
+    parameters: SectionParameters
     notes: tuple[str, ...] = ()
     eigenpairs: dict[float, tuple[NDArray, NDArray]] = field(default_factory=dict, compare=False, repr=False)
 
@@ -64,12 +66,13 @@ class BladeMatrices:
         K0, K2, M = self.free_parts
         return (K0 + rotor_speed**2 * K2).tocsc(), M
 
-    def energies(self, vectors: NDArray) -> tuple[NDArray, NDArray, NDArray]:
-        """(x^T K0 x, x^T K2 x, x^T M x) of free-DOF vectors (columns), summed at the quadrature points
-        (:class:`~bladefem.assembly.forms.EnergyForms`): accurate where the assembled products cancel."""
+    def stiffness_gram(self, vectors: NDArray) -> NDArray:
+        """``V^T K0 V`` of free-DOF vectors (columns), summed at the quadrature points
+        (:func:`~bladefem.assembly.forms.gram_matrix`): accurate where the assembled product cancels. (K2 and M
+        hold values and slopes only, whose products lose at most (L / h)^2 digits.)"""
         full = np.zeros((self.dofs.size, np.shape(vectors)[1]))
         full[self.free] = vectors
-        return self.forms.energies(full)
+        return gram_matrix(self.quadrature, self.parameters, elastic_terms(self.dofs.fields), full)
 
     @cached_property
     def free_field_dofs(self) -> dict[str, NDArray[np.int64]]:
@@ -138,12 +141,12 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     mesh = span_mesh(span_nodes(blade.sections.span, elements) if nodes is None else nodes)
     basis = Basis(mesh, beam_element(fields), intorder=QUADRATURE_ORDER)
     parameters = section_parameters(blade, np.asarray(basis.global_coordinates())[0])
+    quadrature = Quadrature.from_basis(basis, fields)
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
-    forms = EnergyForms(basis, fields, parameters, tuple(elastic_terms(fields)), CENTRIFUGAL_TERMS, INERTIA_TERMS,
-                        K2_tip, M_tip)
-    K0 = assemble_terms(basis, fields, parameters, forms.stiffness)
-    K2 = assemble_terms(basis, fields, parameters, forms.centrifugal) + K2_tip
-    M = assemble_terms(basis, fields, parameters, forms.inertia) + M_tip
+    K0 = assemble_terms(quadrature, parameters, elastic_terms(fields))
+    K2 = assemble_terms(quadrature, parameters, CENTRIFUGAL_TERMS) + K2_tip
+    M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
-    return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade, forms=forms)
+    return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,
+                         quadrature=quadrature, parameters=parameters)

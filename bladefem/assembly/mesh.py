@@ -117,10 +117,5 @@ def subdivide(nodes: NDArray, parts: int) -> NDArray:
 
 
 def span_mesh(nodes: NDArray) -> MeshLine:
-    """A scikit-fem line mesh on increasing ``nodes`` with boundaries named ``root`` and ``tip``."""
-    root, tip = nodes[0], nodes[-1]
-    tol = 1e-9 * (tip - root)
-    return MeshLine(np.asarray(nodes, dtype=float)).with_boundaries({
-        "root": lambda x: np.abs(x[0] - root) < tol,
-        "tip": lambda x: np.abs(x[0] - tip) < tol,
-    })
+    """A scikit-fem line mesh on increasing ``nodes`` (root first)."""
+    return MeshLine(np.asarray(nodes, dtype=float))

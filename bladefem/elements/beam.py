@@ -6,6 +6,7 @@ twist and ``u`` axial displacement, quadratic Lagrange. A model may drop ``phi``
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,13 +73,9 @@ def _derivative(field: DiscreteField, order: int) -> NDArray:
     return field.grad[0] if order == 1 else field.hess[0, 0]
 
 
-def basis_motions(fields: tuple[str, ...], basis: CellBasis) -> tuple[SectionMotion, SectionMotion]:
-    """The motions of all local basis functions of ``basis`` at once, as (test, trial) with arrays of shape
-    (local, 1, elements, points) and (1, local, elements, points).
-
-    A weak-form term evaluated on them broadcasts to every (test, trial) pair of every element in one vectorised
-    call, where scikit-fem's forms call the integrand once per pair. Absent fields are zero.
-    """
+def basis_functions(fields: tuple[str, ...], basis: CellBasis) -> SectionMotion:
+    """The motions of all local basis functions of ``basis`` at the quadrature points: arrays of shape (local,
+    elements, points), zero for absent fields."""
     zero = np.zeros((basis.Nbfun,) + np.shape(basis.basis[0][0]))
 
     def stacked(name: str, order: int) -> NDArray:
@@ -87,18 +84,25 @@ def basis_motions(fields: tuple[str, ...], basis: CellBasis) -> tuple[SectionMot
         k = fields.index(name)
         return np.stack([_derivative(local[k], order) for local in basis.basis])
 
-    arrays = {"u": stacked("u", 0), "v": stacked("v", 0), "w": stacked("w", 0), "phi": stacked("phi", 0),
-              "u_x": stacked("u", 1), "v_x": stacked("v", 1), "w_x": stacked("w", 1), "phi_x": stacked("phi", 1),
-              "v_xx": stacked("v", 2), "w_xx": stacked("w", 2)}
-    test = SectionMotion(**{name: value[:, None] for name, value in arrays.items()})
-    trial = SectionMotion(**{name: value[None, :] for name, value in arrays.items()})
-    return test, trial
+    return SectionMotion(u=stacked("u", 0), v=stacked("v", 0), w=stacked("w", 0), phi=stacked("phi", 0),
+                         u_x=stacked("u", 1), v_x=stacked("v", 1), w_x=stacked("w", 1), phi_x=stacked("phi", 1),
+                         v_xx=stacked("v", 2), w_xx=stacked("w", 2))
 
 
-def interpolated_motion(fields: tuple[str, ...], basis: CellBasis, vectors: NDArray) -> SectionMotion:
-    """The motion of DOF vectors (columns over all of ``basis``'s DOFs) at the quadrature points, arrays of shape
-    (vectors, elements, points): curvatures formed point by point from the element's nodal values and slopes."""
-    test, _ = basis_motions(fields, basis)
-    local = np.asarray(vectors)[basis.element_dofs]                  # (local, elements, vectors)
-    return SectionMotion(**{name: np.einsum("ieq,iem->meq", getattr(test, name)[:, 0], local)
-                            for name in SectionMotion.__dataclass_fields__})
+def _map(motion: SectionMotion, function: Callable[[NDArray], NDArray]) -> SectionMotion:
+    return SectionMotion(**{name: function(getattr(motion, name)) for name in SectionMotion.__dataclass_fields__})
+
+
+def pair_motions(motion: SectionMotion) -> tuple[SectionMotion, SectionMotion]:
+    """(test, trial) views of a motion with a leading axis of n functions or vectors: shapes (n, 1, ...) and
+    (1, n, ...). A weak-form term evaluated on them broadcasts to every (test, trial) pair at once (scikit-fem's
+    forms call the integrand once per pair instead)."""
+    return _map(motion, lambda a: a[:, None]), _map(motion, lambda a: a[None, :])
+
+
+def interpolated_motion(functions: SectionMotion, element_dofs: NDArray, vectors: NDArray) -> SectionMotion:
+    """The motion of DOF vectors (columns over all DOFs) at the quadrature points, arrays of shape (vectors,
+    elements, points), from the basis ``functions`` (:func:`basis_functions`) and each element's DOFs: curvatures
+    are formed point by point from the element's nodal values and slopes."""
+    local = np.asarray(vectors)[element_dofs].transpose(1, 0, 2)       # (elements, local, vectors)
+    return _map(functions, lambda a: np.matmul(a.transpose(1, 2, 0), local).transpose(2, 0, 1))

@@ -12,7 +12,7 @@ from scipy.optimize import linear_sum_assignment
 
 from ..assembly import BladeMatrices
 from .results import CampbellResult, ModalResult, ModeFamily
-from .solve import modal_result, rayleigh_quotients, relative_residuals, rpm_to_rad_s, solve_modes
+from .solve import modal_result, rpm_to_rad_s, solve_modes
 
 #: extra modes computed at every speed so that a family that drifts upward past the window is still matched
 TRACKING_MARGIN = 4
@@ -60,12 +60,35 @@ def ritz_basis(blocks: Sequence[NDArray], M: sp.spmatrix) -> NDArray:
     return V
 
 
+class RitzBasis:
+    """An M-orthonormal basis V with the products the sweep needs at every speed: the reduced elastic stiffness
+    V^T K0 V summed at the quadrature points (:meth:`~bladefem.assembly.BladeMatrices.stiffness_gram`), V^T K2 V,
+    and K0 V, K2 V, M V for the residuals."""
+
+    def __init__(self, matrices: BladeMatrices, vectors: NDArray) -> None:
+        K0, K2, M = matrices.free_parts
+        self.vectors = vectors
+        self.K0V, self.K2V, self.MV = K0 @ vectors, K2 @ vectors, M @ vectors
+        self.elastic = matrices.stiffness_gram(vectors)
+        self.centrifugal = vectors.T @ self.K2V
+
+    def pairs(self, omega2: float, count: int) -> tuple[NDArray, NDArray, NDArray]:
+        """Lowest ``count`` Ritz values (omega^2), vectors and relative residuals at Omega^2 = ``omega2``."""
+        reduced = self.elastic + omega2 * self.centrifugal
+        values, rotation = la.eigh(0.5 * (reduced + reduced.T), subset_by_index=[0, min(count, len(reduced)) - 1])
+        stiffness = (self.K0V + omega2 * self.K2V) @ rotation
+        residuals = (np.linalg.norm(stiffness - (self.MV @ rotation) * values, axis=0)
+                     / np.maximum(np.linalg.norm(stiffness, axis=0), 1e-300))
+        return values, self.vectors @ rotation, residuals
+
+
 def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int = 6, notes: tuple[str, ...] = (),
                    progress: Callable[[Iterable[float]], Iterable[float]] | None = None) -> CampbellResult:
     """Modes at each rotor speed in ``rpm`` (rpm), from one assembly: K(Omega) = K0 + Omega^2 K2.
 
     Exploits that structure: full eigen-solves at the lowest and highest speeds give a Ritz basis, and every speed
-    is first solved in that small basis (a dense problem of a few dozen DOFs). Where a Ritz pair's relative residual
+    is first solved in that small basis (a dense problem of a few dozen DOFs, its elastic part summed at the
+    quadrature points as in :func:`~bladefem.modal.solve.rayleigh_quotients`). Where a Ritz pair's relative residual
     exceeds :data:`RITZ_RESIDUAL`, the speed gets a full solve whose modes join the basis. Ritz values err by about
     the square of the residual (1e-9 relative in omega^2 at the default), far below the mesh error; each mode's
     residual is reported. ``progress`` optionally wraps the loop over speeds (e.g. a progress bar).
@@ -74,20 +97,15 @@ def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int =
     count = n_modes + TRACKING_MARGIN
     K0, K2, M = matrices.free_parts
     anchors = [solve_modes(matrices, speed, count, notes) for speed in (rpm.min(), rpm.max())]
-    basis = ritz_basis([result.vectors for result in anchors], M)
+    basis = RitzBasis(matrices, ritz_basis([result.vectors for result in anchors], M))
     results = []
     for speed in (progress or iter)(rpm):
-        omega2 = rpm_to_rad_s(speed) ** 2
-        reduced = basis.T @ (K0 @ basis) + omega2 * (basis.T @ (K2 @ basis))
-        values, rotation = la.eigh(0.5 * (reduced + reduced.T), subset_by_index=[0, min(count, len(reduced)) - 1])
-        vectors = basis @ rotation
-        if relative_residuals(K0 + omega2 * K2, M, values, vectors).max() > RITZ_RESIDUAL:
+        values, vectors, residuals = basis.pairs(rpm_to_rad_s(speed) ** 2, count)
+        if residuals.max() > RITZ_RESIDUAL:
             full = solve_modes(matrices, speed, count, notes)
-            basis = ritz_basis([basis, full.vectors], M)
+            basis = RitzBasis(matrices, ritz_basis([basis.vectors, full.vectors], M))
             results.append(full)
         else:
-            values = rayleigh_quotients(matrices, speed, vectors)
-            order = np.argsort(values)
-            results.append(modal_result(matrices, speed, values[order], vectors[:, order], notes))
+            results.append(modal_result(matrices, speed, values, vectors, notes))
     n_families = min(n_modes, len(results[0].modes))
     return CampbellResult(rpm=rpm, families=track_families(results, M, n_families), results=results, notes=notes)

@@ -161,49 +161,64 @@ def energy_fractions(matrices: BladeMatrices, vectors: NDArray) -> list[dict[str
             for j in range(vectors.shape[1])]
 
 
-def mode_shape(matrices: BladeMatrices, vector: NDArray, kind: str) -> ModeShape:
-    """Nodal mode shape from a free-DOF eigenvector: a torsion mode scaled to a largest twist of +1 rad, any other
-    to a largest displacement (flap, edge or axial) of +1."""
-    full = np.zeros(matrices.dofs.size)
-    full[matrices.free] = vector
+def mode_shapes(matrices: BladeMatrices, vectors: NDArray, kinds: list[str]) -> list[ModeShape]:
+    """Nodal mode shapes from free-DOF eigenvectors (columns): a torsion mode scaled to a largest twist of +1 rad,
+    any other to a largest displacement (flap, edge or axial) of +1."""
+    full = np.zeros((matrices.dofs.size, vectors.shape[1]))
+    full[matrices.free] = vectors
     dofs = matrices.dofs
+    zero = np.zeros((len(dofs.nodes), vectors.shape[1]))
 
     def take(table: dict[str, NDArray], name: str) -> NDArray:
-        return full[table[name]] if name in table else np.zeros(len(dofs.nodes))
+        return full[table[name]] if name in table else zero
 
     shape = {"flap": take(dofs.value, "w"), "flap_slope": take(dofs.slope, "w"), "edge": take(dofs.value, "v"),
              "edge_slope": take(dofs.slope, "v"), "twist": take(dofs.value, "phi"), "axial": take(dofs.value, "u")}
     translations = np.concatenate([shape["flap"], shape["edge"], shape["axial"]])
-    reference = shape["twist"] if kind == "torsion" else translations
-    scale = reference[np.argmax(np.abs(reference))]
-    return ModeShape(x=dofs.nodes, **{key: value / scale for key, value in shape.items()})
+    torsion = np.array([kind == "torsion" for kind in kinds])
+
+    def largest(values: NDArray) -> NDArray:
+        return values[np.argmax(np.abs(values), axis=0), np.arange(values.shape[1])]
+
+    scale = np.where(torsion, largest(shape["twist"]), largest(translations))
+    return [ModeShape(x=dofs.nodes, **{key: value[:, j] / scale[j] for key, value in shape.items()})
+            for j in range(len(kinds))]
+
+
+def mode_shape(matrices: BladeMatrices, vector: NDArray, kind: str) -> ModeShape:
+    """Nodal mode shape of one free-DOF eigenvector (see :func:`mode_shapes`)."""
+    return mode_shapes(matrices, vector[:, None], [kind])[0]
 
 
 def modal_result(matrices: BladeMatrices, rpm: float, values: NDArray, vectors: NDArray,
                  notes: tuple[str, ...] = ()) -> ModalResult:
     """Frequencies, kinds, residuals and shapes from eigenpairs (omega^2, M-normalised vectors) at ``rpm``."""
-    K, M = matrices.reduced(rpm_to_rad_s(rpm))
-    residuals = relative_residuals(K, M, values, vectors)
+    K0, K2, M = matrices.free_parts
+    stiffness = K0 @ vectors + rpm_to_rad_s(rpm) ** 2 * (K2 @ vectors)
+    residuals = (np.linalg.norm(stiffness - (M @ vectors) * values, axis=0)
+                 / np.maximum(np.linalg.norm(stiffness, axis=0), 1e-300))
     fractions = energy_fractions(matrices, vectors)
-    modes = []
-    for j, value in enumerate(values):
-        kind = dominant_kind(fractions[j])
-        modes.append(Mode(frequency_hz=signed_frequency_hz(value), kind=kind, energy_fractions=fractions[j],
-                          residual=float(residuals[j]), shape=mode_shape(matrices, vectors[:, j], kind)))
+    kinds = [dominant_kind(fraction) for fraction in fractions]
+    shapes = mode_shapes(matrices, vectors, kinds)
+    modes = [Mode(frequency_hz=signed_frequency_hz(value), kind=kind, energy_fractions=fraction,
+                  residual=float(residual), shape=shape)
+             for value, kind, fraction, residual, shape in zip(values, kinds, fractions, residuals, shapes)]
     return ModalResult(rotor_speed_rpm=float(rpm), modes=modes, stations=matrices.blade.sections.span.copy(),
                        vectors=vectors, n_dofs=len(matrices.free), notes=notes)
 
 
 def rayleigh_quotients(matrices: BladeMatrices, rpm: float, vectors: NDArray) -> NDArray:
     """omega^2 = (x^T K0 x + Omega^2 x^T K2 x) / x^T M x of each free-DOF vector at ``rpm``, with the energies
-    summed at the quadrature points (:meth:`~bladefem.assembly.BladeMatrices.energies`).
+    summed at the quadrature points (:meth:`~bladefem.assembly.BladeMatrices.stiffness_gram`).
 
     An eigen-solver's eigenvalue errs to first order in its linear solves' round-off, which on Hermite meshes grows
     as (L / h)^4 (1e-6 relative at 300 elements); this quotient errs only to second order in the eigenvector's
     error, and its energies lose only (L / h)^2 digits: 1e-13 at 300 elements.
     """
-    stiffness, centrifugal, mass = matrices.energies(vectors)
-    return (stiffness + rpm_to_rad_s(rpm) ** 2 * centrifugal) / mass
+    _, K2, M = matrices.free_parts
+    stiffness = np.diag(matrices.stiffness_gram(vectors))
+    centrifugal = np.einsum("ij,ij->j", vectors, K2 @ vectors)
+    return (stiffness + rpm_to_rad_s(rpm) ** 2 * centrifugal) / np.einsum("ij,ij->j", vectors, M @ vectors)
 
 
 def roundoff_errors(K: sp.spmatrix, vectors: NDArray) -> NDArray:
