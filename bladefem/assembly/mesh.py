@@ -33,10 +33,9 @@ def span_nodes(stations: NDArray, elements: int) -> NDArray:
 PROPERTY_RATIO = 1.5
 #: largest change of structural twist over one element of a graded mesh, rad
 TWIST_STEP = 0.05
-#: a property that falls below this fraction of its largest value counts as this fraction (zero inertias)
-PROPERTY_FLOOR = 1e-3
 #: graded elements are not made shorter than this fraction of the length (a property step given as two close
-#: stations stays one element)
+#: stations stays one element; toward a free tip, where the bending moment vanishes, a finer grading gains
+#: nothing and costs conditioning)
 SHORTEST_ELEMENT = 2e-3
 #: sample points of a station interval (fraction 0..1) for placing graded nodes, clustered geometrically toward
 #: both ends so that a linear property falling a thousandfold changes by less than PROPERTY_RATIO between samples
@@ -81,8 +80,8 @@ def graded_nodes(stations: NDArray, columns: Sequence[NDArray], twist: NDArray, 
 
     Nodes equidistribute a density over each interval: the largest, over the columns, of the rate of
     ``log(p) / log(PROPERTY_RATIO)`` (exact per sample for a linear ``p``), the twist rate and ``elements /
-    length``; an interval gets ``ceil`` of its integral in elements (at least one, and none shorter than
-    :data:`SHORTEST_ELEMENT` of the length).
+    length``, at most ``1 / (SHORTEST_ELEMENT * length)``; an interval gets ``ceil`` of its integral in elements
+    (at least one).
     """
     stations = np.asarray(stations, dtype=float)
     length = stations[-1] - stations[0]
@@ -90,15 +89,16 @@ def graded_nodes(stations: NDArray, columns: Sequence[NDArray], twist: NDArray, 
     t = _SAMPLES
     steps = np.zeros((len(gaps), len(t) - 1))
     for column in columns:
-        p = np.maximum(np.asarray(column, dtype=float), PROPERTY_FLOOR * np.max(column))
+        column = np.asarray(column, dtype=float)
+        p = np.maximum(column, np.min(column[column > 0]))        # a zero (inertia) counts as the smallest value
         log_p = np.log(p[:-1, None] + (p[1:] - p[:-1])[:, None] * t)
         steps = np.maximum(steps, np.abs(np.diff(log_p, axis=1)) / np.log(PROPERTY_RATIO))
     rate = gaps * max(int(elements), 1) / length + np.abs(np.diff(twist)) / TWIST_STEP
     steps = np.maximum(steps, rate[:, None] * np.diff(t))
+    steps = np.minimum(steps, (gaps / (SHORTEST_ELEMENT * length))[:, None] * np.diff(t))
     cumulative = np.concatenate([np.zeros((len(gaps), 1)), np.cumsum(steps, axis=1)], axis=1)
     total = cumulative[:, -1]
-    counts = np.clip(np.ceil(total - 1e-9).astype(int), 1, np.maximum(gaps / (SHORTEST_ELEMENT * length), 1))
-    counts = counts.astype(int)
+    counts = np.maximum(np.ceil(total - 1e-9).astype(int), 1)
     nodes = [stations[:1]]
     for i, count in enumerate(counts):
         targets = np.arange(1, count + 1) * total[i] / count

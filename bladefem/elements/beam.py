@@ -11,12 +11,45 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from skfem import CellBasis, ElementComposite, ElementLineHermite, ElementLineP2
+from skfem import CellBasis, ElementComposite, ElementLineP2
 from skfem.element import DiscreteField, Element
+from skfem.refdom import RefLine
+
+class ElementLineHermiteReference(Element):
+    """The C1 cubic Hermite line element (scikit-fem's ``ElementLineHermite``: same space, same DOFs: value and
+    slope at each end) evaluated through the reference element: ``xi = (x - a) / h`` in [0, 1], the value shape
+    functions of ``xi`` and the slope ones scaled by ``h``.
+
+    scikit-fem's version inverts, per element, a Vandermonde matrix of global monomials ``1, x, x^2, x^3``, whose
+    condition grows as ``(x / h)^3``: 1e-8 of the basis lost at 2000 elements on a 100 m blade, and a singular
+    matrix for an element shorter than 1e-5 of its distance from the root.
+    """
+
+    nodal_dofs = 2
+    maxdeg = 3
+    dofnames = ["u", "u_x"]
+    doflocs = np.array([[0.0], [0.0], [1.0], [1.0]])
+    refdom = RefLine
+
+    def gbasis(self, mapping: object, X: NDArray, i: int, tind: NDArray | None = None) -> tuple[DiscreteField]:
+        h = mapping.DF(X, tind)[0, 0]                           # element length, (elements, points)
+        xi = np.broadcast_to(X[0], h.shape)
+        if i == 0:
+            value, slope, curvature = 1 - 3 * xi**2 + 2 * xi**3, (-6 * xi + 6 * xi**2) / h, (-6 + 12 * xi) / h**2
+        elif i == 1:
+            value, slope, curvature = h * (xi - 2 * xi**2 + xi**3), 1 - 4 * xi + 3 * xi**2, (-4 + 6 * xi) / h
+        elif i == 2:
+            value, slope, curvature = 3 * xi**2 - 2 * xi**3, (6 * xi - 6 * xi**2) / h, (6 - 12 * xi) / h**2
+        elif i == 3:
+            value, slope, curvature = h * (-xi**2 + xi**3), -2 * xi + 3 * xi**2, (-2 + 6 * xi) / h
+        else:
+            self._index_error()
+        return (DiscreteField(value=value, grad=slope[None], hess=curvature[None, None]),)
+
 
 BENDING_FIELDS: tuple[str, ...] = ("v", "w")
 ALL_FIELDS: tuple[str, ...] = ("v", "w", "phi", "u")
-FIELD_ELEMENTS: dict[str, type[Element]] = {"v": ElementLineHermite, "w": ElementLineHermite,
+FIELD_ELEMENTS: dict[str, type[Element]] = {"v": ElementLineHermiteReference, "w": ElementLineHermiteReference,
                                             "phi": ElementLineP2, "u": ElementLineP2}
 #: what each field is called in results
 FIELD_KINDS: dict[str, str] = {"v": "edge", "w": "flap", "phi": "torsion", "u": "axial"}

@@ -34,7 +34,7 @@ def converged_mesh(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL, rpm
         values, vectors = cached_pairs(matrices, rpm, count)
         K, _ = matrices.reduced(rpm_to_rad_s(rpm))
         frequencies = np.sign(values) * np.sqrt(np.abs(values)) / (2 * np.pi)
-        return Solved(frequencies[:n_modes], roundoff_errors(K, vectors)[:n_modes])
+        return Solved(frequencies[:n_modes], roundoff_errors(K, values, vectors)[:n_modes])
 
     return choose_mesh(lambda level: assemble_blade(blade, nodes=subdivide(nodes, level)), solve, rtol,
                        max(2, max_elements // (len(nodes) - 1)))

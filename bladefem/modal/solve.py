@@ -31,8 +31,9 @@ LANCZOS_BACKWARD_ERROR = 1e-8
 #: shift below zero when K is singular (rigid-body motion), relative to the largest diagonal ratio K_ii / M_ii of
 #: the scaled problem: far below any elastic eigenvalue, yet large enough to make K - sigma M factorable
 SINGULAR_SHIFT = 1e-12
-#: modes whose strain energy is below this fraction of the largest count as rigid (no round-off estimate)
-ZERO_ENERGY = 1e-12
+#: modes whose omega^2 is below this fraction of the largest count as rigid (no round-off estimate): frequencies
+#: below 1e-6 of the highest
+ZERO_EIGENVALUE = 1e-12
 #: tenfold increases of the dense solver's shift tried when K - sigma M is not positive definite
 SHIFT_ATTEMPTS = 8
 
@@ -221,16 +222,17 @@ def rayleigh_quotients(matrices: BladeMatrices, rpm: float, vectors: NDArray) ->
     return (stiffness + rpm_to_rad_s(rpm) ** 2 * centrifugal) / np.einsum("ij,ij->j", vectors, M @ vectors)
 
 
-def roundoff_errors(K: sp.spmatrix, vectors: NDArray) -> NDArray:
+def roundoff_errors(K: sp.spmatrix, values: NDArray, vectors: NDArray) -> NDArray:
     """Estimated relative round-off error of each frequency from :func:`rayleigh_quotients`: the square of
     ``b = eps |x|^T |K| |x| / (2 |x^T K x|)``, the first-order bound of a solver's eigenvalue error (the cancellation
     in the assembled strain energy), since the quotient errs to second order. On the 22 reference decks' blades the
-    quotients of two factorisation orderings differ by 1e-2 to 1e-3 of this estimate. Zero for rigid modes."""
+    quotients of two factorisation orderings differ by 1e-2 to 1e-3 of this estimate. Zero for rigid-body modes
+    (omega^2 below ZERO_EIGENVALUE of the largest)."""
     absolute = np.einsum("ij,ij->j", np.abs(vectors), abs(K) @ np.abs(vectors))
     energy = np.abs(np.einsum("ij,ij->j", vectors, K @ vectors))
-    floor = ZERO_ENERGY * np.max(energy)
-    first_order = np.finfo(float).eps * absolute / (2 * np.maximum(energy, floor))
-    return np.where(energy > floor, first_order**2, 0.0)
+    rigid = np.abs(values) <= ZERO_EIGENVALUE * np.max(np.abs(values))
+    first_order = np.finfo(float).eps * absolute / (2 * np.maximum(energy, 1e-300))
+    return np.where(rigid, 0.0, first_order**2)
 
 
 def cached_pairs(matrices: BladeMatrices, rpm: float, n_modes: int) -> tuple[NDArray, NDArray]:
