@@ -19,7 +19,7 @@ from ..sections import Blade
 from ..sections.table import OPTIONAL_STIFFNESS, POSITIVE, ZERO_DEFAULT
 from . import terms
 from .dofs import DofMap
-from .forms import Quadrature, Term, assemble_terms, gram_matrix
+from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
 from .parameters import SectionParameters, plane_of_rotation, section_parameters
 
@@ -72,7 +72,12 @@ class BladeMatrices:
         hold values and slopes only, whose products lose at most (L / h)^2 digits.)"""
         full = np.zeros((self.dofs.size, np.shape(vectors)[1]))
         full[self.free] = vectors
-        return gram_matrix(self.quadrature, self.parameters, elastic_terms(self.dofs.fields), full)
+        return gram_matrix(self.quadrature, self.elastic_operator, full)
+
+    @cached_property
+    def elastic_operator(self) -> NDArray:
+        """K0's form at the quadrature points (:func:`~bladefem.assembly.forms.pointwise_operator`)."""
+        return pointwise_operator(self.quadrature, self.parameters, elastic_terms(self.dofs.fields))
 
     @cached_property
     def free_field_dofs(self) -> dict[str, NDArray[np.int64]]:

@@ -60,11 +60,25 @@ def assemble_terms(quadrature: Quadrature, parameters: object, parts: Sequence[T
     return sp.coo_matrix((local.ravel(), (rows.ravel(), cols.ravel())), shape=(size, size)).tocsr()
 
 
-def gram_matrix(quadrature: Quadrature, parameters: object, parts: Sequence[Term], vectors: NDArray) -> NDArray:
-    """``V^T A V`` for the columns of ``vectors`` (over all DOFs) and the matrix A the terms assemble, summed at
-    the quadrature points from the vectors' own motions there."""
-    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, vectors)
-    m = np.shape(vectors)[1]
+def pointwise_operator(quadrature: Quadrature, parameters: object, parts: Sequence[Term]) -> NDArray:
+    """The weak form at each quadrature point as a matrix over the motion components (the fields of
+    :class:`~bladefem.elements.SectionMotion`): ``A[f, g, e, q]`` with integrand ``sum_fg test_f A_fg trial_g``,
+    read off the terms by evaluating them once on unit motions, times the quadrature weights."""
+    names = tuple(SectionMotion.__dataclass_fields__)
+    shape = quadrature.weights.shape
+    unit = np.eye(len(names))
+    motion = SectionMotion(**{name: np.broadcast_to(unit[k][:, None, None], (len(names),) + shape)
+                              for k, name in enumerate(names)})
     test, trial = pair_motions(motion)
-    integrand = _integrand(parts, test, trial, parameters, (m, m) + quadrature.weights.shape)
-    return np.einsum("abeq,eq->ab", integrand, quadrature.weights)
+    return _integrand(parts, test, trial, parameters, (len(names), len(names)) + shape) * quadrature.weights
+
+
+def gram_matrix(quadrature: Quadrature, operator: NDArray, vectors: NDArray) -> NDArray:
+    """``V^T A V`` for the columns of ``vectors`` (over all DOFs) and the matrix A of a form given pointwise
+    (:func:`pointwise_operator`), summed at the quadrature points from the vectors' own motions there."""
+    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, vectors)
+    stacked = np.stack([getattr(motion, name) for name in SectionMotion.__dataclass_fields__])   # (f, m, e, q)
+    present = np.flatnonzero(np.any(operator != 0, axis=(1, 2, 3)))
+    X = stacked[present].reshape(len(present), stacked.shape[1], -1)
+    A = operator[np.ix_(present, present)].reshape(len(present), len(present), -1)
+    return np.einsum("fmn,fgn,gkn->mk", X, A, X, optimize=True)

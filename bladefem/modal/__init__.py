@@ -6,10 +6,12 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..assembly import BladeMatrices, assemble_blade, blade_graded_nodes, subdivide
 from ..sections import Blade
 from .campbell import TRACKING_MARGIN, campbell_sweep, mac_matrix, track_families
+from .estimate import frequency_errors
 from .refinement import MeshChoice, Solved, choose_mesh
 from .results import KINDS, CampbellResult, ModalResult, Mode, ModeFamily, ModeShape
 from .solve import SolverError, cached_pairs, roundoff_errors, rpm_to_rad_s, solve_modes
@@ -34,10 +36,14 @@ def converged_mesh(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL, rpm
         values, vectors = cached_pairs(matrices, rpm, count)
         K, _ = matrices.reduced(rpm_to_rad_s(rpm))
         frequencies = np.sign(values) * np.sqrt(np.abs(values)) / (2 * np.pi)
-        return Solved(frequencies[:n_modes], roundoff_errors(K, values, vectors)[:n_modes])
+        return Solved(frequencies[:n_modes], roundoff_errors(K, values, vectors)[:n_modes], (values, vectors))
+
+    def predict(matrices: BladeMatrices, solved: Solved) -> NDArray:
+        values, vectors = solved.result
+        return frequency_errors(matrices, values[:n_modes], vectors[:, :n_modes])
 
     return choose_mesh(lambda level: assemble_blade(blade, nodes=subdivide(nodes, level)), solve, rtol,
-                       max(2, max_elements // (len(nodes) - 1)))
+                       max(2, max_elements // (len(nodes) - 1)), predict)
 
 
 def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL, rpm: float = 0.0,

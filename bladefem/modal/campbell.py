@@ -8,7 +8,6 @@ import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.optimize import linear_sum_assignment
 
 from ..assembly import BladeMatrices
 from .results import CampbellResult, ModalResult, ModeFamily
@@ -22,20 +21,37 @@ RITZ_RESIDUAL = 1e-4
 
 def mac_matrix(previous: NDArray, current: NDArray, M: sp.spmatrix) -> NDArray:
     """Modal assurance criterion (x_i^T M y_j)^2 / ((x_i^T M x_i)(y_j^T M y_j)) between two sets of vectors."""
-    cross = previous.T @ (M @ current)
-    norms = np.einsum("ij,ij->j", previous, M @ previous)[:, None] * np.einsum("ij,ij->j", current, M @ current)
+    return mac_from_products(previous, M @ previous, current, M @ current)
+
+
+def mac_from_products(previous: NDArray, M_previous: NDArray, current: NDArray, M_current: NDArray) -> NDArray:
+    """:func:`mac_matrix` from the vectors and their products with M."""
+    cross = previous.T @ M_current
+    norms = np.einsum("ij,ij->j", previous, M_previous)[:, None] * np.einsum("ij,ij->j", current, M_current)
     return cross**2 / norms
 
 
+def best_assignment(mac: NDArray) -> tuple[NDArray, NDArray]:
+    """Rows and columns of the assignment with maximum total MAC (each row to a different column)."""
+    best = np.argmax(mac, axis=1)
+    if len(np.unique(best)) == len(best):
+        return np.arange(len(best)), best
+    from scipy.optimize import linear_sum_assignment      # only where matches are ambiguous (a slow import)
+    return linear_sum_assignment(-mac)
+
+
 def track_families(results: Sequence[ModalResult], M: sp.spmatrix, n_families: int) -> list[ModeFamily]:
-    """Follow the lowest ``n_families`` modes of the first speed through all speeds by maximum total MAC
-    (Hungarian assignment between neighbouring speeds), so crossings and veerings keep families continuous."""
+    """Follow the lowest ``n_families`` modes of the first speed through all speeds by maximum total MAC between
+    neighbouring speeds, so crossings and veerings keep families continuous: each family takes its best match
+    when those are all different (then that is the maximum), else the Hungarian assignment decides."""
     indices = np.zeros((len(results), n_families), dtype=np.int64)
     macs = np.ones((len(results), n_families))
     indices[0] = np.arange(n_families)
+    weighted = [M @ result.vectors for result in results]
     for k in range(1, len(results)):
-        mac = mac_matrix(results[k - 1].vectors[:, indices[k - 1]], results[k].vectors, M)
-        rows, cols = linear_sum_assignment(-mac)
+        mac = mac_from_products(results[k - 1].vectors[:, indices[k - 1]], weighted[k - 1][:, indices[k - 1]],
+                                results[k].vectors, weighted[k])
+        rows, cols = best_assignment(mac)
         indices[k, rows] = cols
         macs[k, rows] = mac[rows, cols]
     families = []
@@ -106,6 +122,6 @@ def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int =
             basis = RitzBasis(matrices, ritz_basis([basis.vectors, full.vectors], M))
             results.append(full)
         else:
-            results.append(modal_result(matrices, speed, values, vectors, notes))
+            results.append(modal_result(matrices, speed, values, vectors, notes, residuals))
     n_families = min(n_modes, len(results[0].modes))
     return CampbellResult(rpm=rpm, families=track_families(results, M, n_families), results=results, notes=notes)

@@ -80,18 +80,26 @@ def observed_rate(levels: tuple[int, int, int], changes: tuple[NDArray, NDArray]
 
 
 def choose_mesh(assemble: Callable[[int], Matrices], solve: Callable[[Matrices], Solved], rtol: float,
-                max_level: int) -> MeshChoice[Matrices]:
+                max_level: int, predict: Callable[[Matrices, Solved], NDArray] | None = None) -> MeshChoice[Matrices]:
     """The coarsest level (at most ``max_level``) whose estimated frequency error is below ``SAFETY * rtol``
-    (relative), from the Richardson estimate of the last two solved levels; levels 1 and 2 are always solved."""
+    (relative), from the Richardson estimate of the last two solved levels.
+
+    Level 1 is solved first. With ``predict`` (an a-priori estimate of each frequency's relative error on a mesh,
+    from its solve) the second level solved is the one the prediction says is enough (at least 2): when the
+    prediction holds, the Richardson check of that pair accepts it at once; without, it is level 2."""
     solved: dict[int, tuple[Matrices, Solved]] = {}
 
     def run(level: int) -> None:
         matrices = assemble(level)
         solved[level] = (matrices, solve(matrices))
 
-    run(1)
-    run(2)
     target = SAFETY * rtol
+    run(1)
+    second = 2
+    if predict is not None:
+        predicted = float(np.max(predict(*solved[1])))
+        second = min(max(2, int(np.ceil((predicted / target) ** (1 / RATE) - 1e-9))), max(2, max_level))
+    run(second)
     while True:
         levels = sorted(solved)
         s1, s2 = levels[-2:]

@@ -25,6 +25,9 @@ from .results import (
 DENSE_LIMIT = 60
 #: largest system the dense solver takes when Lanczos fails (O(n^3): about a second at this size)
 DENSE_FALLBACK_LIMIT = 2500
+#: ARPACK's convergence tolerance: eigenvectors to about this, eigenvalues (Rayleigh quotients) to its square;
+#: it bounds the backward error of the pairs, far below LANCZOS_BACKWARD_ERROR
+LANCZOS_TOLERANCE = 1e-10
 #: a Lanczos eigenpair whose normwise backward error exceeds this is a failure, solved again densely (converged
 #: pairs sit near 1e-15)
 LANCZOS_BACKWARD_ERROR = 1e-8
@@ -50,8 +53,15 @@ def jacobi_scaling(K: sp.spmatrix, M: sp.spmatrix) -> tuple[sp.csc_matrix, sp.cs
     """(S K S, S M S, S) with S = diag(1 / sqrt|K_ii|): Hermite DOFs mix values and slopes of very different size,
     and the scaling lowers the round-off floor of the lowest eigenvalues on fine meshes about a hundredfold."""
     diagonal = np.abs(K.diagonal())
-    scale = sp.diags(1.0 / np.sqrt(np.where(diagonal > 0, diagonal, 1.0)))
-    return (scale @ K @ scale).tocsc(), (scale @ M @ scale).tocsc(), scale
+    factors = 1.0 / np.sqrt(np.where(diagonal > 0, diagonal, 1.0))
+
+    def scaled(A: sp.spmatrix) -> sp.csc_matrix:
+        A = sp.csc_matrix(A, copy=True)
+        columns = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+        A.data *= factors[A.indices] * factors[columns]
+        return A
+
+    return scaled(K), scaled(M), sp.diags(factors)
 
 
 def lanczos_pairs(K: sp.csc_matrix, M: sp.csc_matrix, n_modes: int) -> tuple[NDArray, NDArray]:
@@ -71,7 +81,8 @@ def lanczos_pairs(K: sp.csc_matrix, M: sp.csc_matrix, n_modes: int) -> tuple[NDA
         factor = spla.splu((K - sigma * M).tocsc())
     inverse = spla.LinearOperator((n, n), matvec=factor.solve, dtype=float)
     start = np.random.default_rng(0).standard_normal(n)     # fixed start: identical results run to run
-    values, vectors = spla.eigsh(K, k=n_modes, M=M, sigma=sigma, which="LM", v0=start, OPinv=inverse)
+    values, vectors = spla.eigsh(K, k=n_modes, M=M, sigma=sigma, which="LM", v0=start, OPinv=inverse,
+                                 tol=LANCZOS_TOLERANCE)
     order = np.argsort(values)
     values, vectors = values[order], vectors[:, order]
     vectors = vectors / np.sqrt(np.einsum("ij,ij->j", vectors, M @ vectors))
@@ -182,8 +193,8 @@ def mode_shapes(matrices: BladeMatrices, vectors: NDArray, kinds: list[str]) -> 
         return values[np.argmax(np.abs(values), axis=0), np.arange(values.shape[1])]
 
     scale = np.where(torsion, largest(shape["twist"]), largest(translations))
-    return [ModeShape(x=dofs.nodes, **{key: value[:, j] / scale[j] for key, value in shape.items()})
-            for j in range(len(kinds))]
+    scaled = {key: (value / scale).T for key, value in shape.items()}        # rows: modes
+    return [ModeShape(x=dofs.nodes, **{key: value[j] for key, value in scaled.items()}) for j in range(len(kinds))]
 
 
 def mode_shape(matrices: BladeMatrices, vector: NDArray, kind: str) -> ModeShape:
@@ -192,12 +203,14 @@ def mode_shape(matrices: BladeMatrices, vector: NDArray, kind: str) -> ModeShape
 
 
 def modal_result(matrices: BladeMatrices, rpm: float, values: NDArray, vectors: NDArray,
-                 notes: tuple[str, ...] = ()) -> ModalResult:
-    """Frequencies, kinds, residuals and shapes from eigenpairs (omega^2, M-normalised vectors) at ``rpm``."""
-    K0, K2, M = matrices.free_parts
-    stiffness = K0 @ vectors + rpm_to_rad_s(rpm) ** 2 * (K2 @ vectors)
-    residuals = (np.linalg.norm(stiffness - (M @ vectors) * values, axis=0)
-                 / np.maximum(np.linalg.norm(stiffness, axis=0), 1e-300))
+                 notes: tuple[str, ...] = (), residuals: NDArray | None = None) -> ModalResult:
+    """Frequencies, kinds, residuals and shapes from eigenpairs (omega^2, M-normalised vectors) at ``rpm``; the
+    relative residuals are computed unless given."""
+    if residuals is None:
+        K0, K2, M = matrices.free_parts
+        stiffness = K0 @ vectors + rpm_to_rad_s(rpm) ** 2 * (K2 @ vectors)
+        residuals = (np.linalg.norm(stiffness - (M @ vectors) * values, axis=0)
+                     / np.maximum(np.linalg.norm(stiffness, axis=0), 1e-300))
     fractions = energy_fractions(matrices, vectors)
     kinds = [dominant_kind(fraction) for fraction in fractions]
     shapes = mode_shapes(matrices, vectors, kinds)
