@@ -15,7 +15,11 @@ from bladefem.assembly.mesh import PROPERTY_RATIO, SHORTEST_ELEMENT, mesh_statio
 from bladefem.io.case import read_case
 from bladefem.modal import MESH_RTOL, SolverError, converged_mesh, solve_modes
 from bladefem.modal import solve as solve_module
+from bladefem.modal.estimate import frequency_errors
 from bladefem.modal.refinement import Solved, choose_mesh
+from bladefem.modal.solve import cached_pairs
+from bladefem.sections import Blade, uniform_sections
+from test_closed_form import CANTILEVER_B
 from test_properties import blades
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -146,3 +150,51 @@ def test_singular_stiffness_is_solved_with_a_shift():
     result = solve_modes(assemble_blade(blade, 60), 0.0, 6)
     assert np.all(np.abs(result.frequencies_hz[:2]) < 1e-6)
     assert result.frequencies_hz[2] > 1.0
+
+
+def test_choose_mesh_with_a_prediction_solves_two_levels():
+    # with an a-priori estimate the second level solved is the predicted one, and the Richardson check of the
+    # pair (1, predicted) accepts it: two solves in all
+    exact, constant = np.array([1.0, 2.0]), np.array([3e-5, 1e-5])
+    solved = []
+
+    def solve(level: int) -> Solved:
+        solved.append(level)
+        return Solved(exact * (1 + constant * level**-4.0), np.zeros(2))
+
+    needed = int(np.ceil((3e-5 / 0.5e-6) ** 0.25))
+    choice = choose_mesh(lambda level: level, solve, 1e-6, 100, predict=lambda level, result: constant)
+    assert choice.level == needed and solved == [1, needed]
+
+
+def test_a_priori_error_matches_the_uniform_cantilever():
+    # the local-wavenumber estimate (kappa h)^4 / 1440 against the true error of a uniform cantilever's first
+    # three bending frequencies on 8 elements (omega = b^2 for m = EI = L = 1): within a factor 1.5
+    blade = Blade(uniform_sections(1.0, 1.0, 1.0, edge_stiffness=1e4))       # edge modes far above
+    matrices = assemble_blade(blade, 8)
+    values, vectors = cached_pairs(matrices, 0.0, 3)
+    true = np.sqrt(values) / CANTILEVER_B[:3] ** 2 - 1
+    ratio = frequency_errors(matrices, values, vectors) / true
+    assert np.all((ratio > 1 / 1.5) & (ratio < 1.5)), ratio
+
+
+def reference_blade_decks() -> list[Path]:
+    pybmodes = pytest.importorskip("pybmodes")
+    root = Path(pybmodes.__file__).parent / "_examples" / "sample_inputs" / "reference_turbines"
+    return sorted(root.glob("*/*_blade.bmi"))
+
+
+def test_reference_decks_converge_without_notes():
+    # pybmodes' eleven reference blade decks (tip intervals where EI falls up to 6000-fold, BModes element nodes
+    # 4 mm from section stations): the automatic mesh ends without a note, below 300 elements, and within the
+    # tolerance of the 4x finer mesh
+    from bladefem.io.detect import read_model
+
+    for deck in reference_blade_decks():
+        blade = read_model(deck)
+        choice = converged_mesh(blade, 6, rpm=12.0)
+        assert choice.note is None, deck.name
+        assert len(choice.matrices.dofs.nodes) - 1 < 300, deck.name
+        chosen = solve_modes(choice.matrices, 12.0, 6).frequencies_hz
+        np.testing.assert_allclose(chosen, reference_frequencies(blade, choice, 12.0, 6), rtol=MESH_RTOL,
+                                   err_msg=deck.name)
