@@ -148,12 +148,12 @@ def refine_until_converged(assemble: Callable[[int], Matrices], frequencies: Cal
                            finer: bool = False) -> tuple[Matrices, float | None]:
     """The mesh choice for callers that assemble by element count: level ``s`` is ``start * s`` elements, and
     no round-off estimate is made. Returns the matrices and None, or the estimated error when ``rtol`` was not
-    reached. ``finer`` holds the error below ``rtol / 30`` instead (what the finer mesh of a doubled pair whose
-    change is below ``rtol / 2`` has), for closed-form checks to 1e-7."""
+    reached. ``finer`` holds the error below ``rtol / 30`` instead of ``rtol / 2`` (what the finer mesh of a doubled
+    pair whose change is below ``rtol / 2`` has), for closed-form checks to 1e-7."""
     def solve(matrices: Matrices) -> Solved:
         values = frequencies(matrices)
         return Solved(values, np.zeros_like(values))
 
-    choice = choose_mesh(lambda level: assemble(start * level), solve, rtol / 30 if finer else rtol,
+    choice = choose_mesh(lambda level: assemble(start * level), solve, rtol / 15 if finer else rtol,
                          max(2, max_elements // start))
     return choice.matrices, (None if choice.note is None else choice.error)
