@@ -93,7 +93,7 @@ def main() -> None:
     args = parser.parse_args()
 
     from bladefem.io.case import read_case
-    from bladefem.modal import campbell, campbell_sweep, converged_mesh, solve_modes
+    from bladefem.modal import campbell, converged_mesh, solve_modes
 
     blade = read_case(CASE)
     choice = converged_mesh(blade, N_MODES, rpm=float(RPM.max()))
@@ -104,8 +104,6 @@ def main() -> None:
     functions: dict[str, Callable[[], object]] = {
         "converged Campbell, 16 speeds, 6 families (mesh choice included)": lambda: campbell(blade, RPM, N_MODES),
         "  of which: automatic mesh choice (assemblies and solves)": lambda: converged_mesh(blade, N_MODES, rpm=15.0),
-        "  of which: sweep on the chosen mesh (fresh matrices' solves)": lambda: campbell_sweep(
-            converged_mesh(blade, N_MODES, rpm=15.0).matrices, RPM, N_MODES),
         "one modal solve, 10 modes, 12.1 rpm (chosen mesh, not cached)": lambda: solve_modes(
             converged_mesh(blade, 10, rpm=12.1).matrices, 12.1, 10),
     }

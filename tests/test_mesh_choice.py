@@ -9,8 +9,15 @@ import numpy as np
 import pytest
 import scipy.sparse.linalg as spla
 from hypothesis import HealthCheck, given, settings
+from test_closed_form import CANTILEVER_B
+from test_properties import blades
 
-from bladefem.assembly import assemble_blade, blade_graded_nodes, graded_nodes, subdivide
+from bladefem.assembly import (
+    assemble_blade,
+    blade_graded_nodes,
+    graded_nodes,
+    subdivide,
+)
 from bladefem.assembly.mesh import PROPERTY_RATIO, SHORTEST_ELEMENT, mesh_stations
 from bladefem.io.case import read_case
 from bladefem.modal import MESH_RTOL, SolverError, converged_mesh, solve_modes
@@ -19,8 +26,6 @@ from bladefem.modal.estimate import frequency_errors
 from bladefem.modal.refinement import Solved, choose_mesh
 from bladefem.modal.solve import cached_pairs
 from bladefem.sections import Blade, uniform_sections
-from test_closed_form import CANTILEVER_B
-from test_properties import blades
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 
