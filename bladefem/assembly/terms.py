@@ -15,8 +15,9 @@ from .parameters import SectionParameters
 
 
 def quadratic(a: NDArray, G: NDArray, b: NDArray) -> NDArray:
-    """a^T G b over the leading axes, keeping the quadrature axes."""
-    return np.einsum("i...,ij...,j...->...", a, G, b)
+    """a^T G b over the leading axes, keeping the trailing axes (broadcast: basis-function pairs, elements,
+    quadrature points); G b first, which is cheaper than the three-operand product when a and b broadcast."""
+    return np.einsum("i...,i...->...", a, np.einsum("ij...,j...->i...", G, b))
 
 
 def bending_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:

@@ -33,8 +33,8 @@ def projected_inertia(Q: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArray
     coupling = -np.einsum("ij,jk...->ik...", Q, skew(S))          # Q (-[S]x)
     G[:3, 3:] = coupling
     G[3:, :3] = np.swapaxes(coupling, 0, 1)
-    # int rho [s]x^T Q [s]x = eps_bac eps_edf Q_be J_cf
-    G[3:, 3:] = np.einsum("bac,edf,be,cf...->ad...", EPS, EPS, Q, J)
+    # int rho [s]x^T Q [s]x = eps_bac eps_edf Q_be J_cf (the constant part contracted first)
+    G[3:, 3:] = np.einsum("acdf,cf...->ad...", np.einsum("bac,edf,be->acdf", EPS, EPS, Q), J)
     return G
 
 
