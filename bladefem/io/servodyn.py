@@ -46,7 +46,7 @@ class ServoDyn:
     settings: dict[str, float]
     lines: dict[str, tuple[str, int]]
 
-    def unmodelled(self, end_time: float = math.inf) -> list[Unmodelled]:
+    def unmodelled(self, end_time: float) -> list[Unmodelled]:
         """Settings that ask for behaviour bladefem does not model within a simulation ending at ``end_time``."""
         found = []
 
