@@ -49,8 +49,8 @@ from .polars import polar_lookup
 ZERO_VELOCITY = 1e-3
 #: Distance of the bracket ends from the singular angles 0 and pi/2, rad.
 EDGE = 1e-6
-#: Half width of the bracket tried first around a previous solution, rad.
-WARM_BRACKET = 0.02
+#: Steps from a previous solution to the other end of a first bracket, rad (the small one first).
+WARM_STEP, WARM_BRACKET = 1e-3, 0.03
 #: AeroDyn's limits on the induction factors (BEMT_MinInduction, BEMT_MaxInduction).
 A_MIN, A_MAX, AP_MIN, AP_MAX = -1.0, 1.5, -1.0, 1.0
 #: Number of values :func:`node_loads` returns.
@@ -70,11 +70,15 @@ def residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, air
 def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
           coefs, start, count, options):
     """Root of the residual in [lo, hi] (f_lo, f_hi of opposite signs) by Brent's method (inverse quadratic
-    interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad."""
+    interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad.
+    Returns (phi, a, a', valid) at the root."""
+    args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
+            options)
     tolerance = options[TOLERANCE]
     a, b, fa, fb = lo, hi, f_lo, f_hi
     c, fc = b, fb
     d = e = b - a
+    at_b, induced_a, induced_ap, valid = False, 0.0, 0.0, False
     for _ in range(int(options[MAX_ITER])):
         if (fb > 0.0) == (fc > 0.0):
             c, fc = a, fa
@@ -82,10 +86,11 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
         if abs(fc) < abs(fb):
             a, b, c = b, c, b
             fa, fb, fc = fb, fc, fb
+            at_b = False
         step_tolerance = 4.0e-16 * abs(b) + 0.5e-13
         half = 0.5 * (c - b)
         if abs(half) <= step_tolerance or abs(fb) <= tolerance:
-            return b
+            break
         if abs(e) >= step_tolerance and abs(fa) > abs(fb):
             s = fb / fa
             if a == c:
@@ -105,9 +110,11 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
             d = e = half
         a, fa = b, fb
         b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
-        fb = residual(b, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs,
-                      start, count, options)[0]
-    return b
+        fb, induced_a, induced_ap, valid = residual(b, *args)
+        at_b = True
+    if not at_b:
+        _, induced_a, induced_ap, valid = residual(b, *args)
+    return b, induced_a, induced_ap, valid
 
 
 @kernel
@@ -130,47 +137,56 @@ def search_intervals(vx, guess):
 @kernel
 def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs,
                        start, count, options, guess):
-    """(phi, valid): the inflow angle solving the BEM equations, rad. A finite ``guess`` (the previous solution)
-    is tried first, then a bracket of +-WARM_BRACKET around it, then Ning's three intervals. Without a valid BEM
-    solution: the geometric angle atan2(vx, vy) and valid False (the induction is then zero, as in AeroDyn)."""
+    """(phi, valid, a, a'): the inflow angle solving the BEM equations (rad) and the induction there. A finite
+    ``guess`` (the previous solution) is tried first, then brackets next to it, then Ning's three intervals. Without
+    a valid BEM solution: the geometric angle atan2(vx, vy), valid False and zero induction (as AeroDyn).
+    The warm start brackets the root between the guess and a point WARM_STEP away (downhill first, then uphill),
+    then WARM_BRACKET away, before the full search: the guarantee of convergence is kept."""
     if abs(vx) < ZERO_VELOCITY:
-        return 0.0, True
+        return 0.0, True, 0.0, 0.0
     if abs(vy) < ZERO_VELOCITY:
-        return math.copysign(math.pi / 2.0, vx), True
+        return math.copysign(math.pi / 2.0, vx), True, 0.0, 0.0
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
             options)
     tolerance = options[TOLERANCE]
     if math.isfinite(guess) and abs(guess) > EDGE and abs(abs(guess) - math.pi / 2.0) > EDGE:
-        f_guess, _, _, valid = residual(guess, *args)
+        f_guess, a, ap, valid = residual(guess, *args)
         if abs(f_guess) < tolerance and valid:
-            return guess, True
+            return guess, True, a, ap
         side = math.floor(guess / (math.pi / 2.0))          # quadrant: the bracket must not cross 0 or +-pi/2
-        lo = max(guess - WARM_BRACKET, side * math.pi / 2.0 + EDGE)
-        hi = min(guess + WARM_BRACKET, (side + 1) * math.pi / 2.0 - EDGE)
-        f_lo, f_hi = residual(lo, *args)[0], residual(hi, *args)[0]
-        if (f_lo > 0.0) != (f_hi > 0.0):
-            phi = brent(lo, hi, f_lo, f_hi, *args)
-            if residual(phi, *args)[3]:
-                return phi, True
+        floor, ceiling = side * math.pi / 2.0 + EDGE, (side + 1) * math.pi / 2.0 - EDGE
+        step = -math.copysign(WARM_STEP, f_guess)           # R usually grows with phi: look downhill first
+        for _ in range(2):
+            for direction in (1.0, -1.0):
+                other = min(max(guess + direction * step, floor), ceiling)
+                f_other = residual(other, *args)[0]
+                if (f_other > 0.0) != (f_guess > 0.0):
+                    lo, hi, f_lo, f_hi = (guess, other, f_guess, f_other) if other > guess else (
+                        other, guess, f_other, f_guess)
+                    phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args)
+                    if valid:
+                        return phi, True, a, ap
+                    break
+            step *= WARM_BRACKET / WARM_STEP
     else:
         guess = math.atan2(vx, vy)
     lows, highs = search_intervals(vx, guess)
     for i in range(3):
         lo, hi = lows[i], highs[i]
-        f_lo, _, _, valid_lo = residual(lo, *args)
-        f_hi, _, _, valid_hi = residual(hi, *args)
+        f_lo, a_lo, ap_lo, valid_lo = residual(lo, *args)
+        f_hi, a_hi, ap_hi, valid_hi = residual(hi, *args)
         if abs(f_lo) < tolerance:                      # an end of the interval is already a root
             if abs(f_hi) < abs(f_lo) and valid_hi:
-                return hi, True
+                return hi, True, a_hi, ap_hi
             if valid_lo:
-                return lo, True
+                return lo, True, a_lo, ap_lo
         elif abs(f_hi) < tolerance and valid_hi:
-            return hi, True
+            return hi, True, a_hi, ap_hi
         if (f_lo > 0.0) != (f_hi > 0.0):
-            phi = brent(lo, hi, f_lo, f_hi, *args)
-            if residual(phi, *args)[3]:
-                return phi, True
-    return math.atan2(vx, vy), False
+            phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args)
+            if valid:
+                return phi, True, a, ap
+    return math.atan2(vx, vy), False, 0.0, 0.0
 
 
 @kernel
@@ -211,15 +227,10 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
     elif fixed:                                        # node at the tip or hub with loss: no flow through it
         phi_solved, a = math.atan2(vx, vy), 1.0
     else:
-        phi_solved, valid = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil,
-                                               knots, values, coefs, start, count, options, guess)
+        phi_solved, valid, a, ap = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0,
+                                                      airfoil, knots, values, coefs, start, count, options, guess)
+        a, ap = min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
         if valid and abs(vx) >= ZERO_VELOCITY and abs(vy) >= ZERO_VELOCITY:
-            _, a, ap, ok = residual(phi_solved, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil,
-                                    knots, values, coefs, start, count, options)
-            if ok:
-                a, ap = min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
-            else:
-                a, ap = 0.0, 0.0
             if options[SKEW_REDISTRIBUTION] != 0.0:
                 loss = loss_factor(phi_solved, tip_constant, hub_constant, options)
                 a = skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options)
