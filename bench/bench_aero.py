@@ -86,7 +86,7 @@ def main() -> None:
     calls = 20000
     rows = []
     for warm in (False, True):
-        seconds = best(lambda: repeat_node(calls, *node, *table.arrays, options, rotor.air_density, warm), 3)
+        seconds = best(lambda w=warm: repeat_node(calls, *node, *table.arrays, options, rotor.air_density, w), 3)
         rows.append((f"one node, {'warm' if warm else 'cold'} (compiled loop)", seconds / calls))
     flat = {name: np.ascontiguousarray(np.broadcast_to(value, kin.vx.shape[1:]).ravel()) for name, value in (
         ("vx", kin.vx[0]), ("vy", kin.vy[0]), ("r", kin.r_local[0]), ("chord", rotor.chord),
@@ -107,7 +107,7 @@ def main() -> None:
     rows.append(("17 nodes x 3 blades, warm (solve_nodes)", best(lambda: solve(previous), 200)))
     for azimuths in (1, 16):
         rows.append((f"rotor_performance, {azimuths} azimuth{'s' if azimuths > 1 else ''} (19 nodes x 3 blades)",
-                     best(lambda: rotor_performance(deck, 11.4, 12.1, 0.0, azimuths=azimuths), 20)))
+                     best(lambda n=azimuths: rotor_performance(deck, 11.4, 12.1, 0.0, azimuths=n), 20)))
     print(f"NREL 5MW, 11.4 m/s, 12.1 rpm; numba {'on' if COMPILED else 'off'}\n")
     print("| case | time per call |\n|---|---|")
     for name, seconds in rows:

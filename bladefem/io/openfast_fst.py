@@ -109,8 +109,8 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error") -> Op
         refuse("CompInflow", "external inflow (CompInflow 2) is not modelled: set 1 (InflowWind) or 0")
     aero_switch = fst.int("CompAero", choices=(0, 1, 2, 3))
     if aero_switch in (1, 3):
-        refuse("CompAero", f"CompAero {aero_switch} ({'AeroDyn 14 / AeroDisk' if aero_switch == 1 else 'external loads'}) "
-                           "is not modelled: set 2 (AeroDyn) or 0")
+        what = "AeroDyn 14 / AeroDisk" if aero_switch == 1 else "external loads"
+        refuse("CompAero", f"CompAero {aero_switch} ({what}) is not modelled: set 2 (AeroDyn) or 0")
     servo_switch = fst.int("CompServo", choices=(0, 1))
     for label, what in OFF_SWITCHES.items():
         if fst.has(label) and fst.int(label) != 0:
