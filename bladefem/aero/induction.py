@@ -37,10 +37,19 @@ def loss_factor(phi, tip_constant, hub_constant, options):
     f = 1.0
     if s > 1e-12 and (options[FORMULATION] != 2.0 or phi > 0.0):
         if options[TIP_LOSS] != 0.0:
-            f *= 2.0 / math.pi * math.acos(min(1.0, math.exp(-tip_constant / s)))
+            f *= prandtl(tip_constant / s)
         if options[HUB_LOSS] != 0.0:
-            f *= 2.0 / math.pi * math.acos(min(1.0, math.exp(-hub_constant / s)))
+            f *= prandtl(hub_constant / s)
     return max(f, 1e-4)
+
+
+@kernel
+def prandtl(exponent):
+    """2/pi acos(exp(-x)); exactly 1.0 in double precision beyond x = 37 (exp(-37) < 1e-16), returned without
+    evaluating it."""
+    if exponent > 37.0:
+        return 1.0
+    return 2.0 / math.pi * math.acos(min(1.0, math.exp(-exponent)))
 
 
 @kernel
