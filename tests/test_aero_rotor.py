@@ -88,3 +88,32 @@ def test_power_and_coefficients(rotor):
     assert result.cp == pytest.approx(result.power / (q * result.disk_velocity), rel=1e-14)
     assert result.area == pytest.approx(math.pi * (63 * math.cos(math.radians(2.5)) - 1e-4) ** 2, rel=1e-6)
     assert 0.45 < result.cp < 0.5 and result.valid.all()
+
+
+def test_line_load_resultant_is_exact_for_linear_loads():
+    """The moment of a load varying linearly between nodes along a polyline equals the integral computed on a fine
+    subdivision (error of the fine trapezoid ~ (h/L)^2 = 1e-8); the force is the trapezoid; distributed moments add."""
+    from bladefem.aero.performance import line_load_resultant
+    rng = np.random.default_rng(11)
+    position = np.cumsum(rng.uniform(0.5, 2.0, (6, 3)), axis=0)
+    force, moment = rng.normal(size=(6, 3)), rng.normal(size=(6, 3))
+    z = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(position, axis=0), axis=1))]
+    total_force, total_moment = line_load_resultant(position, force, moment, z)
+    fine = np.linspace(0, z[-1], 200001)
+    p = np.column_stack([np.interp(fine, z, position[:, i]) for i in range(3)])
+    f = np.column_stack([np.interp(fine, z, force[:, i]) for i in range(3)])
+    m = np.column_stack([np.interp(fine, z, moment[:, i]) for i in range(3)])
+    assert np.allclose(total_force, np.trapezoid(f, fine, axis=0), rtol=1e-12)
+    assert np.allclose(total_moment, np.trapezoid(np.cross(p, f) + m, fine, axis=0), rtol=1e-8, atol=1e-8)
+
+
+def test_pitching_moment_counts_through_the_cone(rotor):
+    """The rotor torque contains the blades' pitching moments times sin(precone) (AeroDyn's hub moment): switching
+    UseBlCm off changes the torque by exactly that."""
+    with_cm = rotor_performance(rotor, 11.4, 12.1, 0.0, azimuths=1)
+    without = rotor_performance(variant(rotor, options=BEMOptions(**{**rotor.options.__dict__,
+                                                                      "pitching_moment": False})), 11.4, 12.1, 0.0,
+                                azimuths=1)
+    expected = np.trapezoid(with_cm.m[0], with_cm.z[0], axis=-1).sum() * math.sin(rotor.precone)
+    assert with_cm.torque - without.torque == pytest.approx(expected, rel=1e-9)
+    assert with_cm.thrust == without.thrust and abs(expected) > 1e-3 * with_cm.torque

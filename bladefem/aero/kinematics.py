@@ -24,7 +24,7 @@ class NodeKinematics:
     """Inputs of :func:`bladefem.aero.bem.node_loads` at (azimuth, blade, node), and the frames to sum loads.
 
     position : node relative to the rotor centre (..., 3), m; shaft : x_s (3,)
-    normal : i1 (..., 3); rotation : e_t (..., 3), direction of the blade motion
+    normal : i1 (..., 3); rotation : e_t (..., 3), direction of the blade motion; axis : i3 (..., 3), pitch axis
     vx, vy : relative velocity components, m/s; r_local : m; z : distance along the blade from the centre, m
     tip_constant, hub_constant : Prandtl constants; tip_ratio : r_local / max r_local of the blade
     chi0 : skew angle per azimuth (n_az,), rad; skew_cos : (..,)
@@ -35,6 +35,7 @@ class NodeKinematics:
     shaft: NDArray
     normal: NDArray
     rotation: NDArray
+    axis: NDArray
     vx: NDArray
     vy: NDArray
     r_local: NDArray
@@ -75,6 +76,7 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     velocity = wind - rotor_speed * np.cross(xs, position)
     normal_n = np.broadcast_to(normal[..., None, :], position.shape)
     tangent_n = np.broadcast_to(tangent[..., None, :], position.shape)
+    axis_n = np.broadcast_to(axis[..., None, :], position.shape)
     vx = np.einsum("...k,...k", velocity, normal_n)
     vy = -np.einsum("...k,...k", velocity, tangent_n)
     axial = position @ xs
@@ -93,7 +95,7 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     in_plane = np.divide(in_plane, size, out=np.zeros_like(in_plane), where=size > 1e-12 * np.maximum(speed, 1)[:,
                                                                                                          None])
     skew_cos = np.broadcast_to(np.einsum("abk,ak->ab", radial, in_plane)[..., None], vx.shape)
-    return NodeKinematics(position, xs, normal_n, tangent_n, vx, vy, r_local, z, tip_constant, hub_constant,
+    return NodeKinematics(position, xs, normal_n, tangent_n, axis_n, vx, vy, r_local, z, tip_constant, hub_constant,
                           tip_ratio, chi0, skew_cos, disk_velocity, float(r_local.max()))
 
 

@@ -2,8 +2,9 @@
 
 The nodes of every blade are solved at each rotor azimuth (one is enough for an axisymmetric case; with shaft tilt,
 yaw, upflow or shear the loads are averaged over azimuths spread evenly over one blade passage). Loads per unit
-length are summed like AeroDyn's line meshes: trapezoidal rule in the distance along the blade, thrust along the
-shaft axis, torque about it. Cp, Ct and the tip-speed ratio use AeroDyn's definitions (RtAeroCp, RtAeroCt, RtTSR):
+length (force and pitching moment) vary linearly between nodes and are summed like AeroDyn's line meshes
+(:func:`line_load_resultant`); thrust is the resultant along the shaft axis, torque the moment about it (the
+pitching moments count through the cone angle). Cp, Ct and the tip-speed ratio use AeroDyn's definitions (RtAeroCp, RtAeroCt, RtTSR):
 the swept area pi R^2 with R the largest distance of a node from the shaft axis, and the disk-averaged wind
 component along the shaft.
 """
@@ -118,10 +119,9 @@ def performance_at(rotor: Rotor, inflow: Inflow, rotor_speed: float, pitch: floa
     solution = solve_kinematics(rotor, kin, rotor_speed, pitch)
     column = {name: solution[..., i] for i, name in enumerate(COLUMNS)}
     force = column["fn"][..., None] * kin.normal + column["ft"][..., None] * kin.rotation
-    thrust_per_length = force @ kin.shaft
-    torque_per_length = np.cross(kin.position, force) @ kin.shaft
-    thrust = float(np.mean(np.trapezoid(thrust_per_length, kin.z, axis=-1).sum(axis=-1)))
-    torque = float(np.mean(np.trapezoid(torque_per_length, kin.z, axis=-1).sum(axis=-1)))
+    total_force, total_moment = line_load_resultant(kin.position, force, column["m"][..., None] * kin.axis, kin.z)
+    thrust = float(np.mean(total_force.sum(axis=1) @ kin.shaft))
+    torque = float(np.mean(total_moment.sum(axis=1) @ kin.shaft))
     disk = float(np.mean(kin.disk_velocity))
     area = math.pi * kin.max_radius ** 2
     power = torque * rotor_speed
@@ -134,6 +134,20 @@ def performance_at(rotor: Rotor, inflow: Inflow, rotor_speed: float, pitch: floa
         ap=column["ap"], phi=column["phi"], alpha=column["alpha"], w=column["w"], cl=column["cl"],
         cd=column["cd"], cm=column["cm"], fn=column["fn"], ft=column["ft"], m=column["m"],
         valid=column["valid"] > 0.5)
+
+
+def line_load_resultant(position: NDArray, force: NDArray, moment: NDArray, z: NDArray) -> tuple[NDArray, NDArray]:
+    """Resultant force and moment about the origin of loads per unit length (..., node, 3) varying linearly between
+    nodes at ``position`` along a line of arc length ``z`` (AeroDyn's Line2 load meshes lumped to the hub point): the
+    force by the trapezoidal rule, the moment of the force exactly for linear load and linear position
+    (L/6 (2 p_a x f_a + p_a x f_b + p_b x f_a + 2 p_b x f_b) per element), the distributed moment by the trapezoidal
+    rule."""
+    length = np.diff(z, axis=-1)[..., None]
+    pa, pb, fa, fb = position[..., :-1, :], position[..., 1:, :], force[..., :-1, :], force[..., 1:, :]
+    total_force = np.sum(0.5 * length * (fa + fb), axis=-2)
+    arm = 2 * np.cross(pa, fa) + np.cross(pa, fb) + np.cross(pb, fa) + 2 * np.cross(pb, fb)
+    total_moment = np.sum(length / 6 * arm + 0.5 * length * (moment[..., :-1, :] + moment[..., 1:, :]), axis=-2)
+    return total_force, total_moment
 
 
 def induction_weight(tsr: float) -> float:
