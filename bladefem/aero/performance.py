@@ -4,8 +4,9 @@ The nodes of every blade are solved at each rotor azimuth (one is enough for an 
 yaw, upflow or shear the loads are averaged over azimuths spread evenly over one blade passage). Loads per unit
 length (force and pitching moment) vary linearly between nodes and are summed like AeroDyn's line meshes
 (:func:`line_load_resultant`); thrust is the resultant along the shaft axis, torque the moment about it (the
-pitching moments count through the cone angle). Cp, Ct and the tip-speed ratio use AeroDyn's definitions (RtAeroCp, RtAeroCt, RtTSR):
-the swept area pi R^2 with R the largest distance of a node from the shaft axis, and the disk-averaged wind
+pitching moments count through the cone angle). Cp, Ct and the tip-speed ratio use AeroDyn's definitions
+(RtAeroCp, RtAeroCt, RtTSR): the swept area pi R^2 with R the largest distance of a node from the shaft axis, and
+the disk-averaged wind
 component along the shaft.
 """
 
