@@ -6,8 +6,7 @@ length (force and pitching moment) vary linearly between nodes and are summed li
 (:func:`line_load_resultant`); thrust is the resultant along the shaft axis, torque the moment about it (the
 pitching moments count through the cone angle). Cp, Ct and the tip-speed ratio use AeroDyn's definitions
 (RtAeroCp, RtAeroCt, RtTSR): the swept area pi R^2 with R the largest distance of a node from the shaft axis, and
-the disk-averaged wind
-component along the shaft.
+the disk-averaged wind component along the shaft.
 """
 
 from __future__ import annotations
