@@ -9,9 +9,9 @@ and hub loss, tangential induction, skewed wake). Cases:
 
 - one node (mid-span, DU25 airfoil) called N times from a compiled loop: cold (no previous solution: Ning's
   bracket [0+, pi/2]) and warm (the previous solution as guess with the inflow changed by 0.1 %, as between two
-  right-hand sides of a time integration);
+  right-hand sides of a time integration); and its loads with the induction factors held (``section_loads``);
 - ``solve_nodes`` on the 17 interior nodes of each of the 3 blades, called from Python (includes the call
-  overhead), cold and warm;
+  overhead): cold, warm with the inflow changed by 0.1 % since the previous call, warm with the same inflow;
 - ``rotor_performance`` (numpy kinematics, solve, sums) with 1 and 16 azimuths.
 
 CPU (process) times on one core, best of 5; the first compiled call (numba compilation, cached on disk afterwards)
@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 
 from bladefem.aero import Rotor, rotor_performance  # noqa: E402
 from bladefem.aero._jit import COMPILED, kernel  # noqa: E402
-from bladefem.aero.bem import NODE_OUTPUTS, node_loads, solve_nodes  # noqa: E402
+from bladefem.aero.bem import NODE_OUTPUTS, node_loads, section_loads, solve_nodes  # noqa: E402
 from bladefem.aero.kinematics import rigid_rotor  # noqa: E402
 from bladefem.aero.polars import pack_polars  # noqa: E402
 from bladefem.io.openfast_fst import read_openfast_deck  # noqa: E402
@@ -53,6 +53,17 @@ def repeat_node(count, vx, vy, r, chord, theta, tip_c, hub_c, tip_ratio, chi0, s
         total += out[9]
         if warm:
             guess = out[0]
+    return total
+
+
+@kernel
+def repeat_section(count, vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count_af, options, rho):
+    """``count`` section-load evaluations with the induction held (inflow changed by 0.1 % every other call)."""
+    total = 0.0
+    for i in range(count):
+        out = section_loads(vx * (1.0 + 1e-3 * (i % 2)), vy, a, ap, chord, theta, airfoil, knots, values, coefs,
+                            start, count_af, options, rho)
+        total += out[6]
     return total
 
 
@@ -88,6 +99,11 @@ def main() -> None:
     for warm in (False, True):
         seconds = best(lambda w=warm: repeat_node(calls, *node, *table.arrays, options, rotor.air_density, w), 3)
         rows.append((f"one node, {'warm' if warm else 'cold'} (compiled loop)", seconds / calls))
+    solution = node_loads(*node[:7], 3.0, *node[7:10], 1.0, node[10], *table.arrays, options, rotor.air_density,
+                          math.nan)
+    held = (node[0], node[1], solution[1], solution[2], node[3], node[4], node[10])
+    seconds = best(lambda: repeat_section(calls, *held, *table.arrays, options, rotor.air_density), 3)
+    rows.append(("one node, loads with the induction held (section_loads)", seconds / calls))
     flat = {name: np.ascontiguousarray(np.broadcast_to(value, kin.vx.shape[1:]).ravel()) for name, value in (
         ("vx", kin.vx[0]), ("vy", kin.vy[0]), ("r", kin.r_local[0]), ("chord", rotor.chord),
         ("theta", rotor.twist), ("tip", kin.tip_constant[0]), ("hub", kin.hub_constant[0]),
@@ -95,16 +111,28 @@ def main() -> None:
         ("skew", kin.skew_cos[0]), ("airfoil", rotor.airfoil))}
     out = np.empty((flat["vx"].size, NODE_OUTPUTS))
 
-    def solve(guess):
-        solve_nodes(flat["vx"], flat["vy"], flat["r"], flat["chord"], flat["theta"], flat["tip"], flat["hub"], 3.0,
+    inflows = (flat["vx"], flat["vx"] * 1.001)
+    calls = [0]
+
+    def solve(guess, vx=None):
+        if vx is None:                                      # alternate between two inflows 0.1 % apart
+            calls[0] += 1
+            vx = inflows[calls[0] % 2]
+        solve_nodes(vx, flat["vy"], flat["r"], flat["chord"], flat["theta"], flat["tip"], flat["hub"], 3.0,
                     flat["ratio"], flat["chi0"], flat["skew"], 1.0, flat["airfoil"], *table.arrays, options,
                     rotor.air_density, guess, out)
 
     cold = np.full(flat["vx"].size, np.nan)
-    solve(cold)
-    previous = out[:, 0].copy()
+    solve(cold, flat["vx"])
+    same = out[:, 0].copy()
+
+    def warm():
+        solve(out[:, 0].copy())
+
     rows.append(("17 nodes x 3 blades, cold (solve_nodes)", best(lambda: solve(cold), 200)))
-    rows.append(("17 nodes x 3 blades, warm (solve_nodes)", best(lambda: solve(previous), 200)))
+    rows.append(("17 nodes x 3 blades, warm: inflow changed by 0.1 % (solve_nodes)", best(warm, 200)))
+    rows.append(("17 nodes x 3 blades, warm: same inflow (solve_nodes)",
+                 best(lambda: solve(same, flat["vx"]), 200)))
     for azimuths in (1, 16):
         rows.append((f"rotor_performance, {azimuths} azimuth{'s' if azimuths > 1 else ''} (19 nodes x 3 blades)",
                      best(lambda n=azimuths: rotor_performance(deck, 11.4, 12.1, 0.0, azimuths=n), 20)))

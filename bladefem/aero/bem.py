@@ -235,6 +235,16 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
                 loss = loss_factor(phi_solved, tip_constant, hub_constant, options)
                 a = skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options)
         a, ap = a * induction_weight, ap * induction_weight
+    phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs,
+                                                         start, count, options, air_density)
+    return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
+
+
+@kernel
+def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options, air_density):
+    """Loads of a blade section for given induction factors a, a' (no solve): (phi, alpha, W, cl, cd, cm, fn, ft, m)
+    as in :func:`node_loads`; drag always included. About a tenth of a node solve: for right-hand sides evaluated
+    between two solves with the induction held."""
     x, y = vx * (1.0 - a), vy * (1.0 + ap)
     phi = math.atan2(x, y) if (x != 0.0 or y != 0.0) else 0.0
     alpha = phi - theta
@@ -245,7 +255,7 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
     fn = q * chord * (cl * c + cd * s)
     ft = q * chord * (cl * s - cd * c)
     m = q * chord * chord * cm if options[USE_CM] != 0.0 else 0.0
-    return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
+    return phi, alpha, w, cl, cd, cm, fn, ft, m
 
 
 @kernel
