@@ -15,7 +15,7 @@ from bladefem.cli import Parser
 from bladefem.cli import turbine as turbine_cli
 from bladefem.errors import InputError
 from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
-from bladefem.models.turbine import TurbineModel, select_dofs
+from bladefem.models.turbine import TurbineModel
 from bladefem.models.turbine.linearize import linearize
 
 MAIN = str(Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat")

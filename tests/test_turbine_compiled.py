@@ -46,7 +46,7 @@ def test_nodal_force_hook_equals_the_numpy_generalized_forces(model):
     rng = np.random.default_rng(7)
     q, u = rng.normal(scale=0.5, size=model.n), rng.normal(scale=0.5, size=model.n)
     forces = rng.normal(scale=1e3, size=model.blade_masses.shape + (3,))
-    M, f = model.equations(q, u, blade_forces=forces)
+    _, f = model.equations(q, u, blade_forces=forces)
     _, fc = compiled(q, u)
     nodal_forces(fc, forces, compiled.work)
     np.testing.assert_allclose(fc, f, rtol=0, atol=1e-12 * np.abs(f).max())
@@ -111,7 +111,11 @@ def test_dense_output_between_steps(model, method):
 def test_divergence_stops_the_run(model):
     """A state beyond its limit (here an artificially small one) or not finite stops the compiled integrator with
     its status, the time and the offending state; simulate turns it into a DivergenceError naming the coordinate."""
-    from bladefem.models.turbine.simulate import DivergenceError, divergence_limits, simulate
+    from bladefem.models.turbine.simulate import (
+        DivergenceError,
+        divergence_limits,
+        simulate,
+    )
     q, u = np.zeros(model.n), np.zeros(model.n)
     q[0] = 0.3
     system = FreeSystem(model, np.ones(model.n, dtype=bool), q, u)

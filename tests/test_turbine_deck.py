@@ -15,7 +15,11 @@ from bladefem.errors import InputError
 from bladefem.io.elastodyn_main import read_elastodyn_main, write_elastodyn_main
 from bladefem.io.turbine_elastodyn import deck_conditions, turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel, select_dofs
-from bladefem.models.turbine.initial import InitialConditions, free_from_switches, initial_state
+from bladefem.models.turbine.initial import (
+    InitialConditions,
+    free_from_switches,
+    initial_state,
+)
 
 MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
 

@@ -148,7 +148,11 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
 
 
 def build_model(args: argparse.Namespace):
-    from ..io.turbine_elastodyn import NREL5MW_YAW_DAMPING, NREL5MW_YAW_STIFFNESS, turbine_from_elastodyn
+    from ..io.turbine_elastodyn import (
+        NREL5MW_YAW_DAMPING,
+        NREL5MW_YAW_STIFFNESS,
+        turbine_from_elastodyn,
+    )
     from ..models.turbine import TurbineModel
 
     shapes = args.shapes or ("polynomial" if args.elastodyn_compatible else "fe")

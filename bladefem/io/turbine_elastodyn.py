@@ -129,7 +129,8 @@ def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_rat
     slopes = np.stack([np.stack([m.shape.flap_slope, -m.shape.edge_slope], axis=-1) for m in chosen])
 
     return sample_beam(hermite_evaluator(nodes, values, slopes), nodes if edges is None else edges,
-                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), damping_ratio, ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
+                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), damping_ratio,
+                       ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
 
 
 def blade_properties(blade: Blade):
@@ -210,7 +211,11 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
     from ..modal import modes
     from ..modal.elastodyn_fit import blade_coefficients
     from ..models.tower_fit import tower_coefficients
-    from ..models.turbine.elastodyn_beams import elastodyn_blade_beam, elastodyn_tower_beam, tuned
+    from ..models.turbine.elastodyn_beams import (
+        elastodyn_blade_beam,
+        elastodyn_tower_beam,
+        tuned,
+    )
 
     for name, value in (("blade shapes", blade_shapes), ("tower shapes", tower_shapes)):
         if value not in SHAPE_SOURCES:

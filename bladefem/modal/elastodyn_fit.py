@@ -21,7 +21,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..sections import Blade, SectionTable
-from .results import ModalResult, Mode
 from .elastodyn_integrals import (  # noqa: F401 - re-exported
     centrifugal_load,
     elastodyn_forms,
@@ -29,6 +28,7 @@ from .elastodyn_integrals import (  # noqa: F401 - re-exported
     elastodyn_nodes,
     gravity_load,
 )
+from .results import ModalResult, Mode
 from .sextic import (  # noqa: F401 - the polynomial's tools, re-exported for the users of this module
     GAUSS_POINTS,
     POWERS,
@@ -196,7 +196,8 @@ def fit_modes(result: ModalResult, beam: BeamIntegrals, wanted: dict[str, tuple[
             if not constrained.frequency_preserved:
                 reached = beam.frequency(fit.coefficients, kind, nodes)
                 warnings += (f"{LABELS[name]}: no sextic has the finite-element frequency {mode.frequency_hz:.5g} Hz "
-                             f"with ElastoDyn's integrals on {nodes} nodes; the displacement fit gives {reached:.5g} Hz",)
+                             f"with ElastoDyn's integrals on {nodes} nodes; the displacement fit gives "
+                             f"{reached:.5g} Hz",)
         fits[name] = ModeFit(name, fit, mode.frequency_hz, beam.frequency(fit.coefficients, kind, nodes),
                              target.tip_ratio, warnings)
         if shipped and name in shipped:

@@ -19,7 +19,7 @@ except ImportError:                                    # pragma: no cover - numb
     njit = None
 
 if njit is not None:
-    from .compiled_kernels import derivative
+    from .compiled_kernels import derivative, store_row
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
@@ -53,16 +53,17 @@ if njit is not None:                                   # module-level kernels: n
         size = x.shape[0]
         stages = B.shape[0]
         K = np.zeros((A.shape[0], size))
-        K[0] = f0
+        store_row(K, 0, f0)
         count = 0
         while t < t_end:
             h = min(h, t_end - t)
             if h <= 1e-14 * max(1.0, abs(t)):
                 return t, x, K[0], h, next_out, count, 3, -1
             for s in range(1, stages):
-                K[s] = derivative(t + C[s] * h, combination(x, h, A[s], K, s), q0, u0, index, data, work)
+                stage = combination(x, h, A[s], K, s)
+                store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
             new = combination(x, h, B, K, stages)
-            K[stages] = derivative(t + h, new, q0, u0, index, data, work)
+            store_row(K, stages, derivative(t + h, new, q0, u0, index, data, work))
             count += stages
             e5, e3 = 0.0, 0.0
             for i in range(size):
@@ -78,7 +79,8 @@ if njit is not None:                                   # module-level kernels: n
                 t_new = t_end if t + h >= t_end else t + h
                 if next_out < times.shape[0] and times[next_out] <= t_new:
                     for s in range(stages + 1, A.shape[0]):
-                        K[s] = derivative(t + C[s] * h, combination(x, h, A[s], K, s), q0, u0, index, data, work)
+                        stage = combination(x, h, A[s], K, s)
+                        store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
                         count += 1
                     F = np.zeros((7, size))
                     for i in range(size):
@@ -93,15 +95,15 @@ if njit is not None:                                   # module-level kernels: n
                             F[3 + r, i] = h * value
                     while next_out < times.shape[0] and times[next_out] <= t_new:
                         theta = (times[next_out] - t) / h
-                        y = np.zeros(size)
-                        for r in range(7):
-                            y += F[6 - r]
-                            y *= theta if r % 2 == 0 else 1.0 - theta
-                        out[next_out] = x + y
+                        for i in range(size):
+                            y = 0.0
+                            for r in range(7):
+                                y = (y + F[6 - r, i]) * (theta if r % 2 == 0 else 1.0 - theta)
+                            out[next_out, i] = x[i] + y
                         next_out += 1
                 t = t_new
                 x = new
-                K[0] = K[stages]
+                store_row(K, 0, K[stages])
                 bad = check_state(x, limit)
                 if bad >= 0:
                     return t, x, K[0], h, next_out, count, 1 if not np.isfinite(x[bad]) else 2, bad
@@ -118,16 +120,17 @@ if njit is not None:                                   # module-level kernels: n
         A, B, C, E, P = tableau
         size = x.shape[0]
         K = np.zeros((7, size))
-        K[0] = f0
+        store_row(K, 0, f0)
         count = 0
         while t < t_end:
             h = min(h, t_end - t)
             if h <= 1e-14 * max(1.0, abs(t)):
                 return t, x, K[0], h, next_out, count, 3, -1
             for s in range(1, 6):
-                K[s] = derivative(t + C[s] * h, combination(x, h, A[s], K, s), q0, u0, index, data, work)
+                stage = combination(x, h, A[s], K, s)
+                store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
             new = combination(x, h, B, K, 6)
-            K[6] = derivative(t + h, new, q0, u0, index, data, work)
+            store_row(K, 6, derivative(t + h, new, q0, u0, index, data, work))
             count += 6
             total = 0.0
             for i in range(size):
@@ -149,11 +152,11 @@ if njit is not None:                                   # module-level kernels: n
                             for j in range(7):
                                 value += K[j, i] * P[j, r]
                             y[i] += h * value * power
-                    out[next_out] = y
+                    store_row(out, next_out, y)
                     next_out += 1
                 t = t_new
                 x = new
-                K[0] = K[6]
+                store_row(K, 0, K[6])
                 bad = check_state(x, limit)
                 if bad >= 0:
                     return t, x, K[0], h, next_out, count, 1 if not np.isfinite(x[bad]) else 2, bad

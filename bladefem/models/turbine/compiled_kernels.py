@@ -46,6 +46,19 @@ if njit is not None:                                   # module-level kernels: n
         return x
 
     @njit(cache=True)
+    def store_row(matrix, row, vector):
+        """matrix[row] = vector by a loop (slice assignment makes numba type its error messages: slow to compile)."""
+        for i in range(vector.shape[0]):
+            matrix[row, i] = vector[i]
+
+    @njit(cache=True)
+    def store_block(matrix, row, column, block):
+        """matrix[row:row + m, column:column + k] = block (m x k) by loops."""
+        for i in range(block.shape[0]):
+            for j in range(block.shape[1]):
+                matrix[row + i, column + j] = block[i, j]
+
+    @njit(cache=True)
     def rotation_step(R, axis, angle):
         """R @ (rotation by ``angle`` about the frame's own axis ``axis``)."""
         c, s = np.cos(angle), np.sin(angle)
@@ -66,9 +79,14 @@ if njit is not None:                                   # module-level kernels: n
             angle += coefficients[i] * q[i]
             rate += coefficients[i] * u[i]
         k0, k1, k2 = R[0, axis], R[1, axis], R[2, axis]
-        al2 = np.array([al[0] + (w[1] * k2 - w[2] * k1) * rate, al[1] + (w[2] * k0 - w[0] * k2) * rate,
-                        al[2] + (w[0] * k1 - w[1] * k0) * rate])
-        w2 = np.array([w[0] + k0 * rate, w[1] + k1 * rate, w[2] + k2 * rate])
+        al2 = al.copy()
+        al2[0] += (w[1] * k2 - w[2] * k1) * rate
+        al2[1] += (w[2] * k0 - w[0] * k2) * rate
+        al2[2] += (w[0] * k1 - w[1] * k0) * rate
+        w2 = w.copy()
+        w2[0] += k0 * rate
+        w2[1] += k1 * rate
+        w2[2] += k2 * rate
         W2 = W.copy()
         for i in range(coefficients.shape[0]):
             if coefficients[i] != 0.0:
@@ -166,8 +184,8 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def work_arrays(data):
-        """Per blade node: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3), R D (B, P, 3, k); per
-        blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); all earth components."""
+        """Per blade node: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3), R D (B, P, 3,
+        k); per blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); all earth components."""
         n, b_across, b_rotations = data[0], data[5], data[10]
         B, k, P = b_rotations.shape[0], b_across.shape[0], b_across.shape[1]
         return (np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3, k)),
@@ -196,14 +214,15 @@ if njit is not None:                                   # module-level kernels: n
                 load[r] = m * (gravity[r] - bias[r])
             accumulate_node(A, F, D, m, load)
         top_J = np.zeros((3, n))
-        top_J[:, :4] = D
+        store_block(top_J, 0, 0, D)
         top_a = bias.copy()
         for i in range(4):
             f[i] += F[i]
             for j in range(4):
                 M[i, j] += A[i, j]
         # frames: tower top (fore-aft then side-side tilt), nacelle (yaw), shaft (tilt), rotor, generator
-        R, w, W, al = np.eye(3), np.zeros(3), np.zeros((3, n)), np.zeros(3)
+        R, w, W, al = np.zeros((3, 3)), np.zeros(3), np.zeros((3, n)), np.zeros(3)
+        R[0, 0] = R[1, 1] = R[2, 2] = 1.0
         R, w, W, al = rotate(R, w, W, al, 1, fore_aft, q, u)
         R, w, W, al = rotate(R, w, W, al, 0, side_side, q, u)
         RN, wN, WN, alN = rotate(R, w, W, al, 2, yaw, q, u)
@@ -216,27 +235,30 @@ if njit is not None:                                   # module-level kernels: n
         # rigid points in the nacelle frame: nacelle centre of mass, apex, hub centre of mass
         apex_J = np.zeros((3, n))
         apex_a = np.zeros(3)
+        rho, wr, a = np.zeros(3), np.zeros(3), np.zeros(3)
         for i in range(3):
-            o = rigid_offsets[i]
-            rho = np.array([RN[0, 0] * o[0] + RN[0, 1] * o[1] + RN[0, 2] * o[2],
-                            RN[1, 0] * o[0] + RN[1, 1] * o[1] + RN[1, 2] * o[2],
-                            RN[2, 0] * o[0] + RN[2, 1] * o[1] + RN[2, 2] * o[2]])
+            for r in range(3):
+                rho[r] = RN[r, 0] * rigid_offsets[i, 0] + RN[r, 1] * rigid_offsets[i, 1] \
+                    + RN[r, 2] * rigid_offsets[i, 2]
             J = top_J.copy()
             for c in range(n):
                 J[0, c] += WN[1, c] * rho[2] - WN[2, c] * rho[1]
                 J[1, c] += WN[2, c] * rho[0] - WN[0, c] * rho[2]
                 J[2, c] += WN[0, c] * rho[1] - WN[1, c] * rho[0]
-            wr = np.array([wN[1] * rho[2] - wN[2] * rho[1], wN[2] * rho[0] - wN[0] * rho[2],
-                           wN[0] * rho[1] - wN[1] * rho[0]])
-            a = np.array([top_a[0] + alN[1] * rho[2] - alN[2] * rho[1] + wN[1] * wr[2] - wN[2] * wr[1],
-                          top_a[1] + alN[2] * rho[0] - alN[0] * rho[2] + wN[2] * wr[0] - wN[0] * wr[2],
-                          top_a[2] + alN[0] * rho[1] - alN[1] * rho[0] + wN[0] * wr[1] - wN[1] * wr[0]])
+            wr[0] = wN[1] * rho[2] - wN[2] * rho[1]
+            wr[1] = wN[2] * rho[0] - wN[0] * rho[2]
+            wr[2] = wN[0] * rho[1] - wN[1] * rho[0]
+            a[0] = top_a[0] + alN[1] * rho[2] - alN[2] * rho[1] + wN[1] * wr[2] - wN[2] * wr[1]
+            a[1] = top_a[1] + alN[2] * rho[0] - alN[0] * rho[2] + wN[2] * wr[0] - wN[0] * wr[2]
+            a[2] = top_a[2] + alN[0] * rho[1] - alN[1] * rho[0] + wN[0] * wr[1] - wN[1] * wr[0]
             m = rigid_mass[i]
             for r in range(3):
                 load[r] = m * (gravity[r] - a[r])
             add_rigid_point(M, f, J, m, load)
             if i == 1:
-                apex_J, apex_a = J, a
+                store_block(apex_J, 0, 0, J)
+                for r in range(3):
+                    apex_a[r] = a[r]
         # blade nodes: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade]
         kb = b_across.shape[0]
         D = np.zeros((3, kb))
@@ -251,9 +273,12 @@ if njit is not None:                                   # module-level kernels: n
                 for c in range(3):
                     Rb[r, c] = RL[r, 0] * b_rotations[b, 0, c] + RL[r, 1] * b_rotations[b, 1, c] \
                         + RL[r, 2] * b_rotations[b, 2, c]
-            frame_w[b] = Rb
+            store_block(frame_w[b], 0, 0, Rb)
             cols = b_columns[b]
-            qb, ub = q[cols], u[cols]
+            qb, ub = np.empty(kb), np.empty(kb)
+            for i in range(kb):
+                qb[i] = q[cols[i]]
+                ub[i] = u[cols[i]]
             A = np.zeros((6 + kb, 6 + kb))
             F = np.zeros(6 + kb)
             G = np.zeros((3, 6 + kb))
@@ -291,10 +316,11 @@ if njit is not None:                                   # module-level kernels: n
                 G[2, 3], G[2, 4] = rho[1], -rho[0]
                 accumulate_node(A, F, G, m, load)
             Z = Z_w[b]
-            Z[:] = 0.0
-            Z[:3] = apex_J
-            Z[3:6] = WL
+            store_block(Z, 0, 0, apex_J)
+            store_block(Z, 3, 0, WL)
             for i in range(kb):
+                for c in range(n):
+                    Z[6 + i, c] = 0.0
                 Z[6 + i, cols[i]] = 1.0
             add_group(M, f, A, F, Z)
         # rigid bodies with one principal inertia: nacelle about yaw, hub and generator about the shaft
@@ -360,6 +386,8 @@ if njit is not None:                                   # module-level kernels: n
         M, f = equations(q, u, data, work)
         size = index.shape[0]
         out = np.empty(2 * size)
-        out[:size] = x[size:]
-        out[size:] = free_accelerations(M, f, index)
+        du = free_accelerations(M, f, index)
+        for i in range(size):
+            out[i] = x[size + i]
+            out[size + i] = du[i]
         return out

@@ -39,14 +39,14 @@ if njit is not None:                                   # module-level kernels: n
                     shared[r] += Z[r, c] * du[c]
             R = frame_w[blade]
             moment = np.zeros(3)
+            arm, a, load = np.zeros(3), np.zeros(3), np.zeros(3)
             for p in range(rho_w.shape[1]):
                 rho = rho_w[blade, p]
-                arm = np.array([rho[0] - hub_radius * R[0, 0], rho[1] - hub_radius * R[1, 0],
-                                rho[2] - hub_radius * R[2, 0]])
-                a = np.array([shared[0] + shared[4] * rho[2] - shared[5] * rho[1],
-                              shared[1] + shared[5] * rho[0] - shared[3] * rho[2],
-                              shared[2] + shared[3] * rho[1] - shared[4] * rho[0]])
-                load = np.zeros(3)
+                for r in range(3):
+                    arm[r] = rho[r] - hub_radius * R[r, 0]
+                a[0] = shared[0] + shared[4] * rho[2] - shared[5] * rho[1]
+                a[1] = shared[1] + shared[5] * rho[0] - shared[3] * rho[2]
+                a[2] = shared[2] + shared[3] * rho[1] - shared[4] * rho[0]
                 for r in range(3):
                     for i in range(k):
                         a[r] += RD_w[blade, p, r, i] * shared[6 + i]

@@ -25,7 +25,12 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ...modal.elastodyn_integrals import elastodyn_nodes, half_element_integral, principal_directions, twisted_shapes
+from ...modal.elastodyn_integrals import (
+    elastodyn_nodes,
+    half_element_integral,
+    principal_directions,
+    twisted_shapes,
+)
 from ...modal.sextic import polynomial
 from ...sections import SectionTable, bending_stiffness
 from .shapes import ModalBeam
@@ -72,7 +77,8 @@ def elastodyn_blade_beam(sections: SectionTable, coefficients: dict[str, NDArray
     elastic[1, 1] = np.sum(sections.at(r, "edge_stiffness") * dr * plain[2][1] ** 2)
     return ModalBeam(x=r, weight=dr, mass=mass, value=value, slope=slope, curvature=curvature,
                      stiffness=stiffness, shortening=S, tip_value=tip_value, tip_slope=tip_slope, tip_shortening=tip_S,
-                     length=float(length), damping_ratio=_ratios(damping_ratio, 3), names=("flap 1", "edge 1", "flap 2"),
+                     length=float(length), damping_ratio=_ratios(damping_ratio, 3),
+                     names=("flap 1", "edge 1", "flap 2"),
                      elastic_stiffness=elastic, damping_mass=np.einsum("J,iJ,iJ->i", mass * dr, plain[0], plain[0]))
 
 

@@ -165,7 +165,8 @@ class TurbineModel:
         span = self.blade_nodes.deflect(q[self.blade_columns], u[self.blade_columns])
         blades = carry_nodes(pick(rigid, 1), blade_frames, span.offset, span.partials, self.blade_nodes.selection,
                              span.velocity, span.bias)
-        return TurbineMotion(tower=tower, tower_top=top, rigid=rigid, blades=blades, tower_top_frame=bent, nacelle=nacelle,
+        return TurbineMotion(tower=tower, tower_top=top, rigid=rigid, blades=blades, tower_top_frame=bent,
+                             nacelle=nacelle,
                              shaft=shaft, rotor=rotor, generator=generator, blade_frames=blade_frames)
 
     def positions(self, motion: TurbineMotion) -> NDArray:
