@@ -39,8 +39,9 @@ def test_compiled_equations_equal_the_numpy_assembly(model):
 
 
 def test_nodal_force_hook_equals_the_numpy_generalized_forces(model):
-    """The kernel leaves each blade node's position (from the apex) and velocity in ``work``; nodal forces turn into
-    generalized forces ``sum_p J_p^T F_p`` as in the numpy assembly (the path aerodynamic loads take)."""
+    """The kernel leaves each blade node's position (apex plus offset), velocity and the blade frames in ``work``;
+    nodal forces turn into generalized forces ``sum_p J_p^T F_p`` as in the numpy assembly (the path aerodynamic
+    loads take)."""
     from bladefem.models.turbine.compiled_kernels import nodal_forces
     compiled = compiled_equations(model)
     rng = np.random.default_rng(7)
@@ -51,7 +52,9 @@ def test_nodal_force_hook_equals_the_numpy_generalized_forces(model):
     nodal_forces(fc, forces, compiled.work)
     np.testing.assert_allclose(fc, f, rtol=0, atol=1e-12 * np.abs(f).max())
     motion = model.motion(q, u)
-    np.testing.assert_allclose(compiled.work[0], motion.blades.r - motion.apex.r, atol=1e-12)
+    np.testing.assert_allclose(compiled.work[6], motion.apex.r, atol=1e-12)
+    np.testing.assert_allclose(compiled.work[0] + compiled.work[6], motion.blades.r, atol=1e-12)
+    np.testing.assert_allclose(compiled.work[5], motion.blade_frames.R, atol=1e-12)
     np.testing.assert_allclose(compiled.work[1], motion.blades.velocity(u), atol=1e-12)
 
 

@@ -67,7 +67,8 @@ def model_data(model) -> tuple:
             model.blade_masses[0].copy(), model.blade_columns.astype(np.int64), model.blade_rotations.copy(),
             model.fore_aft_tilt.copy(), model.side_side_tilt.copy(), model.yaw.copy(), model.azimuth.copy(),
             model.generator_angle.copy(), model.tilt.copy(), model.rigid_offsets.copy(), model.rigid_masses.copy(),
-            np.array(model.inertias, dtype=float), model.gravity.copy(), model.K.copy(), model.C.copy())
+            np.array(model.inertias, dtype=float), model.gravity.copy(), model.K.copy(), model.C.copy(),
+            float(model.params.tower_base_height))
 
 
 def _axial(nodes) -> NDArray:
@@ -109,7 +110,8 @@ class CompiledEquations:
         n, blade_across, blades = data[0], data[5], data[10].shape[0]
         k, nodes = blade_across.shape[:2]
         self.work = (np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)),
-                     np.zeros((blades, nodes, 3, k)), np.zeros((blades, 6 + k, n)), np.zeros((blades, 3, 3)))
+                     np.zeros((blades, nodes, 3, k)), np.zeros((blades, 6 + k, n)), np.zeros((blades, 3, 3)),
+                     np.zeros(3))
 
     def __call__(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
         from .compiled_kernels import equations

@@ -185,20 +185,22 @@ if njit is not None:                                   # module-level kernels: n
     @njit(cache=True)
     def work_arrays(data):
         """Per blade node: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3), R D (B, P, 3,
-        k); per blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); all earth components."""
+        k); per blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); the apex position (3,);
+        all earth components."""
         n, b_across, b_rotations = data[0], data[5], data[10]
         B, k, P = b_rotations.shape[0], b_across.shape[0], b_across.shape[1]
         return (np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3, k)),
-                np.zeros((B, 6 + k, n)), np.zeros((B, 3, 3)))
+                np.zeros((B, 6 + k, n)), np.zeros((B, 3, 3)), np.zeros(3))
 
     @njit(cache=True)
     def equations(q, u, data, work):
         """Mass matrix M (n, n) and forcing f (n,) of ``M du/dt = f`` at (q, u); fills ``work`` with the blade
-        nodes' motion, so that nodal forces F (B, P, 3) add ``Z_b^T sum_p G_p^T F_p`` (:func:`nodal_forces`)."""
+        nodes' motion (:func:`work_arrays`: node positions are ``apex + rho``), so that nodal forces F (B, P, 3)
+        add ``Z_b^T sum_p G_p^T F_p`` (:func:`nodal_forces`)."""
         (n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns, b_rotations,
          fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
-         K, C) = data
-        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w = work
+         K, C, base_height) = data
+        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w = work
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
@@ -216,6 +218,8 @@ if njit is not None:                                   # module-level kernels: n
         top_J = np.zeros((3, n))
         store_block(top_J, 0, 0, D)
         top_a = bias.copy()
+        top_r = d.copy()                     # the last tower node is the tower top
+        top_r[2] += base_height
         for i in range(4):
             f[i] += F[i]
             for j in range(4):
@@ -259,6 +263,7 @@ if njit is not None:                                   # module-level kernels: n
                 store_block(apex_J, 0, 0, J)
                 for r in range(3):
                     apex_a[r] = a[r]
+                    apex_w[r] = top_r[r] + rho[r]
         # blade nodes: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade]
         kb = b_across.shape[0]
         D = np.zeros((3, kb))
