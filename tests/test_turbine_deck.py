@@ -61,6 +61,10 @@ def test_unmodelled_motions_are_refused(model, switch):
     assert error.value.field == switch
 
 
+def test_teeter_switch_is_ignored_for_three_blades(model):
+    assert free_from_switches(model.dofs, {"TeetDOF": True}).all()
+
+
 def test_tip_deflections_become_modal_amplitudes_as_in_elastodyn(model):
     free = np.ones(model.n, dtype=bool)
     q, u, notes = initial_state(model, free, InitialConditions(oop_deflection=2.5, ip_deflection=-0.4))

@@ -47,8 +47,9 @@ class InitialConditions:
 
 def free_from_switches(dofs: tuple[str, ...], switches: dict[str, bool]) -> NDArray[np.bool_]:
     """Mask of the free coordinates from ElastoDyn's DOF switches (missing switches count as on)."""
+    blades = sum(dof.endswith("_flap1") for dof in dofs)
     for key in UNMODELLED_DOFS:
-        if switches.get(key) and not (key == "TeetDOF" and not any(d.startswith("blade2") for d in dofs)):
+        if switches.get(key) and (key != "TeetDOF" or blades == 2):          # teeter exists for 2 blades only
             raise InputError(f"{key} is on, but bladefem's turbine model has no teeter or platform motion; set it "
                              "to False", field=key)
     free = np.ones(len(dofs), dtype=bool)
