@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -78,12 +79,16 @@ def test_parked_linearization_is_at_one_azimuth(elastodyn):
 
 
 def test_names_follow_the_dominant_participation(elastodyn):
-    """Issue 10, defect 5: with the generator locked the 0.62 Hz mode is the drivetrain torsion; with the yaw
+    """Issue 10, defect 5: with the generator locked the 0.62 Hz mode is the drivetrain torsion and the 3.7 Hz one
+    the collective edge (the names of Jonkman et al. 2009 and of the OpenFAST reference); with the yaw
     spring off no whirl names at rest, the free yaw is a rigid-body motion (plus the damper's decay) and the
     asymmetric edge mode coupled to it keeps its blade name; participations are energy shares summing to 1."""
     locked = parked(elastodyn)
     assert frequency(locked, "1st drivetrain torsion") == pytest.approx(0.62, abs=0.005)
-    assert frequency(locked, "2nd drivetrain torsion") > 3.0
+    # the blades' collective edge against the hub shares its energy with the drivetrain twist (0.54 / 0.43) but
+    # the twist names one mode only, the 0.62 Hz one it dominates more (0.58)
+    assert frequency(locked, "1st blade collective edge") > 3.0
+    assert sum("drivetrain" in m.name for m in locked.modes) == 1
     names = {m.name for m in locked.modes}
     assert {"1st blade asymmetric flap (yaw)", "1st blade asymmetric flap (pitch)",
             "1st blade asymmetric edge (yaw)", "1st blade asymmetric edge (pitch)", "nacelle yaw"} <= names
@@ -123,7 +128,6 @@ def test_elastodyn_compatible_nrel5mw_against_openfast(elastodyn, case):
     coordinates at azimuth 0 and 30 deg: centrifugal, Coriolis and gyroscopic terms). Target 0.3 % per mode;
     measured within 0.051 % (the largest: 1st tower side-side, +0.04 to +0.05 %), damping ratios within 5.3e-5
     absolute. The eigenvalues are compared in frequency order."""
-    import json
     reference = json.loads(OPENFAST.read_text())["cases"][case]
     model = TurbineModel(elastodyn)
     free = np.ones(model.n, dtype=bool)
@@ -136,6 +140,42 @@ def test_elastodyn_compatible_nrel5mw_against_openfast(elastodyn, case):
     assert len(values) == len(expected) == 15
     np.testing.assert_allclose(np.abs(values) / (2 * np.pi), [m["frequency_hz"] for m in expected], rtol=1e-3)
     np.testing.assert_allclose(-values.real / np.abs(values), [m["damping_ratio"] for m in expected], atol=1e-4)
+
+
+#: the OpenFAST reference's mode names (Table 9-1's wording; BW / FW whirls) -> bladefem's
+OPENFAST_NAMES = {"side-to-side": "side-side", "asymmetric flapwise yaw": "blade asymmetric flap (yaw)",
+                  "asymmetric flapwise pitch": "blade asymmetric flap (pitch)",
+                  "asymmetric edgewise yaw": "blade asymmetric edge (yaw)",
+                  "asymmetric edgewise pitch": "blade asymmetric edge (pitch)", "collective flap": "blade collective flap",
+                  "collective edge": "blade collective edge", "flap backward whirl (BW)":
+                  "blade asymmetric flap (backward whirl)", "flap forward whirl (FW)":
+                  "blade asymmetric flap (forward whirl)", "edge backward whirl (BW)":
+                  "blade asymmetric edge (backward whirl)", "edge forward whirl (FW)":
+                  "blade asymmetric edge (forward whirl)"}
+
+
+def openfast_name(name: str) -> str:
+    for theirs, ours in OPENFAST_NAMES.items():
+        name = name.replace(theirs, ours)
+    return name
+
+
+@pytest.mark.parametrize("case, rpm", [(0, 0.0), (4, 12.1)])
+def test_modes_and_names_match_openfast(elastodyn, case, rpm):
+    """Named modes against the OpenFAST reference's, which names them independently (MBC3 participation assigned
+    one-to-one to the coordinates): parked at azimuth 0, and at 12.1 rpm the multi-blade state matrix averaged
+    over the azimuth (OpenFAST: 36 azimuths at its periodic steady state, static deflections included; bladefem: 8
+    azimuths, undeflected): every mode under the same name, within 0.06 % (measured 0.05 %, the nacelle yaw at
+    12.1 rpm), damping ratios within 1e-4 (measured 2e-5)."""
+    reference = json.loads(OPENFAST.read_text())["cases"][case]
+    model = TurbineModel(elastodyn)
+    free = np.ones(model.n, dtype=bool)
+    free[model.dofs.index("generator_azimuth")] = False
+    ours = {m.name: m for m in linearize(model, free, rpm).modes}
+    for mode in reference["modes"]:
+        match = ours[openfast_name(mode["name"])]
+        assert match.frequency_hz == pytest.approx(mode["frequency_hz"], rel=6e-4), mode["name"]
+        assert match.damping_ratio == pytest.approx(mode["damping_ratio"], abs=1e-4), mode["name"]
 
 
 def test_elastodyn_compatible_nrel5mw_against_fast_table_9_1(elastodyn):

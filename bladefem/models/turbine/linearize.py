@@ -173,13 +173,14 @@ def modes_of(A: NDArray, coordinates: list[str], stiffness: NDArray, mass: NDArr
         share = participation(z, 0 * stiffness if rigid_motion else stiffness, mass, max(omega, 1.0) if
                               rigid_motion else omega)
         rows.append((omega / (2 * np.pi), -lam.real / omega if omega > 0 else 0.0, abs(lam.imag) / (2 * np.pi),
-                     z, share))
+                     z, share, lam.imag > 1e-9 * max(omega, 1.0)))
     rows.sort(key=lambda row: row[0])
     rigid = [row[0] < RIGID_HZ for row in rows]
-    names = name_modes([row[3] for row in rows], [row[4] for row in rows], coordinates, rigid, spinning)
+    names = name_modes([row[3] for row in rows], [row[4] for row in rows], coordinates, rigid, spinning,
+                       [row[5] for row in rows])
     modes = [LinearMode(name=name, frequency_hz=float(f), damping_ratio=float(zeta), damped_frequency_hz=float(fd),
                         participation={c: round(float(s), 6) for c, s in zip(coordinates, share) if s >= SHARE_SHOWN})
-             for name, (f, zeta, fd, _, share), is_rigid in zip(names, rows, rigid) if not is_rigid]
+             for name, (f, zeta, fd, _, share, _), is_rigid in zip(names, rows, rigid) if not is_rigid]
     return modes, list(dict.fromkeys(name for name, is_rigid in zip(names, rigid) if is_rigid))
 
 

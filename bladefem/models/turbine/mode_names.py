@@ -5,7 +5,8 @@ normalised to sum 1 (strain plus kinetic energy of that coordinate alone; ``K`` 
 ``M`` the mass matrix, both in the coordinates of the analysis). Shares are summed over the coordinates of one
 family — a tower mode, the nacelle yaw, the drivetrain (generator azimuth and drivetrain twist), a blade mode in
 collective or asymmetric (cosine + sine) multi-blade form, or one blade's mode — and the family with the largest
-share names the mode. An asymmetric blade mode is told apart by the nacelle motion it drives, as in Jonkman et
+share names the mode, each family naming at most as many oscillating modes as it has coordinates
+(:func:`name_modes`). An asymmetric blade mode is told apart by the nacelle motion it drives, as in Jonkman et
 al. (2009), Table 9-1: at rest, a flap pattern along cos(psi) (vertical) tilts the rotor, "(pitch)", one along
 sin(psi) yaws it, "(yaw)"; an edge pattern along cos(psi) pushes the hub sideways, "(yaw)", one along sin(psi)
 up and down, "(pitch)". On a spinning rotor the pair is told apart by its whirl, from the phase between the cosine
@@ -72,17 +73,39 @@ def asymmetric_label(vector: NDArray, coordinates: list[str], mode: str, spinnin
 
 
 def name_modes(vectors: list[NDArray], shares: list[NDArray], coordinates: list[str], rigid: list[bool],
-               spinning: bool) -> list[str]:
-    """A name for each mode (in the given order) from its dominant family (see the module's description)."""
+               spinning: bool, oscillating: list[bool] | None = None) -> list[str]:
+    """A name for each mode (in the given order) from its participation (see the module's description).
+
+    A family holds as many oscillating modes as it has coordinates: the (mode, family) pairs are taken in
+    decreasing share, a pair only while the mode is unnamed and its family has room. So the drivetrain twist names
+    one mode, the one it dominates most (0.62 Hz with the generator locked), and the other mode it shares (the
+    blades' collective edge against the hub) goes to its next family. Modes that do not oscillate (real
+    eigenvalues: rigid-body motions, an undamped-spring coordinate's damper decay) are named by their dominant
+    family and use up its room, one coordinate per two of them."""
+    oscillating = [True] * len(vectors) if oscillating is None else oscillating
     families = [family(c) for c in coordinates]
     unique = list(dict.fromkeys(families))
+    room = {u: families.count(u) for u in unique}
+    totals = [np.array([share[[f == u for f in families]].sum() for u in unique]) for share in shares]
+    chosen: list[str | None] = [None] * len(vectors)
+    still = [0] * len(unique)
+    for i, total in enumerate(totals):
+        if not oscillating[i]:
+            chosen[i] = unique[int(np.argmax(total))]
+            still[unique.index(chosen[i])] += 1
+    for u, count in zip(unique, still):
+        room[u] -= (count + 1) // 2
+    pairs = sorted(((total[j], i, unique[j]) for i, total in enumerate(totals) if oscillating[i]
+                    for j in range(len(unique))), key=lambda pair: -pair[0])
+    for _, i, u in pairs:
+        if chosen[i] is None and room[u] > 0:
+            chosen[i], room[u] = u, room[u] - 1
     names: list[str] = []
     used: dict[str, int] = {}
-    for vector, share, is_rigid in zip(vectors, shares, rigid):
-        totals = np.array([share[[f == u for f in families]].sum() for u in unique])
-        dominant = unique[int(np.argmax(totals))]
-        name = family_name(dominant, is_rigid)
-        if is_rigid:
+    for i, (vector, total) in enumerate(zip(vectors, totals)):
+        dominant = chosen[i] or unique[int(np.argmax(total))]
+        name = family_name(dominant, rigid[i])
+        if rigid[i]:
             names.append(name)
             continue
         if dominant.startswith("asymmetric_"):
