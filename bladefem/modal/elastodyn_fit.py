@@ -113,7 +113,9 @@ class ModeFit:
     name : 'flap1', 'flap2', 'edge1' (blade) or 'fa1', 'fa2', 'ss1', 'ss2' (tower)
     fit : coefficients and fit quality
     fe_frequency_hz : the finite-element frequency of the mode, Hz
-    elastodyn_frequency_hz : the frequency ElastoDyn derives from the polynomial (its own node integrals), Hz
+    elastodyn_frequency_hz : the frequency of the polynomial mode alone in ElastoDyn's equations of motion (its own
+        node integrals; blades: the shapes twisted as in its equations, so slightly below the untwisted estimate
+        ElastoDyn prints as FreqBF), Hz
     tip_ratio : |tip displacement| / max |displacement| of the fitted component
     warnings : e.g. a tip displacement too small for a tip-normalised polynomial
     """
