@@ -17,7 +17,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,6 +30,19 @@ except ImportError:                                    # pragma: no cover - numb
 
 #: seconds a first call may take before the compile notice is shown
 NOTICE_AFTER = 1.0
+
+
+#: kernels called at least once in this process (compiled or loaded from the cache)
+_READY: set[str] = set()
+
+
+def first_call(kernel: str, what: str):
+    """:func:`compile_notice` around the first call of ``kernel`` in this process, nothing afterwards (a timer per
+    call would cost more than a right-hand side)."""
+    if kernel in _READY:
+        return nullcontext()
+    _READY.add(kernel)
+    return compile_notice(what)
 
 
 @contextmanager
@@ -115,13 +128,13 @@ class CompiledEquations:
 
     def __call__(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
         from .compiled_kernels import equations
-        with compile_notice("turbine equations"):
+        with first_call("equations", "turbine equations"):
             return equations(np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.data,
                              self.work)
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
         from .compiled_kernels import derivative
-        with compile_notice("turbine equations"):
+        with first_call("derivative", "turbine equations"):
             return derivative(float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.data, self.work)
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
@@ -144,7 +157,7 @@ class CompiledEquations:
         ends = np.linspace(times[0], times[-1], chunks + 1)[1:]
         ends[-1] = times[-1]
         for end in ends:
-            with compile_notice("turbine integrator"):
+            with first_call(f"integrator {order}", "turbine integrator"):
                 t, x, f, h, next_out, count, status, bad = kernel(t, x, f, h, float(end), times, out, next_out,
                                                                   float(rtol), float(atol), limit, tableau, q0, u0,
                                                                   index, self.data, self.work)
@@ -159,7 +172,7 @@ class CompiledEquations:
                      blade: int = 0) -> NDArray:
         """Out-of-plane and in-plane root bending moments (T, 2), N m, of ``blade`` at every output row."""
         from .compiled_outputs import root_moments
-        with compile_notice("turbine outputs"):
+        with first_call("outputs", "turbine outputs"):
             return root_moments(np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(states, dtype=float),
                                 np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
                                 np.ascontiguousarray(index, dtype=np.int64), self.data, float(self.hub_radius),
