@@ -299,3 +299,21 @@ def test_elastodyn_frequency_is_that_of_elastodyns_equations_of_motion():
         assert beam.frequency(shipped[name], kind, 17) == pytest.approx(kane, rel=1e-6), name
     untwisted = elastodyn_frequency(shipped["flap1"], blade.sections, "flap_stiffness", 17)
     assert untwisted / beam.frequency(shipped["flap1"], "flap", 17) - 1 == pytest.approx(0.0048, abs=0.0005)
+
+
+def test_a_frequency_the_integrals_cannot_hold_keeps_the_displacement_fit():
+    """Holding a frequency far above the shape's own (what a tower top's rotary inertia does to the FE mode, which
+    ElastoDyn's point-mass integrals cannot see) would distort the polynomial: the displacement fit is kept with a
+    note; a frequency below every sextic's is reported only when the displacement fit misses it by more than 0.1 %."""
+    from bladefem.modal.elastodyn_fit import BeamIntegrals, _frequency_preserving
+    beam = BeamIntegrals(uniform_sections(1.0, 1.0, 1.0), tower=True)
+    target = fitting_target(analytic_mode(np.linspace(0, 1, 41)), "flap", 1.0)
+    plain = fit_sextic(target.points, target.weights, target.values, target.tip_slope)
+    exact = BETA1**2 / (2 * math.pi)
+    kept, note = _frequency_preserving(plain, target, beam, "flap", 400, 3.0 * exact)
+    assert kept is plain and "distort" in note
+    held, note = _frequency_preserving(plain, target, beam, "flap", 400, 1.01 * exact)
+    assert held.frequency_preserved and note is None
+    assert _frequency_preserving(plain, target, beam, "flap", 400, 0.9995 * exact) == (plain, None)
+    kept, note = _frequency_preserving(plain, target, beam, "flap", 400, 0.95 * exact)
+    assert kept is plain and "no sextic" in note

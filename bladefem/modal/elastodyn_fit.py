@@ -191,15 +191,8 @@ def fit_modes(result: ModalResult, beam: BeamIntegrals, wanted: dict[str, tuple[
         fit = fit_sextic(target.points, target.weights, target.values, target.tip_slope)
         warnings = _tip_warning(name, target, fit, min_tip_ratio)
         if preserve_frequency:
-            K, M = beam.forms(kind, nodes)
-            constrained = fit_sextic_at_frequency(target.points, target.weights, target.values, target.tip_slope,
-                                                  K, M, 2 * math.pi * mode.frequency_hz)
-            fit = constrained
-            if not constrained.frequency_preserved:
-                reached = beam.frequency(fit.coefficients, kind, nodes)
-                warnings += (f"{LABELS[name]}: no sextic has the finite-element frequency {mode.frequency_hz:.5g} Hz "
-                             f"with ElastoDyn's integrals on {nodes} nodes; the displacement fit gives "
-                             f"{reached:.5g} Hz",)
+            fit, note = _frequency_preserving(fit, target, beam, kind, nodes, mode.frequency_hz)
+            warnings += (f"{LABELS[name]}: {note}",) if note else ()
         fits[name] = ModeFit(name, fit, mode.frequency_hz, beam.frequency(fit.coefficients, kind, nodes),
                              target.tip_ratio, warnings)
         if shipped and name in shipped:
@@ -209,6 +202,34 @@ def fit_modes(result: ModalResult, beam: BeamIntegrals, wanted: dict[str, tuple[
                                      target.tip_ratio)
             fits[name] = _compare_with_shipped(fits[name], compared[name])
     return fits, (compared or None)
+
+
+#: a frequency-preserving fit is kept while its RMS error stays within this factor of the displacement fit's (or
+#: below 1e-2 of the tip deflection)
+DISTORTION_FACTOR = 10.0
+#: an unreachable FE frequency is reported when the displacement fit is farther from it than this (relative)
+UNREACHED_TOLERANCE = 1e-3
+
+
+def _frequency_preserving(plain: PolynomialFit, target: Target, beam: BeamIntegrals, kind: str, nodes: int,
+                          frequency_hz: float) -> tuple[PolynomialFit, str | None]:
+    """The fit constrained to the FE frequency in ElastoDyn's integrals, or the displacement fit with a note when
+    no sextic reaches that frequency, or when reaching it would distort the shape (the mode holds what ElastoDyn's
+    integrals cannot see, e.g. a tower top's rotary inertia)."""
+    K, M = beam.forms(kind, nodes)
+    constrained = fit_sextic_at_frequency(target.points, target.weights, target.values, target.tip_slope, K, M,
+                                          2 * math.pi * frequency_hz)
+    reached = beam.frequency(plain.coefficients, kind, nodes)
+    if not constrained.frequency_preserved:
+        if abs(reached / frequency_hz - 1) <= UNREACHED_TOLERANCE:
+            return plain, None
+        return plain, (f"no sextic has the finite-element frequency {frequency_hz:.5g} Hz with ElastoDyn's "
+                       f"integrals on {nodes} nodes; the displacement fit gives {reached:.5g} Hz")
+    if constrained.rms_error > max(DISTORTION_FACTOR * plain.rms_error, 1e-2):
+        return plain, (f"holding the finite-element frequency {frequency_hz:.5g} Hz would distort the shape (RMS "
+                       f"{constrained.rms_error:.2g} against {plain.rms_error:.2g}): ElastoDyn's integrals do not "
+                       f"hold what sets it; the displacement fit ({reached:.5g} Hz) is kept")
+    return constrained, None
 
 
 def _compare_with_shipped(fresh: ModeFit, shipped: ModeFit) -> ModeFit:
