@@ -79,11 +79,12 @@ def test_elastodyn_coefficients_example():
     galerkin = galerkin_modes(blade_from_elastodyn_main(MAIN_FILE), 12.1, 4, (40, 40, 0))
     for name, (kind, number) in {"flap1": ("flap", 1), "edge1": ("edge", 1), "flap2": ("flap", 2)}.items():
         assert blade[name][0] == pytest.approx(galerkin.first(kind, number).frequency_hz, rel=PRINTED_VS_GALERKIN)
-    # fresh fits of the first modes: RMS below 1e-3 and ElastoDyn's derived frequency within 1 % of the FE; the
-    # printed difference is that of the printed frequencies (rounding: 5e-5 Hz each, 0.005 % on the difference)
+    # fresh fits of the first modes: RMS below 1.5e-3 (1e-3 for a displacement-only fit; holding the FE frequency
+    # costs the blade's flap 1 2.5e-4 of it) and ElastoDyn's derived frequency within 1 % of the FE; the printed
+    # difference is that of the printed frequencies (rounding: 5e-5 Hz each, 0.005 % on the difference)
     tower = elastodyn_rows(point_mass_block)
     for fe, ed, diff, rms, *_ in (blade["flap1"], blade["edge1"], tower["fa1"], tower["ss1"]):
-        assert rms < 1e-3 and abs(diff) < 1.0 and ed == pytest.approx(fe * (1 + diff / 100), abs=1.5e-4)
+        assert rms < 1.5e-3 and abs(diff) < 1.0 and ed == pytest.approx(fe * (1 + diff / 100), abs=1.5e-4)
     # the rigid rotor-nacelle body (offset centre of mass, rotary inertia) lowers the first tower frequencies
     rigid = elastodyn_rows(rigid_block)
     assert rigid["fa1"][0] < tower["fa1"][0] and rigid["ss1"][0] < tower["ss1"][0]
