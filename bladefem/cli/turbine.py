@@ -170,7 +170,8 @@ def linearize_command(model, free, rpm: float) -> int:
 
 def campbell_command(model, free, sweep: np.ndarray, args: argparse.Namespace) -> int:
     from ..files import write_atomic
-    from ..models.turbine.campbell import campbell, campbell_text, plot_campbell
+    from ..models.turbine.campbell import campbell, campbell_text
+    from ..plots.turbine_campbell import save_turbine_campbell_plot
 
     result = campbell(model, free, sweep)
     text = campbell_text(result)
@@ -179,7 +180,7 @@ def campbell_command(model, free, sweep: np.ndarray, args: argparse.Namespace) -
     else:
         sys.stdout.write(text)
     if args.plot:
-        plot_campbell(result, args.plot)
+        save_turbine_campbell_plot(result, args.plot)
     return 0
 
 
