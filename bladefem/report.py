@@ -32,6 +32,9 @@ from .plots.campbell import crossings, family_labels, save_campbell_plot
 from .plots.labels import mode_labels
 from .sections import Blade
 
+__all__ = ["Block", "Heading", "Image", "Paragraph", "Report", "Table", "html_document", "markdown",
+           "progress_bar", "provenance_blocks", "sweep", "write_report"]
+
 Progress = Callable[[Iterable[Any]], Iterable[Any]]
 
 

@@ -19,6 +19,8 @@ from .modal.results import ModalResult
 from .models.galerkin import galerkin_modes, galerkin_system, solve
 from .sections import Blade, SectionTable, TipMass
 
+__all__ = ["NREL5MW_MAIN", "VerifyRow", "format_table", "nrel5mw_rows", "uniform_rows", "verification_rows"]
+
 Solver = Callable[..., ModalResult]
 
 #: Default NREL 5MW input (ElastoDyn main file of the land-based turbine, with AdjBlMs, HubRad and PreCone),

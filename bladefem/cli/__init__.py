@@ -16,6 +16,8 @@ from typing import NoReturn
 
 from ..errors import InputError
 
+__all__ = ["COMMANDS", "Parser", "build_parser", "main"]
+
 #: subcommand -> (module in bladefem.cli that adds it, one-line help shown by ``bladefem --help``)
 COMMANDS: dict[str, tuple[str, str]] = {
     "modes": ("blade", "natural frequencies and mode shapes of a blade or tower"),

@@ -11,10 +11,12 @@ import argparse
 import math
 import sys
 from pathlib import Path
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..errors import InputError
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: initial-condition names given in degrees, converted to rad
 DEGREE_NAMES = {"yaw_deg": "yaw", "azimuth_deg": "generator_azimuth", "drivetrain_deg": "drivetrain"}
@@ -78,11 +80,13 @@ def parse_sweep(text: str) -> np.ndarray:
         raise InputError(f"expected START:STOP:STEP in rpm, got '{text}'", field="--campbell") from None
     if not (all(map(math.isfinite, (start, stop, step))) and step > 0 and stop >= start >= 0):
         raise InputError(f"need 0 <= START <= STOP and STEP > 0, got '{text}'", field="--campbell")
+    import numpy as np
     return np.arange(start, stop + 0.5 * step, step)
 
 
 def initial_state(dofs: tuple[str, ...], entries: list[str]) -> np.ndarray:
     """Coordinates from NAME=VALUE entries (modal amplitudes in m, angles named *_deg in degrees)."""
+    import numpy as np
     q = np.zeros(len(dofs))
     for entry in entries:
         name, sep, text = entry.partition("=")
@@ -185,6 +189,8 @@ def campbell_command(model, free, sweep: np.ndarray, args: argparse.Namespace) -
 
 
 def simulate_command(model, free, q0: np.ndarray, rpm: float, args: argparse.Namespace) -> int:
+    import numpy as np
+
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
     from ..models.turbine.simulate import plot_outputs, simulate, table_text

@@ -25,6 +25,8 @@ from ..modal.results import ModalResult, Mode
 from ..sections.tower import Tower
 from .tower import tower_modes
 
+__all__ = ["BENDING", "MARGIN", "Band", "TowerCampbell", "tower_campbell"]
+
 #: relative separation asked between the first tower frequency and the edges of the 1P and 3P bands
 MARGIN = 0.10
 #: tower kinds that count as bending for the classification

@@ -39,9 +39,9 @@ def colormap(name: str):
     return matplotlib.colormaps[name]
 
 
-def new_figure():
-    """(figure, axes) in the common size and layout."""
-    return pyplot().subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
+def new_figure(figsize: tuple[float, float] | None = None):
+    """(figure, axes) in the common size (or a taller one for a long legend below the axes) and layout."""
+    return pyplot().subplots(figsize=figsize or FIGSIZE, dpi=DPI, layout="constrained")
 
 
 def finish_axes(ax, title: str = "", xlabel: str = RPM_LABEL, ylabel: str = FREQUENCY_LABEL,
@@ -54,8 +54,9 @@ def finish_axes(ax, title: str = "", xlabel: str = RPM_LABEL, ylabel: str = FREQ
     ax.xaxis.set_minor_locator(AutoMinorLocator())
     ax.yaxis.set_minor_locator(AutoMinorLocator())
     ax.tick_params(which="both", direction="in", top=True, right=True)
+    ax.tick_params(axis="x", which="major", pad=8)   # the "0" labels of both axes stay apart at the origin
     if title:
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title, fontsize=10, pad=14, loc="left")    # clear of nP labels above the top edge
     ax.grid(True, linewidth=0.4, alpha=0.5)
     if legend:
         ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.07, 1.0), frameon=False, borderaxespad=0.0)
