@@ -77,7 +77,8 @@ def check(code: int, err: str, name: str, command: str) -> None:
 
 
 def test_the_walk_covers_every_command_and_every_kind_of_input():
-    assert set(COMMAND_ARGS) | {"verify"} == set(COMMANDS)           # verify takes no input (tests/test_verify.py)
+    # verify takes no input (tests/test_verify.py), check a spec file (tests/test_check.py)
+    assert set(COMMAND_ARGS) | {"verify", "check"} == set(COMMANDS)
     names = {path.name for path in INPUTS}
     assert {"uniform_blade.yaml", "nrel5mw_tower.yaml", MAIN.name, "NRELOffshrBsline5MW_Blade.dat",
             "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat", "bmodes_blade.bmi", "bmodes_tower_wires.bmi",
