@@ -48,6 +48,9 @@ def detect_format(path: str | Path) -> str:
         raise InputError(f"cannot read file ({error.strerror or error})", file=str(path)) from None
     words = {word.rstrip(":") for line in head for word in line.split()[:4]}
     if path.suffix.lower() in YAML_SUFFIXES:
+        if any(line.startswith("requirements:") for line in head):
+            raise InputError("a bladefem check spec (requirements on models), not a model: run 'bladefem check "
+                             f"{path}'", file=str(path), line=1)
         return "windio" if any(line.startswith("components:") for line in head) else "case"
     if path.suffix.lower() == ".bmi" or {"beam_type", "sec_props_file"} <= words:
         return "bmodes"
