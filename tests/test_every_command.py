@@ -13,7 +13,7 @@ import pytest
 from bladefem.cli import COMMANDS, main
 
 ROOT = Path(__file__).resolve().parents[1]
-INPUT_SUFFIXES = (".yaml", ".yml", ".dat", ".bmi")
+INPUT_SUFFIXES = (".yaml", ".yml", ".dat", ".bmi", ".fst")
 #: section-property tables that a BModes deck names; they are not inputs on their own
 NOT_INPUTS = ("_sec_props.dat",)
 MAIN = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
@@ -35,6 +35,17 @@ def shipped_inputs() -> list[Path]:
 
 INPUTS = shipped_inputs()
 
+def is_model(path: Path) -> bool:
+    """True for a file that describes a blade or tower (or a turbine): not a spec, a plan, an airfoil table..."""
+    from bladefem.errors import InputError
+    from bladefem.io.detect import detect_format
+    try:
+        detect_format(path)
+    except InputError:
+        return False
+    return True
+
+
 #: cheap settings: the walk checks that each command runs and ends cleanly, the numbers are tested elsewhere
 COMMAND_ARGS: dict[str, list[str]] = {
     "modes": ["--n-modes", "2", "--elements", "12"],
@@ -44,26 +55,35 @@ COMMAND_ARGS: dict[str, list[str]] = {
     "elastodyn": ["--elements", "12"],
     "turbine": ["--linearize", "--dof", "tower1"],
     "check": [],
+    "batch": ["-o", "{out}"],
+    "batch-summary": [],
 }
-#: (file name, command) -> the field the one-line error must name; other pairs must succeed
+MODEL_COMMANDS = ("modes", "campbell", "export", "report", "elastodyn")
+#: (file name, command) -> the field the one-line error must name ('' for any); other pairs must succeed
 EXPECTED_ERRORS: dict[tuple[str, str], str] = {}
-for command in ("modes", "campbell", "export", "report", "elastodyn"):
+for command in MODEL_COMMANDS:
     EXPECTED_ERRORS["NRELOffshrBsline5MW_Blade.dat", command] = "TipRad"
     EXPECTED_ERRORS["NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat", command] = "TowerHt"
 for name in ("uniform_blade.yaml", "nrel5mw_blade.yaml"):            # a case file carries no rotor speed
     EXPECTED_ERRORS[name, "elastodyn"] = "--rpm"
 SPECS = [path.name for path in INPUTS if path.read_text(errors="replace").count("\nrequirements:")]
-for path in INPUTS:                                                   # the turbine needs an ElastoDyn main file
-    if path.name != MAIN.name:
-        EXPECTED_ERRORS[path.name, "turbine"] = "NumBl"
+PLANS = [path.name for path in INPUTS if path.read_text(errors="replace").count("\nanalysis:")]
+for path in INPUTS:
+    if path.name != MAIN.name:                                        # the turbine needs an ElastoDyn main file
+        EXPECTED_ERRORS[path.name, "turbine"] = ""
     if path.name not in SPECS:                                        # check takes a spec, and only a spec
         EXPECTED_ERRORS[path.name, "check"] = ""
-for name in SPECS:                                                    # a spec is not a model: it says so
-    for command in ("modes", "campbell", "export", "report", "elastodyn"):
-        EXPECTED_ERRORS[name, command] = ""
+    EXPECTED_ERRORS[path.name, "batch-summary"] = ""                  # takes a results folder, not a file
+    if path.name not in PLANS:                                        # batch takes a plan
+        EXPECTED_ERRORS[path.name, "batch"] = ""
+    if not is_model(path):                                            # spec, plan, AeroDyn, airfoil...: it says so
+        for command in MODEL_COMMANDS:
+            EXPECTED_ERRORS[path.name, command] = ""
 #: inputs whose outcome other work changes (BModes platform decks are being modelled; windIO numbers such as
 #: 1.0e7 are read as strings by YAML 1.1): exit 0 or a one-line error
 EITHER = ("bmodes_tower_platform.bmi", "windio_small.yaml")
+#: a plan runs its cases on a Dask cluster: tests/test_batch.py runs plans
+SKIP = {(name, "batch") for name in PLANS}
 
 
 def run(argv: list[str], capsys) -> tuple[int, str, str]:
@@ -85,6 +105,7 @@ def check(code: int, err: str, name: str, command: str) -> None:
 
 def test_the_walk_covers_every_command_and_every_kind_of_input():
     assert set(COMMAND_ARGS) | {"verify"} == set(COMMANDS)           # verify takes no input (tests/test_verify.py)
+    assert SPECS and PLANS
     names = {path.name for path in INPUTS}
     assert {"uniform_blade.yaml", "nrel5mw_tower.yaml", MAIN.name, "NRELOffshrBsline5MW_Blade.dat",
             "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat", "bmodes_blade.bmi", "bmodes_tower_wires.bmi",
@@ -95,13 +116,15 @@ def test_the_walk_covers_every_command_and_every_kind_of_input():
 @pytest.mark.parametrize("command", list(COMMAND_ARGS))
 @pytest.mark.parametrize("path", INPUTS, ids=[path.name for path in INPUTS])
 def test_every_command_on_every_input(path, command, tmp_path, capsys):
+    if (path.name, command) in SKIP:
+        pytest.skip("a batch plan runs on Dask: tests/test_batch.py")
     argv = [command, str(path)] + [a.format(out=tmp_path / "out") for a in COMMAND_ARGS[command]]
     code, _, err = run(argv, capsys)
     check(code, err, path.name, command)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("command", ["modes", "campbell", "export", "report", "elastodyn"])
+@pytest.mark.parametrize("command", MODEL_COMMANDS)
 @pytest.mark.parametrize("argv", [
     ["cases/nrel5mw/NRELOffshrBsline5MW_Blade.dat", "--elastodyn-main", str(MAIN)],
     ["cases/nrel5mw/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat", "--elastodyn-main", str(MAIN)],

@@ -32,7 +32,7 @@ def imported_after(argv: list[str]) -> tuple[int, set[str]]:
 
 @pytest.mark.parametrize("argv", [["--help"], ["--version"], ["modes", "--help"], ["campbell", "--help"],
                                   ["export", "--help"], ["report", "--help"], ["elastodyn", "--help"],
-                                  ["verify", "--help"], ["turbine", "--help"], ["check", "--help"],
+                                  ["verify", "--help"], ["turbine", "--help"], ["check", "--help"], ["batch", "--help"],
                                   ["modes", "cases/uniform_blade.yaml", "--rpm", "fast"], ["bogus"]])
 def test_help_and_argument_errors_import_no_numerical_library(argv):
     code, modules = imported_after(argv)

@@ -51,6 +51,9 @@ def detect_format(path: str | Path) -> str:
         if any(line.startswith("requirements:") for line in head):
             raise InputError("a bladefem check spec (requirements on models), not a model: run 'bladefem check "
                              f"{path}'", file=str(path), line=1)
+        if any(line.startswith("analysis:") for line in head):
+            raise InputError("a bladefem batch plan, not a model: run 'bladefem batch "
+                             f"{path} -o RESULTS'", file=str(path), line=1)
         return "windio" if any(line.startswith("components:") for line in head) else "case"
     if path.suffix.lower() == ".bmi" or {"beam_type", "sec_props_file"} <= words:
         return "bmodes"
