@@ -132,16 +132,6 @@ def read_structure(args: argparse.Namespace) -> object:
     return tower.with_(gravity=0.0) if getattr(args, "no_gravity", False) else tower
 
 
-def read_blade(args: argparse.Namespace, command: str) -> object:
-    """The blade described by INPUT; a one-line error naming ``command`` for a tower."""
-    from ..sections import Blade
-
-    model = read_structure(args)
-    if not isinstance(model, Blade):
-        raise InputError(f"this input describes a tower; 'bladefem {command}' takes blades", file=str(args.input))
-    return model
-
-
 def is_blade(model: object) -> bool:
     from ..sections import Blade
     return isinstance(model, Blade)
