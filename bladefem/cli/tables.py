@@ -3,9 +3,15 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-from ..modal import CampbellResult, ModalResult
-from ..sections import Blade
+from ..plots.labels import mode_labels
+
+if TYPE_CHECKING:
+    from ..modal import CampbellResult, ModalResult
+    from ..models.tower_campbell import TowerCampbell
+    from ..sections import Blade
+    from ..sections.tower import Tower
 
 
 def header(blade: Blade, notes: tuple[str, ...]) -> list[str]:
@@ -37,4 +43,23 @@ def campbell_table(blade: Blade, result: CampbellResult) -> str:
     lines.append(f"{'rpm':>7}" + "".join(f"{name:>11}" for name in names))
     for k, rpm in enumerate(result.rpm):
         lines.append(f"{rpm:>7.2f}" + "".join(f"{family.frequencies_hz[k]:>11.4f}" for family in result.families))
+    return "\n".join(lines)
+
+
+def tower_campbell_table(tower: Tower, chart: TowerCampbell) -> str:
+    """The tower's modes against the rotor's excitation bands, and the design classification."""
+    from .tower import tower_header
+
+    lines = [tower_header(tower)]
+    lines += [f"# note: {note}" for note in chart.modes.notes]
+    low, high = chart.operating_rpm
+    lines.append(f"# rotor operating range {low:g}-{high:g} rpm, {chart.blades} blades; bands widened by "
+                 f"{chart.margin:.0%} count as hits")
+    for band in chart.bands:
+        lines.append(f"# {band.harmonic}P band: {band.low_hz:.5g}-{band.high_hz:.5g} Hz")
+    lines.append(f"{'mode':>4}  {'frequency_hz':>12}  {'kind':<10} {'label':<14} {'in band':<8}")
+    for i, (mode, label) in enumerate(zip(chart.modes.modes, mode_labels(chart.modes.modes)), 1):
+        hit = ",".join(chart.bands_hit(mode)) or "-"
+        lines.append(f"{i:>4}  {mode.frequency_hz:>12.5f}  {mode.kind:<10} {label:<14} {hit:<8}")
+    lines.append(f"# design: {chart.statement()}")
     return "\n".join(lines)

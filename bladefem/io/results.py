@@ -10,7 +10,7 @@ import numpy as np
 from ..files import write_atomic
 from ..modal import CampbellResult, ModalResult
 
-__all__ = ["campbell_to_dict", "dumps", "modal_to_dict", "write_atomic"]
+__all__ = ["campbell_to_dict", "dumps", "modal_to_dict", "tower_campbell_to_dict", "write_atomic"]
 
 
 def _floats(values: np.ndarray) -> list[float]:
@@ -43,6 +43,19 @@ def campbell_to_dict(result: CampbellResult) -> dict[str, Any]:
             "families": [{"kind": family.kind, "frequencies_hz": _floats(family.frequencies_hz),
                           "min_mac": float(family.mac.min())} for family in result.families],
             "notes": list(result.notes)}
+
+
+def tower_campbell_to_dict(chart: Any) -> dict[str, Any]:
+    """A tower's rotor-speed chart (:class:`bladefem.models.tower_campbell.TowerCampbell`): the modes, the 1P and
+    blade-passing bands (Hz) over the operating range (rpm), the bands each mode hits and the classification."""
+    return {"rpm": _floats(chart.rpm), "operating_rpm": list(chart.operating_rpm), "blades": chart.blades,
+            "margin": chart.margin,
+            "bands": [{"harmonic": band.harmonic, "low_hz": band.low_hz, "high_hz": band.high_hz}
+                      for band in chart.bands],
+            "modes": [{"frequency_hz": mode.frequency_hz, "kind": mode.kind, "bands_hit": chart.bands_hit(mode)}
+                      for mode in chart.modes.modes],
+            "first_bending_hz": chart.first_bending.frequency_hz, "verdict": chart.verdict,
+            "statement": chart.statement(), "notes": list(chart.modes.notes)}
 
 
 def dumps(data: dict[str, Any]) -> str:
