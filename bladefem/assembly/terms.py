@@ -55,3 +55,9 @@ def rotation_second_order(trial: SectionMotion, test: SectionMotion, p: SectionP
     """Centrifugal work on the second-order displacement of rotated section points (per Omega^2): the propeller
     moment in torsion and the centre-of-mass-offset coupling of twist with the bending slopes."""
     return -quadratic(test.rotation, p.rotation, trial.rotation)
+
+
+def coriolis(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Gyroscopic (Coriolis) coupling per Omega, skew: ``2 int rho dr1(test) . (a x dr1(trial))``. It couples
+    edge with axial motion (cos beta) and, under precone, edge with flap (sin beta)."""
+    return quadratic(test.kinematic, p.gyroscopic, trial.kinematic)
