@@ -91,3 +91,12 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
         tension=centrifugal_tension(blade, x),
         gyroscopic=gyroscopic_inertia(blade.shaft_axis, moments.m, moments.S, moments.J),
     )
+
+
+@dataclass(frozen=True)
+class AeroParameters:
+    """Aerodynamic damping and stiffness of the sections per length on the kinematic vector, (6, 6, ...) at the
+    quadrature points (:mod:`bladefem.models.blade_aero`)."""
+
+    damping: NDArray
+    stiffness: NDArray

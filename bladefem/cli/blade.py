@@ -7,10 +7,12 @@ import sys
 
 from ..errors import InputError
 from .damping import (
+    add_aero_options,
     add_coriolis_option,
     coriolis_campbell,
-    coriolis_modes,
+    quadratic_modes,
     reject_for_towers,
+    wants_quadratic,
 )
 from .inputs import (
     add_blade_options,
@@ -40,6 +42,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     modes.add_argument("--elastodyn-coefficients", action="store_true",
                        help="towers: also fit ElastoDyn tower mode-shape coefficients (TwFAM1Sh .. TwSSM2Sh)")
     add_coriolis_option(modes)
+    add_aero_options(modes)
     modes.add_argument("--json", action="store_true", help="print JSON instead of a table")
     modes.set_defaults(run=run_modes)
 
@@ -71,8 +74,8 @@ def _check_rpm(rpm: float) -> None:
 
 def compute_modes(blade, args: argparse.Namespace):
     """The blade's modes by the method asked (Galerkin: converged terms unless --terms is given)."""
-    if args.coriolis:
-        return coriolis_modes(blade, args)
+    if wants_quadratic(args):
+        return quadratic_modes(blade, args)
     if args.method == "galerkin":
         if args.terms is None:
             from ..models.galerkin_converged import converged_galerkin_modes

@@ -26,7 +26,7 @@ def modes_table(blade: Blade, result: ModalResult, method: str = "fe") -> str:
     lines = header(blade, result.notes)
     damped = bool(result.modes) and result.modes[0].damping_ratio is not None
     lines.append(f"# method {method}, rotor speed {result.rotor_speed_rpm:g} rpm, {result.n_dofs} DOFs"
-                 + (", Coriolis coupling: frequency |lambda|/2pi, damping ratio -Re(lambda)/|lambda|"
+                 + (", quadratic eigenproblem: frequency |lambda|/2pi, damping ratio -Re(lambda)/|lambda|"
                     if damped else ""))
     lines.append(f"{'mode':>4}  {'frequency_hz':>12}  " + (f"{'damping':>9}  " if damped else "")
                  + f"{'kind':<8} {'flap':>5} {'edge':>5} {'tors':>5} {'axial':>5}  {'residual':>9}")

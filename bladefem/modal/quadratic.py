@@ -297,12 +297,12 @@ def quadratic_result(matrices: BladeMatrices, problem: QuadraticProblem, rpm: fl
 
 def solve_quadratic_modes(matrices: BladeMatrices, rpm: float = 0.0, n_modes: int = 10,
                           notes: tuple[str, ...] = (), damping: sp.spmatrix | None = None,
-                          stiffness: sp.spmatrix | None = None) -> ModalResult:
-    """Modes of the blade at ``rpm`` (rotor speed, rpm) with Coriolis coupling (and optional free-DOF ``damping``
-    and ``stiffness`` matrices): frequency, damping ratio, kind and residual of each."""
+                          stiffness: sp.spmatrix | None = None, coriolis: bool = True) -> ModalResult:
+    """Modes of the blade at ``rpm`` (rotor speed, rpm) with Coriolis coupling (unless ``coriolis`` is False) and
+    optional free-DOF ``damping`` and ``stiffness`` matrices: frequency, damping ratio, kind and residual of each."""
     if n_modes < 1:
         raise ValueError("n_modes must be at least 1")
-    problem = quadratic_problem(matrices, rpm, damping=damping, stiffness=stiffness)
+    problem = quadratic_problem(matrices, rpm, coriolis, damping, stiffness)
     values, vectors = full_pairs(problem, n_modes)
     return quadratic_result(matrices, problem, rpm, values, vectors, notes)
 
