@@ -6,7 +6,23 @@ import argparse
 import sys
 
 from ..errors import InputError
-from .inputs import add_blade_options, finite_float, is_blade, positive_int, read_structure, rpm_band, rpm_range
+from .damping import (
+    add_aero_options,
+    add_coriolis_option,
+    coriolis_campbell,
+    quadratic_modes,
+    reject_for_towers,
+    wants_quadratic,
+)
+from .inputs import (
+    add_blade_options,
+    finite_float,
+    is_blade,
+    positive_int,
+    read_structure,
+    rpm_band,
+    rpm_range,
+)
 
 METHODS = ("fe", "galerkin")
 
@@ -25,6 +41,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                             "to the finite elements' tolerance; 5,5,3 is the truncation of the model's paper)")
     modes.add_argument("--elastodyn-coefficients", action="store_true",
                        help="towers: also fit ElastoDyn tower mode-shape coefficients (TwFAM1Sh .. TwSSM2Sh)")
+    add_coriolis_option(modes)
+    add_aero_options(modes)
     modes.add_argument("--json", action="store_true", help="print JSON instead of a table")
     modes.set_defaults(run=run_modes)
 
@@ -43,6 +61,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     campbell.add_argument("--blades", type=positive_int, default=3, metavar="N",
                           help="towers: number of blades, the blade-passing harmonic (default 3)")
     campbell.add_argument("--plot", metavar="FILE.png", help="write the diagram to this image (PNG, PDF, SVG)")
+    add_coriolis_option(campbell)
     campbell.add_argument("--json", action="store_true", help="print JSON instead of a table")
     campbell.add_argument("--quiet", action="store_true", help="no progress bar")
     campbell.set_defaults(run=run_campbell)
@@ -55,6 +74,8 @@ def _check_rpm(rpm: float) -> None:
 
 def compute_modes(blade, args: argparse.Namespace):
     """The blade's modes by the method asked (Galerkin: converged terms unless --terms is given)."""
+    if wants_quadratic(args):
+        return quadratic_modes(blade, args)
     if args.method == "galerkin":
         if args.terms is None:
             from ..models.galerkin_converged import converged_galerkin_modes
@@ -70,6 +91,7 @@ def run_modes(args: argparse.Namespace) -> int:
     _check_rpm(args.rpm)
     model = read_structure(args)
     if not is_blade(model):
+        reject_for_towers(args)
         from .tower import tower_modes_command
         return tower_modes_command(args, model)
     if args.terms is not None and args.method != "galerkin":
@@ -87,6 +109,7 @@ def run_modes(args: argparse.Namespace) -> int:
 def run_campbell(args: argparse.Namespace) -> int:
     model = read_structure(args)
     if not is_blade(model):
+        reject_for_towers(args)
         return tower_campbell_command(args, model)
     import numpy as np
 
@@ -94,9 +117,12 @@ def run_campbell(args: argparse.Namespace) -> int:
     from ..report import progress_bar
 
     rpm = np.asarray(args.rpm)
-    matrices = blade_matrices(model, args.elements, args.n_modes, float(rpm.max()))
-    result = campbell_sweep(matrices, rpm, args.n_modes, model.notes + matrices.notes,
-                            progress_bar("Campbell sweep", args.quiet or args.json))
+    progress = progress_bar("Campbell sweep", args.quiet or args.json)
+    if args.coriolis:
+        result = coriolis_campbell(model, args, progress)
+    else:
+        matrices = blade_matrices(model, args.elements, args.n_modes, float(rpm.max()))
+        result = campbell_sweep(matrices, rpm, args.n_modes, model.notes + matrices.notes, progress)
     operating = args.operating_rpm
     if operating is not None and operating[0] == operating[1]:
         operating = operating[0]

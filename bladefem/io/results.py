@@ -32,6 +32,8 @@ def modal_to_dict(result: ModalResult, method: str = "fe") -> dict[str, Any]:
                       "edge_slope": _floats(shape["edge_slope"]), "twist_rad": _floats(shape["twist"]),
                       "axial": _floats(shape["axial"])},
         })
+        if mode.damping_ratio is not None:
+            modes[-1].update(damping_ratio=mode.damping_ratio, damped_frequency_hz=mode.damped_frequency_hz)
     return {"method": method, "rotor_speed_rpm": result.rotor_speed_rpm,
             "frequencies_hz": _floats(result.frequencies_hz), "modes": modes, "n_dofs": result.n_dofs,
             "notes": list(result.notes)}
@@ -39,10 +41,13 @@ def modal_to_dict(result: ModalResult, method: str = "fe") -> dict[str, Any]:
 
 def campbell_to_dict(result: CampbellResult) -> dict[str, Any]:
     """``{"rpm": [...], "families": [{"kind", "frequencies_hz": [...], "min_mac"}], "notes": [...]}``."""
-    return {"rpm": _floats(result.rpm),
-            "families": [{"kind": family.kind, "frequencies_hz": _floats(family.frequencies_hz),
-                          "min_mac": float(family.mac.min())} for family in result.families],
-            "notes": list(result.notes)}
+    families = []
+    for family in result.families:
+        families.append({"kind": family.kind, "frequencies_hz": _floats(family.frequencies_hz),
+                         "min_mac": float(family.mac.min())})
+        if family.damping_ratios is not None:
+            families[-1]["damping_ratios"] = _floats(family.damping_ratios)
+    return {"rpm": _floats(result.rpm), "families": families, "notes": list(result.notes)}
 
 
 def tower_campbell_to_dict(chart: Any) -> dict[str, Any]:
