@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import bladefem
+
 from bladefem.cli import main
 from bladefem.errors import SolveError
 from bladefem.io.case import read_case
@@ -24,6 +26,7 @@ from bladefem.sections import Blade, uniform_sections
 ROOT = Path(__file__).parent.parent
 NREL = ROOT / "cases" / "nrel5mw_blade.yaml"
 BLADE = Blade(uniform_sections(1.0, 1.0, 1.0))
+TOWER = bladefem.read(ROOT / "cases" / "uniform_tower.yaml")
 
 
 @contextlib.contextmanager
@@ -50,6 +53,8 @@ def cpu_limit(seconds: float):
     (lambda: campbell(BLADE, np.linspace(0, 15, 100000)), f"{MAX_SPEEDS} rotor speeds"),
     (lambda: campbell(BLADE, [0.0, float("inf")]), "finite"),
     (lambda: campbell(BLADE, np.linspace(0, 15, 1000), n_modes=100, elements=2000), "GB of mode shapes"),
+    (lambda: bladefem.modes(TOWER, n_modes=300), f"{MAX_MODES} modes"),
+    (lambda: bladefem.campbell(TOWER, [0.0, float("nan")]), "finite"),
 ])
 def test_api_arguments_are_clear_value_errors(call, message):
     with cpu_limit(2), pytest.raises(ValueError, match=re.escape(message)):
