@@ -66,16 +66,6 @@ def positive_int(text: str) -> int:
     return value
 
 
-def finite_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got '{text}'") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, got '{text}'")
-    return value
-
-
 def rpm_range(text: str) -> tuple[float, ...]:
     """START:STOP:COUNT (rpm) -> evenly spaced rotor speeds, rpm."""
     parts = text.split(":")
