@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from ..errors import InputError
+from . import options
 from .damping import (
     add_aero_options,
     add_coriolis_option,
@@ -14,15 +15,7 @@ from .damping import (
     reject_for_towers,
     wants_quadratic,
 )
-from .inputs import (
-    add_blade_options,
-    finite_float,
-    is_blade,
-    positive_int,
-    read_structure,
-    rpm_band,
-    rpm_range,
-)
+from .inputs import add_blade_options, is_blade, positive_int, read_structure, rpm_band
 
 METHODS = ("fe", "galerkin")
 
@@ -32,8 +25,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "modes", help="natural frequencies and mode shapes of a blade or tower",
         description="Natural frequencies (Hz) and mode shapes of a blade at one rotor speed, or of a tower.")
     add_blade_options(modes)
-    modes.add_argument("--rpm", type=finite_float, default=0.0, help="rotor speed, rpm (blades; default 0)")
-    modes.add_argument("--n-modes", type=positive_int, default=10, metavar="N", help="number of modes (default 10)")
+    modes.add_argument("--rpm", type=options.rpm, default=0.0, help="rotor speed, rpm (blades; default 0)")
+    modes.add_argument("--n-modes", type=options.n_modes, default=10, metavar="N", help="number of modes (default 10)")
     modes.add_argument("--method", choices=METHODS, default="fe",
                        help="fe: finite elements (default); galerkin: the analytical assumed-modes model (blades)")
     modes.add_argument("--terms", metavar="NW,NV,NPHI",
@@ -52,9 +45,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                     "frequencies against the rotor's 1P and blade-passing bands over the operating range, and the "
                     "soft-soft / soft-stiff / stiff-stiff classification.")
     add_blade_options(campbell)
-    campbell.add_argument("--rpm", type=rpm_range, required=True, metavar="START:STOP:COUNT",
+    campbell.add_argument("--rpm", type=options.rpm_sweep, required=True, metavar="START:STOP:COUNT",
                           help="rotor speeds, rpm (e.g. 0:15:16)")
-    campbell.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="families (default 6)")
+    campbell.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="families (default 6)")
     campbell.add_argument("--operating-rpm", type=rpm_band, metavar="RPM|LOW:HIGH",
                           help="operating speed to mark, or operating range (towers: the range of the 1P and "
                                "blade-passing bands; default the swept range)")
@@ -107,6 +100,8 @@ def run_modes(args: argparse.Namespace) -> int:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
+    options.check_sweep(args.rpm, args.n_modes, args.elements)
+    options.check_output(args.plot)
     model = read_structure(args)
     if not is_blade(model):
         reject_for_towers(args)
