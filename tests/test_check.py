@@ -192,9 +192,10 @@ def test_schema_is_printed_and_is_a_valid_json_schema(capsys):
 
 
 def test_elastodyn_requirement_judges_the_file_polynomials(tmp_path):
-    """The 5MW blade file's polynomials give ElastoDyn frequencies 0.15 % (flap 1), 0.19 % (flap 2) and 0.08 %
-    (edge 1) from the FE modes at the main file's 12.1 rpm: a 1 % tolerance passes all three, 0.12 % fails the two
-    flap polynomials only. The tower file's polynomials are judged against the tower FE with its top mass."""
+    """The 5MW blade file's polynomials, in ElastoDyn's equations of motion (twisted shapes, 17 nodes), are 0.71 %
+    (flap 1), 0.50 % (flap 2) and 0.23 % (edge 1) from the FE modes at the main file's 12.1 rpm: a 1 % tolerance
+    passes all three, 0.4 % fails the two flap polynomials only. The tower file's polynomials are judged against the
+    tower FE with its top mass."""
     folder = CASES / "nrel5mw"
     spec = tmp_path / "spec.yaml"
     spec.write_text(f"""models:
@@ -203,7 +204,7 @@ def test_elastodyn_requirement_judges_the_file_polynomials(tmp_path):
           elastodyn_main: {folder / 'NRELOffshrBsline5MW_Onshore_ElastoDyn.dat'}}}
 requirements:
   - {{name: loose, model: turbine, elastodyn: {{tolerance_percent: 1}}}}
-  - {{name: tight, model: turbine, elastodyn: {{tolerance_percent: 0.12}}}}
+  - {{name: tight, model: turbine, elastodyn: {{tolerance_percent: 0.4}}}}
   - {{name: tower, model: tower, elastodyn: {{tolerance_percent: 10}}}}
 """)
     outcomes = run_check(spec)

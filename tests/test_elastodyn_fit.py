@@ -60,6 +60,44 @@ def test_exact_sextic_is_recovered_and_the_constraint_holds():
     assert fit.rms_error < 1e-12 and abs(fit.tip_slope_error) < 1e-9
 
 
+def test_tip_constraint_is_imposed_on_a_target_that_violates_it():
+    # a sextic whose coefficients add up to 1.1: an unconstrained fit would return it exactly (RMS 0); the
+    # constrained one must keep sum c = 1 and so cannot reach it
+    known = 1.1 * np.array([0.3, 2.1, -4.0, 3.5, -0.9])
+    points, weights = composite_gauss(np.linspace(0, 1, 7))
+    fit = fit_sextic(points, weights, polynomial(known, points), 0.0)
+    assert abs(fit.coefficients.sum() - 1) < 1e-12
+    assert fit.rms_error > 1e-3
+    free, *_ = np.linalg.lstsq(np.sqrt(weights)[:, None] * points[:, None] ** np.arange(2, 7),
+                               np.sqrt(weights) * polynomial(known, points), rcond=None)
+    assert np.allclose(free, known, atol=1e-9)                         # the control: unconstrained recovers it
+
+
+def test_frequency_preserving_fit_has_the_target_rayleigh_quotient():
+    """The exact first cantilever mode with a target frequency 2 % above its own: the constrained fit's Rayleigh
+    quotient (with the given stiffness and mass forms) hits the target to rounding, keeps sum c = 1, and stays
+    close to the shape; the plain displacement fit has the cantilever's frequency (the control)."""
+    from bladefem.modal.elastodyn_fit import elastodyn_forms, fit_sextic_at_frequency
+    beam = uniform_sections(1.0, 1.0, 1.0)
+    target = fitting_target(analytic_mode(np.linspace(0, 1, 41)), "flap", 1.0)
+    K, M = elastodyn_forms(beam, "flap_stiffness", 400)
+    plain = fit_sextic(target.points, target.weights, target.values, target.tip_slope)
+    omega = 1.02 * BETA1**2
+    fit = fit_sextic_at_frequency(target.points, target.weights, target.values, target.tip_slope, K, M, omega)
+    c = fit.coefficients
+    assert fit.frequency_preserved
+    assert math.sqrt(c @ K @ c / (c @ M @ c)) == pytest.approx(omega, rel=1e-9)      # root finder's tolerance
+    assert abs(c.sum() - 1) < 1e-12
+    assert math.sqrt(plain.coefficients @ K @ plain.coefficients / (plain.coefficients @ M @ plain.coefficients)) \
+        == pytest.approx(BETA1**2, rel=1e-4)
+    assert plain.rms_error < fit.rms_error < 0.05
+    # below the lowest Rayleigh quotient of any sextic (the exact eigenvalue bounds it) no fit exists: the plain
+    # displacement fit is returned, flagged
+    low = fit_sextic_at_frequency(target.points, target.weights, target.values, target.tip_slope, K, M,
+                                  0.98 * BETA1**2)
+    assert not low.frequency_preserved and np.allclose(low.coefficients, plain.coefficients)
+
+
 def test_fit_does_not_depend_on_node_spacing():
     uniform = np.linspace(0, 1, 41)
     graded = np.unique(np.concatenate([np.linspace(0, 1, 26), np.linspace(0.9, 1, 61)]))   # 3 of 4 nodes at the tip
@@ -173,17 +211,36 @@ def blade_5mw():
 def test_5mw_blade_first_modes(blade_5mw):
     for name in ("flap1", "edge1"):
         fit = blade_5mw.fits[name]
-        assert fit.fit.rms_error < 1e-3                                     # acceptance criterion
+        # acceptance criterion 1e-3 of the tip deflection for the displacement fit (measured 8.3e-4 and 1.7e-4);
+        # holding the frequency costs 2.5e-4 and 6.2e-4 of it (measured 1.08e-3, 7.9e-4)
+        assert fit.fit.rms_error < 1.5e-3
         assert abs(fit.fit.coefficients.sum() - 1) < 1e-12
-        # acceptance: ElastoDyn's own 17-node integrals of the fitted polynomial within 1 % of the FE frequency
-        assert fit.elastodyn_frequency_hz == pytest.approx(fit.fe_frequency_hz, rel=0.01)
+        # ElastoDyn's own 17-node integrals of the fitted polynomial (twisted shapes of its equations of motion)
+        # give the FE frequency
+        assert fit.fit.frequency_preserved
+        assert fit.elastodyn_frequency_hz == pytest.approx(fit.fe_frequency_hz, rel=1e-9)
     # the reference README quotes about 0.73 Hz for ElastoDyn's rotating first flap frequency at 12.1 rpm
     assert blade_5mw.fits["flap1"].fe_frequency_hz == pytest.approx(0.73, abs=0.01)
     # the shipped polynomials are rougher fits of the same shapes than the fresh ones (they were fitted to another
-    # model of the blade), so the fresh fit has the smaller RMS error
-    for name in ("flap1", "flap2", "edge1"):
+    # model of the blade), so the fresh first-mode fits have the smaller RMS error
+    for name in ("flap1", "edge1"):
         assert blade_5mw.fits[name].fit.rms_error < blade_5mw.shipped[name].fit.rms_error
+
+
+def test_5mw_second_flap_fit_keeps_the_fe_frequency(blade_5mw):
+    """The second flap mode: a displacement fit (RMS 4.0e-3) is a stiffer Rayleigh-Ritz shape, +5.5 % in
+    ElastoDyn's own 17-node equations at 12.1 rpm (issue 10, defect 9); the frequency-preserving fit gives the FE
+    frequency to rounding, its displacement error (6.5e-3) below the shipped coefficients' (1.1e-2, -0.5 %). The
+    plain fits are flagged as further from the FE frequency than the file's."""
+    fit = blade_5mw.fits["flap2"]
+    assert fit.fit.frequency_preserved
+    assert fit.elastodyn_frequency_hz == pytest.approx(fit.fe_frequency_hz, rel=1e-9)
+    assert fit.fit.rms_error < blade_5mw.shipped["flap2"].fit.rms_error
     assert blade_5mw.warnings == ()
+    plain = blade_coefficients(blade_from_elastodyn_main(MAIN), 12.1, nodes=17, preserve_frequency=False,
+                               shipped=read_elastodyn_blade(DATA / "NRELOffshrBsline5MW_Blade.dat").modes)
+    assert plain.fits["flap2"].elastodyn_frequency_hz > 1.05 * fit.fe_frequency_hz          # the defect it fixes
+    assert any("flap 2" in w and "file's coefficients" in w for w in plain.warnings)
 
 
 def test_5mw_tower_first_modes():
@@ -204,8 +261,10 @@ def test_5mw_tower_first_modes():
             assert fit.elastodyn_frequency_hz == pytest.approx(fit.fe_frequency_hz, rel=0.01)
     # gravity (350 t on top of 87.6 m) softens the first mode by about 2 %: 0.3309 Hz against 0.3366 Hz
     assert result.fits["fa1"].fe_frequency_hz > tower_coefficients(tower, nodes=20).fits["fa1"].fe_frequency_hz
-    # equal FA and SS stiffness: the degenerate pairs give identical fore-aft and side-side polynomials
-    assert np.allclose(result.fits["fa1"].fit.coefficients, result.fits["ss1"].fit.coefficients, atol=1e-8)
+    # equal FA and SS stiffness: the degenerate pairs give the same fore-aft and side-side polynomials; their FE
+    # frequencies differ by rounding (~1e-8), and the frequency-preserving fit moves the coefficients by the
+    # square root of that (the Rayleigh quotient is stationary at the mode): 1e-3
+    assert np.allclose(result.fits["fa1"].fit.coefficients, result.fits["ss1"].fit.coefficients, atol=1e-3)
     # the second modes barely move the heavy tower top: the tip-normalised polynomial is flagged
     assert any("fore-aft 2" in w for w in result.warnings)
 
@@ -217,3 +276,44 @@ def test_gravity_load_of_a_uniform_tower():
     # uniform mass: the weight above a node's midpoint is exactly m g (L - r) plus the top mass
     expected = 9.81 * (5000.0 * (80.0 - nodes) + 3.5e5)
     assert np.allclose(gravity_load(sections, nodes, 4.0, 3.5e5, 9.81), expected, rtol=1e-14)
+
+
+def test_elastodyn_frequency_is_that_of_elastodyns_equations_of_motion():
+    """The frequency reported for a blade polynomial is the one the mode has alone in ElastoDyn's equations (the
+    twisted shapes carry the mass): equal to the ElastoDyn-compatible Kane model (checked against OpenFAST) with
+    that one mode free, at rest without gravity, to 1e-6; the untwisted estimate ElastoDyn prints (FreqBF) is
+    0.5 % higher for the 5MW's first flap mode."""
+    from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+    from bladefem.modal.elastodyn_fit import BeamIntegrals
+    from bladefem.models.turbine import TurbineModel, select_dofs
+    from bladefem.models.turbine.linearize import linearize
+
+    main = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
+    blade = blade_from_elastodyn_main(main).with_(precone=0.0)
+    shipped = read_elastodyn_blade(DATA / "NRELOffshrBsline5MW_Blade.dat").modes
+    model = TurbineModel(turbine_from_elastodyn(main, "polynomial", elastodyn_compatible=True).with_(
+        gravity=0.0, precone=0.0))
+    beam = BeamIntegrals(blade.sections, 0.0, blade.hub_radius, 0.0, 0.0, pitch=blade.pitch)
+    for name, kind in (("flap1", "flap"), ("edge1", "edge"), ("flap2", "flap")):
+        kane = linearize(model, select_dofs(model.dofs, [f"blade1_{name}"]), 0.0).modes[0].frequency_hz
+        assert beam.frequency(shipped[name], kind, 17) == pytest.approx(kane, rel=1e-6), name
+    untwisted = elastodyn_frequency(shipped["flap1"], blade.sections, "flap_stiffness", 17)
+    assert untwisted / beam.frequency(shipped["flap1"], "flap", 17) - 1 == pytest.approx(0.0048, abs=0.0005)
+
+
+def test_a_frequency_the_integrals_cannot_hold_keeps_the_displacement_fit():
+    """Holding a frequency far above the shape's own (what a tower top's rotary inertia does to the FE mode, which
+    ElastoDyn's point-mass integrals cannot see) would distort the polynomial: the displacement fit is kept with a
+    note; a frequency below every sextic's is reported only when the displacement fit misses it by more than 0.1 %."""
+    from bladefem.modal.elastodyn_fit import BeamIntegrals, _frequency_preserving
+    beam = BeamIntegrals(uniform_sections(1.0, 1.0, 1.0), tower=True)
+    target = fitting_target(analytic_mode(np.linspace(0, 1, 41)), "flap", 1.0)
+    plain = fit_sextic(target.points, target.weights, target.values, target.tip_slope)
+    exact = BETA1**2 / (2 * math.pi)
+    kept, note = _frequency_preserving(plain, target, beam, "flap", 400, 3.0 * exact)
+    assert kept is plain and "distort" in note
+    held, note = _frequency_preserving(plain, target, beam, "flap", 400, 1.01 * exact)
+    assert held.frequency_preserved and note is None
+    assert _frequency_preserving(plain, target, beam, "flap", 400, 0.9995 * exact) == (plain, None)
+    kept, note = _frequency_preserving(plain, target, beam, "flap", 400, 0.95 * exact)
+    assert kept is plain and "no sextic" in note

@@ -79,11 +79,12 @@ def test_elastodyn_coefficients_example():
     galerkin = galerkin_modes(blade_from_elastodyn_main(MAIN_FILE), 12.1, 4, (40, 40, 0))
     for name, (kind, number) in {"flap1": ("flap", 1), "edge1": ("edge", 1), "flap2": ("flap", 2)}.items():
         assert blade[name][0] == pytest.approx(galerkin.first(kind, number).frequency_hz, rel=PRINTED_VS_GALERKIN)
-    # fresh fits of the first modes: RMS below 1e-3 and ElastoDyn's derived frequency within 1 % of the FE; the
-    # printed difference is that of the printed frequencies (rounding: 5e-5 Hz each, 0.005 % on the difference)
+    # fresh fits of the first modes: RMS below 1.5e-3 (1e-3 for a displacement-only fit; holding the FE frequency
+    # costs the blade's flap 1 2.5e-4 of it) and ElastoDyn's derived frequency within 1 % of the FE; the printed
+    # difference is that of the printed frequencies (rounding: 5e-5 Hz each, 0.005 % on the difference)
     tower = elastodyn_rows(point_mass_block)
     for fe, ed, diff, rms, *_ in (blade["flap1"], blade["edge1"], tower["fa1"], tower["ss1"]):
-        assert rms < 1e-3 and abs(diff) < 1.0 and ed == pytest.approx(fe * (1 + diff / 100), abs=1.5e-4)
+        assert rms < 1.5e-3 and abs(diff) < 1.0 and ed == pytest.approx(fe * (1 + diff / 100), abs=1.5e-4)
     # the rigid rotor-nacelle body (offset centre of mass, rotary inertia) lowers the first tower frequencies
     rigid = elastodyn_rows(rigid_block)
     assert rigid["fa1"][0] < tower["fa1"][0] and rigid["ss1"][0] < tower["ss1"][0]
@@ -130,7 +131,7 @@ def test_seed_comparison_numbers_are_the_papers_and_the_converged_models():
         assert float(row[11]) == pytest.approx(paper[0], rel=3e-3)
         assert float(row[12].rstrip("%")) == pytest.approx(100 * (float(row[11]) / paper[0] - 1), abs=0.011)
     assert table1["1st torsion"][3] == "5.7446"
-    table2 = markdown_table(text, "| rpm | mode | seed Table 2")
+    table2 = markdown_table(text, "| rpm | mode | paper Table 2")
     assert len(table2) == 24
     for row in table2:
         speed, mode = int(row[0]), row[1]

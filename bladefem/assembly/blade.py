@@ -1,32 +1,35 @@
-"""Assemble the blade's matrices K0, K2 (per Omega^2) and M once: K(Omega) = K0 + Omega^2 K2."""
+"""Assemble the blade's matrices K0, K2 (per Omega^2) and M once: K(Omega) = K0 + Omega^2 K2; and, when the
+quadratic eigenproblem asks for it, the gyroscopic matrix G (per Omega)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from skfem import Basis, BilinearForm
+from skfem import Basis
 
 from ..elements import (
     beam_element,
+    gyroscopic_inertia,
     projected_inertia,
     rotation_second_order,
-    section_motion,
 )
 from ..sections import Blade
+from ..sections.table import OPTIONAL_STIFFNESS, POSITIVE, ZERO_DEFAULT
 from . import terms
 from .dofs import DofMap
-from .mesh import span_mesh, span_nodes
+from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
+from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
 from .parameters import SectionParameters, plane_of_rotation, section_parameters
-
-Term = Callable[..., NDArray]
 
 #: Gauss rule degree: cubic x cubic x linear property x smooth twist
 QUADRATURE_ORDER = 9
+#: the terms of K2 (per Omega^2) and of M
+CENTRIFUGAL_TERMS: tuple[Term, ...] = (terms.axial_force_stiffness, terms.spin_softening, terms.rotation_second_order)
+INERTIA_TERMS: tuple[Term, ...] = (terms.inertia,)
 
 
 @dataclass(frozen=True)
@@ -37,7 +40,12 @@ class BladeMatrices:
     K2 : stiffness per Omega^2 (centrifugal tension, spin softening, rotation second order), kg-type units
     M : mass matrix
     free : DOFs left free by the root condition
+    quadrature, parameters : the mesh's quadrature and the section parameters there, to evaluate K0's form on
+        given vectors (:meth:`stiffness_gram`)
     notes : statements about the mesh (e.g. refinement stopped before convergence)
+    eigenpairs : rotor speed (rpm) -> lowest eigenpairs (omega^2, M-normalised vectors) already solved on these
+        matrices, kept for re-use
+    G (property) : gyroscopic (Coriolis) matrix per Omega, for the quadratic eigenproblem
     """
 
     K0: sp.csr_matrix
@@ -46,7 +54,10 @@ class BladeMatrices:
     dofs: DofMap
     free: NDArray[np.int64]
     blade: Blade
+    quadrature: Quadrature
+    parameters: SectionParameters
     notes: tuple[str, ...] = ()
+    eigenpairs: dict[float, tuple[NDArray, NDArray]] = field(default_factory=dict, compare=False, repr=False)
 
     @cached_property
     def free_parts(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
@@ -57,6 +68,32 @@ class BladeMatrices:
         """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s)."""
         K0, K2, M = self.free_parts
         return (K0 + rotor_speed**2 * K2).tocsc(), M
+
+    def stiffness_gram(self, vectors: NDArray) -> NDArray:
+        """``V^T K0 V`` of free-DOF vectors (columns), summed at the quadrature points
+        (:func:`~bladefem.assembly.forms.gram_matrix`): accurate where the assembled product cancels. (K2 and M
+        hold values and slopes only, whose products lose at most (L / h)^2 digits.)"""
+        full = np.zeros((self.dofs.size, np.shape(vectors)[1]))
+        full[self.free] = vectors
+        return gram_matrix(self.quadrature, self.elastic_operator, full)
+
+    @cached_property
+    def elastic_operator(self) -> NDArray:
+        """K0's form at the quadrature points (:func:`~bladefem.assembly.forms.pointwise_operator`)."""
+        return pointwise_operator(self.quadrature, self.parameters, elastic_terms(self.dofs.fields))
+
+    @cached_property
+    def G(self) -> sp.csr_matrix:
+        """Gyroscopic (Coriolis) matrix per Omega over all DOFs, skew-symmetric, kg (:func:`terms.coriolis` and the
+        tip body), assembled on first use: only the quadratic eigenproblem needs it."""
+        G = assemble_terms(self.quadrature, self.parameters, (terms.coriolis,)) + tip_body_gyroscopic(self.blade,
+                                                                                                    self.dofs)
+        return (0.5 * (G - G.T)).tocsr()          # skew to the last bit (quadrature sums differ in round-off)
+
+    @cached_property
+    def free_gyroscopic(self) -> sp.csc_matrix:
+        """G restricted to the free DOFs."""
+        return self.G[self.free][:, self.free].tocsc()
 
     @cached_property
     def free_field_dofs(self) -> dict[str, NDArray[np.int64]]:
@@ -82,19 +119,6 @@ def model_fields(blade: Blade) -> tuple[str, ...]:
     return tuple(fields)
 
 
-def assemble_terms(basis: Basis, fields: tuple[str, ...], parameters: SectionParameters,
-                   parts: Sequence[Term]) -> sp.csr_matrix:
-    """Assemble the sum of weak-form terms into one sparse matrix."""
-    n = len(fields)
-
-    def integrand(*args: object) -> NDArray:
-        trial = section_motion(fields, args[:n])
-        test = section_motion(fields, args[n:2 * n])
-        return sum(part(trial, test, parameters) for part in parts)
-
-    return BilinearForm(integrand).assemble(basis).tocsr()
-
-
 def elastic_terms(fields: tuple[str, ...]) -> list[Term]:
     parts: list[Term] = [terms.extension_bending_stiffness if "u" in fields else terms.bending_stiffness]
     if "phi" in fields:
@@ -118,17 +142,42 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
     return (T.T @ sp.csr_matrix(inertia) @ T).tocsr(), (T.T @ sp.csr_matrix(K2) @ T).tocsr()
 
 
-def assemble_blade(blade: Blade, elements: int = 60) -> BladeMatrices:
-    """Assemble K0, K2 and M for ``blade`` on a mesh with about ``elements`` elements (stations are nodes)."""
+def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
+    """Gyroscopic matrix (per Omega) of the tip mass on the tip node."""
+    tip = blade.tip_mass
+    if tip is None:
+        return sp.csr_matrix((dofs.size, dofs.size))
+    T = dofs.kinematic_selector(len(dofs.nodes) - 1)
+    G = gyroscopic_inertia(blade.shaft_axis, np.float64(tip.mass), tip.mass * tip.offset, tip.second_moment)
+    return (T.T @ sp.csr_matrix(G) @ T).tocsr()
+
+
+def blade_graded_nodes(blade: Blade, elements: int) -> NDArray:
+    """Nodes graded by every section property the model uses (:func:`~bladefem.assembly.mesh.graded_nodes`) over
+    the stations that matter (:func:`~bladefem.assembly.mesh.mesh_stations`)."""
+    s = blade.sections
+    names = POSITIVE + OPTIONAL_STIFFNESS + ZERO_DEFAULT
+    present = [getattr(s, name) for name in names if getattr(s, name) is not None]
+    stations = mesh_stations(s.span, present)
+    graded = [s.at(stations, name) for name in ("mass", "flap_stiffness", "edge_stiffness", "torsion_stiffness",
+                                                "axial_stiffness", "flap_inertia", "edge_inertia")
+              if getattr(s, name) is not None and np.max(getattr(s, name)) > 0]
+    return graded_nodes(stations, graded, s.at(stations, "twist"), elements)
+
+
+def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = None) -> BladeMatrices:
+    """Assemble K0, K2 and M for ``blade`` on a mesh with about ``elements`` elements (stations are nodes), or on
+    the given ``nodes`` (m, increasing, from root to tip)."""
     fields = model_fields(blade)
-    mesh = span_mesh(span_nodes(blade.sections.span, elements))
+    mesh = span_mesh(span_nodes(blade.sections.span, elements) if nodes is None else nodes)
     basis = Basis(mesh, beam_element(fields), intorder=QUADRATURE_ORDER)
     parameters = section_parameters(blade, np.asarray(basis.global_coordinates())[0])
+    quadrature = Quadrature.from_basis(basis, fields)
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
-    K0 = assemble_terms(basis, fields, parameters, elastic_terms(fields))
-    K2 = assemble_terms(basis, fields, parameters, [terms.axial_force_stiffness, terms.spin_softening,
-                                                    terms.rotation_second_order]) + K2_tip
-    M = assemble_terms(basis, fields, parameters, [terms.inertia]) + M_tip
+    K0 = assemble_terms(quadrature, parameters, elastic_terms(fields))
+    K2 = assemble_terms(quadrature, parameters, CENTRIFUGAL_TERMS) + K2_tip
+    M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
-    return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade)
+    return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,
+                         quadrature=quadrature, parameters=parameters)

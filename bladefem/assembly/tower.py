@@ -28,7 +28,8 @@ from ..elements.rigid_slice import uniform_field_second_order
 from ..sections import bending_stiffness, extension_bending_stiffness, mass_moments
 from ..sections.tower import Tower
 from . import terms
-from .blade import QUADRATURE_ORDER, Term, assemble_terms
+from .blade import QUADRATURE_ORDER
+from .forms import Quadrature, Term, assemble_terms
 from .dofs import DofMap
 from .mesh import span_mesh, span_nodes
 from .parameters import SectionParameters
@@ -194,21 +195,21 @@ def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
     fields = ALL_FIELDS
     basis = Basis(span_mesh(tower_nodes(tower, elements)), beam_element(fields), intorder=QUADRATURE_ORDER)
     x = np.asarray(basis.global_coordinates())[0]
+    quadrature = Quadrature.from_basis(basis, fields)
     dofs = DofMap.from_basis(basis, fields)
     size = dofs.size + BASE_SIZE
     sections = section_parameters(tower, x)
     M_top, G_top = top_body_matrices(tower, dofs, size)
     base = base_matrices(tower, float(mass_above(tower, np.array([0.0]))[0]))
-    K_elastic = _pad(assemble_terms(basis, fields, sections, elastic_terms(tower)), size)
-    K = (_pad(assemble_terms(basis, fields, soil_parameters(tower.supports, x), [soil_springs]), size)
+    K_elastic = _pad(assemble_terms(quadrature, sections, elastic_terms(tower)), size)
+    K = (_pad(assemble_terms(quadrature, soil_parameters(tower.supports, x), [soil_springs]), size)
          + wire_stiffness(tower.supports, dofs, size) + _base_block(base.stiffness, size))
-    M = _pad(assemble_terms(basis, fields, sections, [terms.inertia]), size) + M_top + _base_block(base.mass, size)
+    M = _pad(assemble_terms(quadrature, sections, [terms.inertia]), size) + M_top + _base_block(base.mass, size)
     if tower.supports.added_mass is not None:
-        M = M + _pad(assemble_terms(basis, fields, added_mass_parameters(tower.supports, x), [lateral_added_mass]),
-                     size)
+        M = M + _pad(assemble_terms(quadrature, added_mass_parameters(tower.supports, x), [lateral_added_mass]), size)
     if tower.gravity > 0:
         gravity = gravity_parameters(tower, x)
-        K_gravity = (_pad(assemble_terms(basis, fields, gravity, [terms.axial_force_stiffness,
+        K_gravity = (_pad(assemble_terms(quadrature, gravity, [terms.axial_force_stiffness,
                                                                   terms.rotation_second_order]), size)
                      + G_top + _base_block(base.gravity, size))
         platform = tower.supports.platform

@@ -137,7 +137,9 @@ def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6) -> li
     rows = (len(shown) + columns - 1) // columns or 1
     figure, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3 * rows), squeeze=False)
     for axis, q in zip(axes.flat, shown):
-        axis.hist(q.values, bins="auto", color="#4c72b0", edgecolor="white")
+        values = np.asarray(q.values, dtype=float)
+        spread = np.ptp(values) > 1e-9 * np.max(np.abs(values))     # else constant but for round-off: one bin
+        axis.hist(values, bins="auto" if spread else 1, color="#4c72b0", edgecolor="white")
         axis.set_title(q.label, fontsize=9)
         axis.set_xlabel(f"value ({q.unit})" if q.unit else "value")
     for axis in list(axes.flat)[len(shown):]:

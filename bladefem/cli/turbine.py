@@ -1,23 +1,36 @@
 """``bladefem turbine``: the 16-DOF Kane turbine model of an ElastoDyn main file.
 
-    bladefem turbine MAIN --linearize [--rpm R] [--dof ...]            table of full-system modes
-    bladefem turbine MAIN --campbell 0:15:1.5 [--plot campbell.png]     full-system Campbell diagram
+    bladefem turbine MAIN --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
+    bladefem turbine MAIN --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
     bladefem turbine MAIN --simulate SECONDS [--dof ...] [--initial NAME=VALUE ...] [--output out.csv]
+
+The deck is honoured: its DOF switches set the free coordinates and its initial conditions the initial state
+(``--dof`` and ``--initial`` override them).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 from pathlib import Path
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..errors import InputError
+from .inputs import rpm_range
 
-#: initial-condition names given in degrees, converted to rad
-DEGREE_NAMES = {"yaw_deg": "yaw", "azimuth_deg": "generator_azimuth", "drivetrain_deg": "drivetrain"}
+if TYPE_CHECKING:
+    import numpy as np
+
+#: --initial names in ElastoDyn's terms -> (field of InitialConditions, factor to SI)
+ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflection", 1.0),
+                     "TTDspFA": ("tower_top_fa", 1.0), "TTDspSS": ("tower_top_ss", 1.0),
+                     "NacYaw": ("nacelle_yaw", math.pi / 180), "Azimuth": ("azimuth", math.pi / 180),
+                     "RotSpeed": ("rotor_speed", math.pi / 30)}
+#: coordinates that are angles, given in degrees as NAME_deg
+ANGLES = ("yaw", "generator_azimuth", "drivetrain")
+SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial")
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
@@ -25,65 +38,93 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "turbine", help="16-DOF Kane turbine model (ElastoDyn structure) fed by bladefem modes",
         description="Linearize or simulate the 16-DOF structural turbine model (tower FA/SS 1-2, yaw, generator "
                     "azimuth, drivetrain, blade flap 1, edge 1, flap 2) of an ElastoDyn main file; no "
-                    "aerodynamics.")
+                    "aerodynamics. The deck's DOF switches and initial conditions are used unless overridden.")
     parser.add_argument("main", metavar="ELASTODYN_MAIN", help="ElastoDyn main input file")
     action = parser.add_mutually_exclusive_group(required=True)
-    action.add_argument("--linearize", action="store_true", help="print the full-system modes at --rpm")
-    action.add_argument("--campbell", metavar="START:STOP:STEP", help="full-system Campbell diagram over rpm")
+    action.add_argument("--linearize", action="store_true", help="the full-system modes at --rpm")
+    action.add_argument("--campbell", type=rpm_range, metavar="START:STOP:COUNT",
+                        help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm")
     action.add_argument("--simulate", type=float, metavar="SECONDS", help="integrate in time for SECONDS")
     parser.add_argument("--rpm", type=float, default=None,
                         help="rotor speed, rpm (default: RotSpeed of the main file); also the speed of the FE "
                              "blade shapes")
-    parser.add_argument("--dof", nargs="+", default=["all"], metavar="NAME",
-                        help="free DOFs: all, tower, tower1, yaw, generator, drivetrain, blades, flap1, edge1, "
-                             "flap2, or coordinates such as tower_fa1, blade2_edge1 (default: all); the others "
-                             "are locked (the generator at constant speed)")
-    parser.add_argument("--initial", nargs="+", default=[], metavar="NAME=VALUE",
-                        help="initial coordinates: modal amplitudes in m (tower_fa1=0.3, blade1_flap1=1.0), "
-                             "yaw_deg, azimuth_deg, drivetrain_deg in degrees")
-    parser.add_argument("--shapes", choices=("fe", "fe-polynomial", "polynomial"), default="fe",
+    parser.add_argument("--azimuth-deg", type=float, default=None, metavar="DEG",
+                        help="rotor azimuth of a parked (0 rpm) linearization, deg, blade 1 up at 0 (default: "
+                             "Azimuth - AzimB1Up of the main file)")
+    parser.add_argument("--dof", nargs="+", default=None, metavar="NAME",
+                        help="free DOFs (default: the deck's switches): all, tower, tower1, yaw, generator, "
+                             "drivetrain, blades, flap1, edge1, flap2, coordinates such as tower_fa1, "
+                             "blade2_edge1, or ElastoDyn switches (GenDOF, FlapDOF1, ...); NAME=off or NAME=on "
+                             "changes the deck's set (e.g. GenDOF=off); locked DOFs keep their initial rate")
+    parser.add_argument("--initial", nargs="+", default=None, metavar="NAME=VALUE",
+                        help="initial state of --simulate (over the deck's): ElastoDyn's OoPDefl, IPDefl, "
+                             "TTDspFA, TTDspSS (m), NacYaw, Azimuth (deg), RotSpeed (rpm); or coordinates: modal "
+                             "amplitudes in m (tower_fa1=0.3, blade1_flap1=1.0), angles in degrees (yaw_deg, "
+                             "generator_azimuth_deg, drivetrain_deg)")
+    parser.add_argument("--elastodyn-compatible", action="store_true",
+                        help="ElastoDyn's own choices: the files' polynomial shapes, its discretization at "
+                             "BldNodes/TwrNodes element midpoints and its damping convention")
+    parser.add_argument("--shapes", choices=("fe", "fe-polynomial", "polynomial"), default=None,
                         help="blade mode shapes: bladefem FE at --rpm (default), ElastoDyn polynomials fitted to "
-                             "them, or the blade file's polynomials")
+                             "them, or the blade file's polynomials (default with --elastodyn-compatible)")
     parser.add_argument("--tower-shapes", choices=("fe", "fe-polynomial", "polynomial"), default="polynomial",
                         help="tower mode shapes: the tower file's polynomials (default), bladefem's tower FE with "
                              "the rotor-nacelle on top, or ElastoDyn polynomials fitted to those")
+    parser.add_argument("--damping", choices=("elastodyn", "rna"), default="elastodyn",
+                        help="structural damping convention: elastodyn (default: ElastoDyn's, each mode's "
+                             "frequency of the beam alone) or rna (modal masses with the tip mass and the "
+                             "rotor-nacelle assembly on the tower)")
     parser.add_argument("--no-gravity", action="store_true", help="switch gravity off")
     parser.add_argument("--no-damping", action="store_true", help="switch structural, drivetrain, yaw damping off")
     parser.add_argument("--yaw-stiffness", type=float, default=None, metavar="N_M_PER_RAD",
                         help="nacelle-yaw spring (ServoDyn YawSpr; default NREL 5MW 9.02832e9)")
     parser.add_argument("--yaw-damping", type=float, default=None, metavar="N_M_S_PER_RAD",
                         help="nacelle-yaw damper (ServoDyn YawDamp; default NREL 5MW 1.916e7)")
-    parser.add_argument("--dt", type=float, default=0.05, help="output interval of --simulate, s")
-    parser.add_argument("--rtol", type=float, default=1e-6, help="relative tolerance of the time integration")
-    parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default="auto",
+    parser.add_argument("--json", action="store_true", help="--linearize or --campbell results as JSON")
+    parser.add_argument("--dt", type=float, default=None, help="output interval of --simulate, s (default 0.05)")
+    parser.add_argument("--rtol", type=float, default=None, help="relative tolerance of --simulate (default 1e-6)")
+    parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default=None,
                         help="time integrator: auto (compiled 8th-order Dormand-Prince with numba, else scipy "
                              "DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or DOP853, or fixed-step "
                              "RK4 (--step)")
-    parser.add_argument("--step", type=float, default=0.01, help="step of --method RK4, s")
-    parser.add_argument("--output", "-o", metavar="FILE", help="CSV table of --simulate or --campbell")
+    parser.add_argument("--step", type=float, default=None, help="step of --method RK4, s (default 0.01)")
+    parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.set_defaults(run=run)
 
 
-def _positive(value: float | None, field: str) -> None:
-    if value is not None and not (math.isfinite(value) and value > 0):
-        raise InputError(f"must be a positive number, got {value}", field=field)
+def check_options(args: argparse.Namespace) -> None:
+    """Refuse options the chosen action would ignore, and bad values."""
+    if not args.simulate:
+        for name in SIMULATION_ONLY:
+            if getattr(args, name) is not None:
+                raise InputError("applies to --simulate only", field="--" + name)
+    else:
+        for name, flag in (("json", args.json), ("azimuth-deg", args.azimuth_deg is not None)):
+            if flag:
+                raise InputError("applies to --linearize and --campbell only" + (
+                    " (set the initial azimuth with --initial Azimuth=DEG)" if name == "azimuth-deg" else ""),
+                                 field="--" + name)
+    if args.linearize and args.plot:
+        raise InputError("there is no figure of a single linearization: use --campbell for a plot", field="--plot")
+    for name in ("simulate", "dt", "rtol", "step"):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise InputError(f"must be a positive number, got {value}", field="--" + name)
+    for name in ("rpm", "yaw_stiffness", "yaw_damping"):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value >= 0):
+            raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
+    if args.azimuth_deg is not None and not math.isfinite(args.azimuth_deg):
+        raise InputError(f"must be a number, got {args.azimuth_deg}", field="--azimuth-deg")
 
 
-def parse_sweep(text: str) -> np.ndarray:
-    """'START:STOP:STEP' (rpm, inclusive) -> speeds."""
-    try:
-        start, stop, step = (float(part) for part in text.split(":"))
-    except ValueError:
-        raise InputError(f"expected START:STOP:STEP in rpm, got '{text}'", field="--campbell") from None
-    if not (all(map(math.isfinite, (start, stop, step))) and step > 0 and stop >= start >= 0):
-        raise InputError(f"need 0 <= START <= STOP and STEP > 0, got '{text}'", field="--campbell")
-    return np.arange(start, stop + 0.5 * step, step)
-
-
-def initial_state(dofs: tuple[str, ...], entries: list[str]) -> np.ndarray:
-    """Coordinates from NAME=VALUE entries (modal amplitudes in m, angles named *_deg in degrees)."""
-    q = np.zeros(len(dofs))
+def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, float], dict[str, float]]:
+    """NAME=VALUE entries -> (ElastoDyn initial conditions, SI; coordinates, SI). Coordinates are modal
+    amplitudes (m) or angles given as NAME_deg."""
+    conditions: dict[str, float] = {}
+    coordinates: dict[str, float] = {}
     for entry in entries:
         name, sep, text = entry.partition("=")
         try:
@@ -92,15 +133,20 @@ def initial_state(dofs: tuple[str, ...], entries: list[str]) -> np.ndarray:
             value = math.nan
         if not sep or not math.isfinite(value):
             raise InputError(f"expected NAME=NUMBER, got '{entry}'", field="--initial")
-        if name in DEGREE_NAMES:
-            name, value = DEGREE_NAMES[name], math.radians(value)
-        elif name in ("yaw", "generator_azimuth", "drivetrain"):
-            raise InputError(f"give angles in degrees as {name.split('_')[0]}_deg", field="--initial")
-        if name not in dofs:
-            raise InputError(f"unknown coordinate '{name}' (one of {', '.join(dofs)}, yaw_deg, azimuth_deg, "
-                             f"drivetrain_deg)", field="--initial")
-        q[dofs.index(name)] = value
-    return q
+        if name in ELASTODYN_INITIAL:
+            field, factor = ELASTODYN_INITIAL[name]
+            conditions[field] = value * factor
+        elif name.endswith("_deg") and name[:-4] in ANGLES:
+            coordinates[name[:-4]] = math.radians(value)
+        elif name in ANGLES:
+            raise InputError(f"'{name}' is an angle: give {name}_deg=DEGREES", field="--initial")
+        elif name in dofs:
+            coordinates[name] = value
+        else:
+            known = [*ELASTODYN_INITIAL, *(f"{a}_deg" for a in ANGLES),
+                     *(d for d in dofs if d not in ANGLES)]
+            raise InputError(f"unknown initial value '{name}' (one of {', '.join(known)})", field="--initial")
+    return conditions, coordinates
 
 
 def build_model(args: argparse.Namespace):
@@ -111,16 +157,13 @@ def build_model(args: argparse.Namespace):
     )
     from ..models.turbine import TurbineModel
 
-    for name in ("yaw_stiffness", "yaw_damping"):
-        value = getattr(args, name)
-        if value is not None and not (math.isfinite(value) and value >= 0):
-            raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
-    if args.rpm is not None and not (math.isfinite(args.rpm) and args.rpm >= 0):
-        raise InputError(f"must be a non-negative number, got {args.rpm}", field="--rpm")
+    shapes = args.shapes or ("polynomial" if args.elastodyn_compatible else "fe")
     params = turbine_from_elastodyn(
-        args.main, args.shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
+        args.main, shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
         yaw_stiffness=NREL5MW_YAW_STIFFNESS if args.yaw_stiffness is None else args.yaw_stiffness,
-        yaw_damping=NREL5MW_YAW_DAMPING if args.yaw_damping is None else args.yaw_damping)
+        yaw_damping=NREL5MW_YAW_DAMPING if args.yaw_damping is None else args.yaw_damping,
+        elastodyn_compatible=args.elastodyn_compatible, damping=args.damping,
+        gauss_points=1 if args.elastodyn_compatible else 2)
     if args.no_gravity:
         params = params.with_(gravity=0.0)
     if args.no_damping:
@@ -128,79 +171,139 @@ def build_model(args: argparse.Namespace):
     return params, TurbineModel(params)
 
 
-def rotor_rpm(args: argparse.Namespace) -> float:
-    from ..io.elastodyn_main import read_elastodyn_main
-    return read_elastodyn_main(args.main).rotor_speed_rpm if args.rpm is None else args.rpm
-
-
 def run(args: argparse.Namespace) -> int:
-    from ..models.turbine import select_dofs
+    import numpy as np
 
-    _positive(args.simulate, "--simulate")
-    _positive(args.dt, "--dt")
-    _positive(args.rtol, "--rtol")
-    _positive(args.step, "--step")
-    sweep = parse_sweep(args.campbell) if args.campbell else None
+    from ..io.turbine_elastodyn import deck_conditions
+    from ..models.turbine import select_dofs
+    from ..models.turbine.initial import free_from_switches, initial_state
+
+    check_options(args)
+    switches, conditions = deck_conditions(args.main)
     params, model = build_model(args)
-    free = select_dofs(model.dofs, args.dof)
+    free = select_dofs(model.dofs, args.dof or [], base=free_from_switches(model.dofs, switches))
     if not free.any():
         raise InputError("no free degree of freedom", field="--dof")
-    q0 = initial_state(model.dofs, args.initial)
-    rpm = rotor_rpm(args)
+    if args.rpm is not None:
+        conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
+    notes = sys.stderr if args.json else sys.stdout            # JSON on stdout stays pure
     for note in params.notes:
+        print(f"# {note}", file=notes)
+    rpm = conditions.rotor_speed * 30 / math.pi
+    if args.linearize or args.campbell is not None:
+        azimuth = conditions.azimuth if args.azimuth_deg is None else math.radians(args.azimuth_deg)
+        sweep = np.array([rpm]) if args.linearize else args.campbell
+        return linearize_command(model, free, sweep, azimuth, conditions.nacelle_yaw, args)
+    overrides, coordinates = parse_initial(args.initial or [], model.dofs)
+    q0, u0, notes = initial_state(model, free, conditions.with_(**overrides))
+    for name, value in coordinates.items():
+        q0[model.dofs.index(name)] = value
+    for note in notes:
         print(f"# {note}")
-    if args.linearize:
-        return linearize_command(model, free, rpm)
-    if sweep is not None:
-        return campbell_command(model, free, sweep, args)
-    return simulate_command(model, free, q0, rpm, args)
+    return simulate_command(model, free, q0, u0, args)
 
 
-def linearize_command(model, free, rpm: float) -> int:
-    from ..models.turbine.linearize import linearize
-
-    result = linearize(model, free, rpm)
-    print(f"# full-system modes at {rpm:g} rpm, {int(free.sum())} free DOFs; blades in multi-blade coordinates "
-          f"(azimuth-averaged) when all three are free")
-    print(f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}")
-    for mode in result.modes:
-        print(f"{mode.name:<45} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}")
-    return 0
-
-
-def campbell_command(model, free, sweep: np.ndarray, args: argparse.Namespace) -> int:
+def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace) -> int:
     from ..files import write_atomic
-    from ..models.turbine.campbell import campbell, campbell_text, plot_campbell
+    from ..models.turbine.campbell import campbell, campbell_text
+    from ..plots.turbine_campbell import save_turbine_campbell_plot
+    from ..report import progress_bar
 
-    result = campbell(model, free, sweep)
-    text = campbell_text(result)
+    progress = progress_bar("Campbell sweep", args.quiet or len(sweep) == 1)
+    result = campbell(model, free, sweep, azimuth=azimuth, yaw=yaw, progress=progress)
+    if args.json:
+        data = [linear.as_dict() for linear in result.linearizations]
+        text = json.dumps(data[0] if args.linearize else data, indent=1) + "\n"
+    elif args.linearize:
+        text = modes_table(result.linearizations[0], int(free.sum()))
+    else:
+        text = campbell_text(result)
     if args.output:
         write_atomic(args.output, text)
+        print(f"# written to {Path(args.output)}", file=sys.stderr)
     else:
         sys.stdout.write(text)
     if args.plot:
-        plot_campbell(result, args.plot)
+        save_turbine_campbell_plot(result, args.plot)
     return 0
 
 
-def simulate_command(model, free, q0: np.ndarray, rpm: float, args: argparse.Namespace) -> int:
+def modes_table(linear, free_count: int) -> str:
+    """The modes of one linearization as a text table."""
+    where = (f"parked at azimuth {linear.azimuth_deg:g} deg, blades named in multi-blade coordinates"
+             if linear.rpm == 0 else "multi-blade coordinates averaged over the azimuth" if linear.azimuth_deg is
+             None else f"at azimuth {linear.azimuth_deg:g} deg")
+    lines = [f"# full-system modes at {linear.rpm:g} rpm, {free_count} free DOFs; {where}"]
+    if linear.rigid:
+        lines.append(f"# rigid-body motions (0 Hz, not listed): {', '.join(linear.rigid)}")
+    lines.append(f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation")
+    for mode in linear.modes:
+        top = sorted(mode.participation.items(), key=lambda item: -item[1])[:2]
+        lines.append(f"{mode.name:<45} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
+                     + ", ".join(f"{name} {share:.2f}" for name, share in top))
+    return "\n".join(lines) + "\n"
+
+
+def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse.Namespace) -> int:
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
-    from ..models.turbine.simulate import plot_outputs, simulate, table_text
+    from ..models.turbine.simulate import (
+        DivergenceError,
+        UnstableStep,
+        output_times,
+        plot_outputs,
+        simulate,
+        table_text,
+    )
 
-    u0 = np.zeros(model.n)
-    u0[5] = rpm * np.pi / 30.0
-    if args.method in ("DP54", "DP853") and not hasattr(model.fast_equations(), "integrate"):
-        raise InputError(f"{args.method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
+    method = args.method or "auto"
+    if method in ("DP54", "DP853") and not hasattr(model.fast_equations(), "integrate"):
+        raise InputError(f"{method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
                          field="--method")
-    result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=args.dt, rtol=args.rtol,
-                      atol=args.rtol * 1e-2, method=args.method, step=args.step)
+    rtol = 1e-6 if args.rtol is None else args.rtol
+    dt = 0.05 if args.dt is None else args.dt
+    try:
+        output_times(args.simulate, dt)
+    except ValueError as error:
+        raise InputError(str(error), field="--dt") from None
+    try:
+        with SimulationProgress(args.simulate, args.quiet) as progress:
+            result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
+                              atol=rtol * 1e-2, method=method, step=0.01 if args.step is None else args.step,
+                              progress=progress)
+    except UnstableStep as error:
+        raise InputError(str(error), field="--step") from None
+    except DivergenceError as error:
+        raise InputError(str(error), field="--step" if method == "RK4" else "--rtol") from None
     text = table_text(result)
     if args.output:
         write_atomic(args.output, text)
-        print(f"# {len(result.time)} rows written to {Path(args.output)}; {result.evaluations} right-hand sides")
+        print(f"# {len(result.time)} rows written to {Path(args.output)}; {result.evaluations} right-hand sides",
+              file=sys.stderr)
     else:
         sys.stdout.write(text)
     if args.plot:
         plot_outputs(result, args.plot)
     return 0
+
+
+class SimulationProgress:
+    """A progress bar over simulated time on stderr (rich), or nothing when ``quiet`` or stderr is no terminal."""
+
+    def __init__(self, duration: float, quiet: bool) -> None:
+        self.duration, self.quiet = duration, quiet or not sys.stderr.isatty()
+        self.bar = None
+
+    def __enter__(self):
+        if self.quiet:
+            return None
+        from rich.console import Console
+        from rich.progress import Progress
+        self.bar = Progress(console=Console(stderr=True), transient=True)
+        self.bar.start()
+        task = self.bar.add_task("Simulating", total=self.duration)
+        return lambda t: self.bar.update(task, completed=t)
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.stop()

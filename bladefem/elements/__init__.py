@@ -5,10 +5,18 @@ from .beam import (
            BENDING_FIELDS,
            FIELD_KINDS,
            SectionMotion,
+           basis_functions,
            beam_element,
-           section_motion,
+           interpolated_motion,
+           pair_motions,
 )
-from .rigid_slice import projected_inertia, rotation_second_order, skew
+from .rigid_slice import (
+           gyroscopic_inertia,
+           projected_inertia,
+           rotation_second_order,
+           skew,
+)
 
-__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "beam_element", "projected_inertia",
-           "rotation_second_order", "section_motion", "skew"]
+__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element",
+           "gyroscopic_inertia", "interpolated_motion", "pair_motions", "projected_inertia", "rotation_second_order",
+           "skew"]

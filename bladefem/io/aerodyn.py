@@ -1,10 +1,10 @@
-"""AeroDyn v15 blade file: the planform (span, chord, aerodynamic twist), to draw a blade read from an ElastoDyn
-file as a surface.
+"""AeroDyn v15 blade file: the planform (span, chord, aerodynamic twist), the aerodynamic-centre offsets and the
+airfoil of each node; used to draw a blade read from an ElastoDyn file as a surface and for the BEM.
 
-Only the geometry is read: ``NumBlNds`` and the table ``BlSpn BlCrvAC BlSwpAC BlCrvAng BlTwist BlChord BlAFID``
-(units m, m, m, deg, deg, m, -). ``BlSpn`` runs along the blade from its root, like the span of the section table.
-The chord is drawn at the structural twist of the section table (the mechanics' section frame): the aerodynamic
-twist is kept for reference only.
+``NumBlNds`` and the first seven columns of the table ``BlSpn BlCrvAC BlSwpAC BlCrvAng BlTwist BlChord BlAFID``
+(units m, m, m, deg, deg, m, -) are read; later columns (t_c, buoyancy and added-mass coefficients of recent
+OpenFAST versions) are ignored. ``BlSpn`` runs along the blade from its root, like the span of the section table.
+For drawing, the chord is placed at the structural twist of the section table (the mechanics' section frame).
 """
 
 from __future__ import annotations
@@ -33,6 +33,10 @@ class AeroDynBlade:
     twist : BlTwist, aerodynamic twist, rad
     source : the file
     lines : 1-based line of each node in the file
+    airfoil : BlAFID, 1-based airfoil number of each node (None if not read)
+    curve, sweep : BlCrvAC (out of plane, positive downwind) and BlSwpAC (in plane, positive opposite to the
+        rotation), offsets of the aerodynamic centre from the pitch axis, m
+    curve_angle : BlCrvAng, rad
     """
 
     span: NDArray[np.float64]
@@ -40,6 +44,10 @@ class AeroDynBlade:
     twist: NDArray[np.float64]
     source: str = ""
     lines: tuple[int, ...] = ()
+    airfoil: NDArray[np.int64] | None = None
+    curve: NDArray[np.float64] | None = None
+    sweep: NDArray[np.float64] | None = None
+    curve_angle: NDArray[np.float64] | None = None
 
 
 def read_aerodyn_blade(path: str | os.PathLike) -> AeroDynBlade:
@@ -60,7 +68,12 @@ def read_aerodyn_blade(path: str | os.PathLike) -> AeroDynBlade:
     bad = np.flatnonzero(chord <= 0)
     if bad.size:
         raise text.error(f"must be positive, got {chord[bad[0]]}", lines[bad[0]], "BlChord")
-    return AeroDynBlade(span, chord, np.radians(rows[:, 4]), str(path), lines)
+    airfoil = rows[:, 6]
+    bad = np.flatnonzero((airfoil < 1) | (airfoil != np.round(airfoil)))
+    if bad.size:
+        raise text.error(f"must be a positive whole number, got {airfoil[bad[0]]:g}", lines[bad[0]], "BlAFID")
+    return AeroDynBlade(span, chord, np.radians(rows[:, 4]), str(path), lines, airfoil.astype(np.int64),
+                        rows[:, 1], rows[:, 2], np.radians(rows[:, 3]))
 
 
 def with_planform(blade: Blade, aero: AeroDynBlade) -> Blade:

@@ -195,6 +195,7 @@ def read_bmodes(path: str | os.PathLike) -> BModesInput:
     if beam_type not in (1, 2):
         raise text.error(f"must be 1 (blade) or 2 (tower), got {beam_type}", text.line_of("beam_type"), "beam_type")
     speed_key, mult_key = (_key(text, name) for name in ("rot_rpm", "rpm_mult"))
+    rot_rpm, rpm_mult = text.float(speed_key, non_negative=True), text.float(mult_key, non_negative=True)
     radius, hub_rad = text.float("radius", positive=True), text.float("hub_rad", non_negative=True)
     hub_conn = text.int("hub_conn")
     if hub_conn not in HUB_CONN:
@@ -214,15 +215,15 @@ def read_bmodes(path: str | os.PathLike) -> BModesInput:
     keys = ["beam_type", speed_key, mult_key, "radius", "hub_rad", "precone", "bl_thp", "hub_conn", "modepr",
             "id_mat", "sec_props_file", "nselt", *TIP_KEYS, *MULTIPLIERS]
     key_lines = {key: text.line_of(key) for key in keys if text.has(key)}
-    key_lines.update({"rot_rpm": key_lines[speed_key], "rpm_mult": key_lines[mult_key]})
+    key_lines.update({"rot_rpm": text.line_of(speed_key), "rpm_mult": text.line_of(mult_key)})
     if support is not None:
         key_lines.update(support.key_lines)
     return BModesInput(
         title=(_line(text, 2), _line(text, 3)),
         layout="blade" if support is None else support.layout,
         beam_type=beam_type,
-        rot_rpm=text.float(speed_key, non_negative=True),
-        rpm_mult=text.float(mult_key, non_negative=True),
+        rot_rpm=rot_rpm,
+        rpm_mult=rpm_mult,
         radius=radius,
         hub_rad=hub_rad,
         precone=math.radians(text.float("precone")),

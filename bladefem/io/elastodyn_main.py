@@ -48,6 +48,16 @@ SCALARS = {
     "drivetrain_damper": ("DTTorDmp", "mass"),
     "rotor_speed": ("RotSpeed", "rpm"),
 }
+#: Initial conditions and the azimuth convention, read when present (0 otherwise): attribute -> (key, kind).
+INITIAL = {
+    "oop_deflection": ("OoPDefl", "float"),
+    "ip_deflection": ("IPDefl", "float"),
+    "azimuth": ("Azimuth", "deg"),
+    "nacelle_yaw": ("NacYaw", "deg"),
+    "tower_top_fa": ("TTDspFA", "float"),
+    "tower_top_ss": ("TTDspSS", "float"),
+    "azimuth_blade1_up": ("AzimB1Up", "deg"),
+}
 #: ElastoDyn's own analysis nodes: attribute -> key.
 NODE_COUNTS = {"blade_nodes": "BldNodes", "tower_nodes": "TwrNodes"}
 NACELLE_CM_KEYS = ("NacCMxn", "NacCMyn", "NacCMzn")
@@ -72,6 +82,14 @@ class ElastoDynMain:
     rotor_speed : RotSpeed, rad/s
     blade_nodes, tower_nodes : BldNodes, TwrNodes, ElastoDyn's numbers of analysis nodes (equal elements)
     dofs : DOF switch name -> flag
+    oop_deflection, ip_deflection : OoPDefl, IPDefl, initial blade-tip deflections out of the plane (downwind) and in
+        it (toward the trailing edge), m
+    blade_pitch : BlPitch(1..NumBl), rad
+    azimuth : Azimuth, initial azimuth of blade 1, rad (ElastoDyn's I/O convention, see azimuth_blade1_up)
+    nacelle_yaw : NacYaw, rad
+    tower_top_fa, tower_top_ss : TTDspFA, TTDspSS, initial tower-top displacements (downwind; to the left looking
+        downwind), m
+    azimuth_blade1_up : AzimB1Up, the I/O azimuth value when blade 1 points up, rad
     blade_files : BldFile(1..NumBl), resolved against the main file's folder
     tower_file : TwrFile, resolved likewise
     """
@@ -103,6 +121,14 @@ class ElastoDynMain:
     dofs: dict[str, bool]
     blade_files: tuple[Path, ...]
     tower_file: Path
+    blade_pitch: tuple[float, ...] = ()
+    oop_deflection: float = 0.0
+    ip_deflection: float = 0.0
+    azimuth: float = 0.0
+    nacelle_yaw: float = 0.0
+    tower_top_fa: float = 0.0
+    tower_top_ss: float = 0.0
+    azimuth_blade1_up: float = 0.0
     path: str = field(default="", compare=False)
     key_lines: dict[str, int] = field(default_factory=dict, compare=False)
     text: FastText | None = field(default=None, compare=False, repr=False)
@@ -130,9 +156,15 @@ def read_elastodyn_main(path: str | Path) -> ElastoDynMain:
     if tip_radius <= hub_radius:
         raise text.error(f"must exceed HubRad ({hub_radius}), got {tip_radius}", text.line_of("TipRad"), "TipRad")
     values.update({name: text.int(key, minimum=1) for name, key in NODE_COUNTS.items()})
+    values.update({name: _scalar(text, key, kind) for name, (key, kind) in INITIAL.items() if text.has(key)})
+    pitch_keys = [f"BlPitch({i})" for i in blades]
+    if all(text.has(key) for key in pitch_keys):
+        values["blade_pitch"] = tuple(math.radians(text.float(key)) for key in pitch_keys)
     key_names = ["NumBl", *NODE_COUNTS.values(), *(key for key, _ in SCALARS.values()), *NACELLE_CM_KEYS, "TwrFile"]
     key_names += [f"{key}({i})" for key in ("PreCone", "TipMass", "BldFile") for i in blades]
     key_names += [key for key in DOF_KEYS if text.has(key)]
+    key_names += [key for key, _ in INITIAL.values() if text.has(key)] + [
+        f"BlPitch({i})" for i in blades if text.has(f"BlPitch({i})")]
     return ElastoDynMain(
         num_blades=num_blades,
         precone=tuple(math.radians(text.float(f"PreCone({i})")) for i in blades),
@@ -176,6 +208,13 @@ def elastodyn_main_text(main: ElastoDynMain, path: str | Path | None = None) -> 
             value = getattr(main, f.name)
             value = degrees_exact(value) if kind == "deg" else rpm_exact(value) if kind == "rpm" else value
             values[key] = format_number(value)
+    for name, (key, kind) in INITIAL.items():
+        if key in main.key_lines:
+            value = getattr(main, name)
+            values[key] = format_number(degrees_exact(value) if kind == "deg" else value)
+    for i, pitch in enumerate(main.blade_pitch):
+        if f"BlPitch({i + 1})" in main.key_lines:
+            values[f"BlPitch({i + 1})"] = format_number(degrees_exact(pitch))
     values["NumBl"] = str(main.num_blades)
     values.update({key: str(getattr(main, name)) for name, key in NODE_COUNTS.items()})
     for i in range(main.num_blades):

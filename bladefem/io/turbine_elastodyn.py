@@ -3,6 +3,7 @@ rotor speed) or from the ElastoDyn polynomials, and tower shapes from the tower 
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Literal
 
@@ -31,6 +32,12 @@ from .elastodyn_tower import (
 #: NREL 5MW nacelle-yaw spring and damper (ServoDyn YawSpr, YawDamp; not in the ElastoDyn main file)
 NREL5MW_YAW_STIFFNESS = 9.02832e9
 NREL5MW_YAW_DAMPING = 1.916e7
+#: node count standing for exact span integrals when polynomials are fitted for bladefem's own integration
+FINE_NODES = 400
+#: the damping conventions, as the notes state them
+DAMPING_NOTES = {"elastodyn": "ElastoDyn's convention (each mode's frequency of the beam alone, without the tip or "
+                              "tower-top mass)",
+                 "rna": "modal masses with the blade tip mass and the rotor-nacelle assembly on the tower"}
 #: 'fe': bladefem's FE shapes themselves; 'fe-polynomial': ElastoDyn polynomials fitted to them
 #: (bladefem.modal.elastodyn_fit); 'polynomial': the polynomials of the input files
 ShapeSource = Literal["fe", "fe-polynomial", "polynomial"]
@@ -122,7 +129,8 @@ def fe_tower_beam(params: TurbineParameters, sections: SectionTable, damping_rat
     slopes = np.stack([np.stack([m.shape.flap_slope, -m.shape.edge_slope], axis=-1) for m in chosen])
 
     return sample_beam(hermite_evaluator(nodes, values, slopes), nodes if edges is None else edges,
-                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), damping_ratio, ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
+                       lambda x: sections.at(x, "mass"), tower_stiffness(sections), damping_ratio,
+                       ("fore-aft 1", "fore-aft 2", "side-side 1", "side-side 2"), gauss_points)
 
 
 def blade_properties(blade: Blade):
@@ -160,52 +168,101 @@ def blade_beam_from_polynomials(blade: Blade, coefficients: dict[str, NDArray], 
                        stiffness, damping_ratio, ("flap 1", "edge 1", "flap 2"), gauss_points)
 
 
+def blade_damping(blade_file) -> NDArray:
+    """Damping ratios of the blade modes flap 1, edge 1, flap 2 (fraction of critical)."""
+    return np.array([blade_file.flap_damping_percent[0], blade_file.edge_damping_percent,
+                     blade_file.flap_damping_percent[1]]) / 100.0
+
+
+def deck_pitch(main, pitch: float | None) -> float:
+    """The blade pitch (rad): ``pitch`` if given, else the deck's BlPitch, which must be the same for all
+    blades."""
+    if pitch is not None:
+        return pitch
+    if len(set(main.blade_pitch)) > 1:
+        raise InputError("the blades have different initial pitch angles; bladefem's blades are alike",
+                         file=main.path, line=main.key_lines.get("BlPitch(2)"), field="BlPitch(2)")
+    return main.blade_pitch[0] if main.blade_pitch else 0.0
+
+
 def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "fe", rpm: float | None = None,
-                           pitch: float = 0.0, yaw_stiffness: float = NREL5MW_YAW_STIFFNESS,
+                           pitch: float | None = None, yaw_stiffness: float = NREL5MW_YAW_STIFFNESS,
                            yaw_damping: float = NREL5MW_YAW_DAMPING, gauss_points: int = 2,
                            blade_elements: int | None = None, tower_elements: int | None = None,
-                           tower_shapes: ShapeSource = "polynomial") -> TurbineParameters:
+                           tower_shapes: ShapeSource = "polynomial", elastodyn_compatible: bool = False,
+                           damping: str = "elastodyn") -> TurbineParameters:
     """The turbine of an ElastoDyn main file.
 
     blade_shapes : 'fe' (bladefem's FE modes at ``rpm``, default the file's RotSpeed), 'fe-polynomial' (ElastoDyn
         polynomials fitted to those modes) or 'polynomial' (the blade file's); polynomials are twisted as
         ElastoDyn does
-    pitch : rad; yaw_stiffness, yaw_damping : N m/rad, N m s/rad (ServoDyn inputs; NREL 5MW values by default)
+    pitch : rad (default: the deck's BlPitch); yaw_stiffness, yaw_damping : N m/rad, N m s/rad (ServoDyn inputs;
+        NREL 5MW values by default)
     gauss_points : quadrature points per element for the span nodes of the Kane model
     blade_elements, tower_elements : equal elements for those span nodes (default: the files' stations)
     tower_shapes : 'polynomial' (the tower file's), 'fe' (bladefem's tower FE with this rotor-nacelle assembly
         as a rigid top body, and gravity) or 'fe-polynomial' (ElastoDyn polynomials fitted to those)
+    elastodyn_compatible : ElastoDyn's own discretization (:mod:`bladefem.models.turbine.elastodyn_beams`: the
+        polynomials at the midpoints of BldNodes / TwrNodes elements, its shape integration and stiffness tuners)
+        and damping convention; needs polynomial shapes ('polynomial' or 'fe-polynomial')
+    damping : 'elastodyn' (ElastoDyn's CBF/CBE/CTFA/CTSS: each mode's frequency of the beam alone) or 'rna'
+        (modal masses with the tip mass and, for the tower, the rotor-nacelle assembly)
     """
     from ..modal import modes
     from ..modal.elastodyn_fit import blade_coefficients
     from ..models.tower_fit import tower_coefficients
+    from ..models.turbine.elastodyn_beams import (
+        elastodyn_blade_beam,
+        elastodyn_tower_beam,
+        tuned,
+    )
 
     for name, value in (("blade shapes", blade_shapes), ("tower shapes", tower_shapes)):
         if value not in SHAPE_SOURCES:
             raise InputError(f"{name} must be one of {', '.join(SHAPE_SOURCES)}, got '{value}'",
                              field=name.replace(" ", "_"))
+        if elastodyn_compatible and value == "fe":
+            raise InputError(f"ElastoDyn-compatible models use polynomial {name} ('polynomial' or "
+                             "'fe-polynomial'), not 'fe'", field=name.replace(" ", "_"))
+    if elastodyn_compatible and damping != "elastodyn":
+        raise InputError("ElastoDyn-compatible models use ElastoDyn's damping convention", field="damping")
     main = read_elastodyn_main(main_path)
     blade_file = read_elastodyn_blade(main.blade_files[0])
     if len(set(main.precone)) > 1 or len(set(main.tip_mass)) > 1 or len(set(main.blade_files)) > 1:
         raise InputError("all blades must be alike (same file, precone and tip mass)", file=main.path,
                          field="BldFile")
+    pitch = deck_pitch(main, pitch)
     blade = blade_from_elastodyn(blade_file, tip_radius=main.tip_radius, hub_radius=main.hub_radius,
                                  precone=main.precone[0], pitch=pitch, tip_mass=main.tip_mass[0])
-    damping = np.array([blade_file.flap_damping_percent[0], blade_file.edge_damping_percent,
-                        blade_file.flap_damping_percent[1]]) / 100.0
     speed = main.rotor_speed_rpm if rpm is None else rpm
     edges = None if blade_elements is None else np.linspace(0.0, blade.length, blade_elements + 1)
-    if blade_shapes == "fe":
-        beam = blade_beam_from_modes(blade, modes(blade, rpm=speed, n_modes=6), damping,
+    # fitted polynomials keep the FE frequency with the consumer's integrals: ElastoDyn's nodes, or (bladefem's
+    # exact span integration) a fine node rule
+    fit_nodes = (main.blade_nodes, main.tower_nodes) if elastodyn_compatible else (FINE_NODES, FINE_NODES)
+    coefficients = blade_file.modes if blade_shapes != "fe-polynomial" else \
+        blade_coefficients(blade, speed, nodes=fit_nodes[0]).coefficients
+    if elastodyn_compatible:
+        beam = elastodyn_blade_beam(blade.sections, coefficients, main.blade_nodes, pitch, blade_file.flap_tuners,
+                                    blade_damping(blade_file))
+    elif blade_shapes == "fe":
+        beam = blade_beam_from_modes(blade, modes(blade, rpm=speed, n_modes=6), blade_damping(blade_file),
                                      blade.sections.span if edges is None else edges, gauss_points)
     else:
-        coefficients = blade_file.modes if blade_shapes == "polynomial" else \
-            blade_coefficients(blade, speed).coefficients
-        beam = blade_beam_from_polynomials(blade, coefficients, damping, gauss_points, edges)
+        beam = blade_beam_from_polynomials(blade, coefficients, blade_damping(blade_file), gauss_points, edges)
+        flap = np.ix_([0, 2], [0, 2])
+        stiffness = beam.generalized_stiffness().copy()
+        stiffness[flap] = tuned(stiffness[flap], np.asarray(blade_file.flap_tuners))
+        beam = replace(beam, elastic_stiffness=stiffness)
     tower_file = read_elastodyn_tower(main.tower_file)
     sections = tower_sections(tower_file, main.tower_height - main.tower_base_height)
-    edges = tower_edges(sections, elements=tower_elements)
-    tower = tower_beam(sections, tower_file.modes, tower_damping(tower_file), edges, gauss_points)
+    tower_edges_ = tower_edges(sections, elements=tower_elements)
+    tuners = np.concatenate([tower_file.fa_tuners, tower_file.ss_tuners])
+    if elastodyn_compatible:
+        tower = elastodyn_tower_beam(sections, tower_file.modes, main.tower_nodes, tower_file.fa_tuners,
+                                     tower_file.ss_tuners, tower_damping(tower_file))
+    else:
+        tower = tower_beam(sections, tower_file.modes, tower_damping(tower_file), tower_edges_, gauss_points)
+        tower = replace(tower, elastic_stiffness=tuned(tower.generalized_stiffness(), tuners))
     blade_note = {"fe": f"bladefem FE modes at {speed:.4g} rpm",
                   "fe-polynomial": f"ElastoDyn polynomials fitted to bladefem FE modes at {speed:.4g} rpm, twisted",
                   "polynomial": "ElastoDyn polynomials of the blade file, twisted"}[blade_shapes]
@@ -214,7 +271,11 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
                                    "on top)",
                   "polynomial": "ElastoDyn polynomials of the tower file"}[tower_shapes]
     notes = (f"blade shapes: {blade_note}", f"tower shapes: {tower_note}",
-             f"yaw spring {yaw_stiffness:g} N m/rad and damper {yaw_damping:g} N m s/rad (ServoDyn inputs)")
+             f"yaw spring {yaw_stiffness:g} N m/rad and damper {yaw_damping:g} N m s/rad (ServoDyn inputs)",
+             f"structural damping: {DAMPING_NOTES[damping]}")
+    if elastodyn_compatible:
+        notes += (f"ElastoDyn-compatible: span integrals at the midpoints of BldNodes = {main.blade_nodes} and "
+                  f"TwrNodes = {main.tower_nodes} elements, ElastoDyn's shape integration and tuners",)
     params = TurbineParameters(
         tower=tower, blade=beam, n_blades=main.num_blades, tower_base_height=main.tower_base_height,
         twr2shft=main.twr2shft, overhang=main.overhang, shaft_tilt=main.shaft_tilt, precone=main.precone[0],
@@ -224,10 +285,23 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
         nacelle_cm=np.array(main.nacelle_cm), yaw_bearing_mass=main.yaw_bearing_mass,
         drivetrain_stiffness=main.drivetrain_spring, drivetrain_damping=main.drivetrain_damper,
         yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping, blade_tip_mass=main.tip_mass[0], pitch=pitch,
-        name=Path(main.path).stem, notes=blade.notes + notes)
+        damping=damping, name=Path(main.path).stem, notes=blade.notes + notes)
     if tower_shapes == "fe":
-        params = params.with_(tower=fe_tower_beam(params, sections, tower.damping_ratio, gauss_points, edges))
+        params = params.with_(tower=fe_tower_beam(params, sections, tower.damping_ratio, gauss_points, tower_edges_))
     elif tower_shapes == "fe-polynomial":
-        fitted = tower_coefficients(fe_tower(params, sections)).coefficients
-        params = params.with_(tower=tower_beam(sections, fitted, tower.damping_ratio, edges, gauss_points))
+        fitted = tower_coefficients(fe_tower(params, sections), nodes=fit_nodes[1]).coefficients
+        tower = elastodyn_tower_beam(sections, fitted, main.tower_nodes, tower_file.fa_tuners, tower_file.ss_tuners,
+                                     tower.damping_ratio) if elastodyn_compatible else \
+            tower_beam(sections, fitted, tower.damping_ratio, tower_edges_, gauss_points)
+        params = params.with_(tower=tower)
     return params
+
+
+def deck_conditions(main_path: str | Path):
+    """ElastoDyn's DOF switches (name -> flag) and initial conditions of a main file."""
+    from ..models.turbine.initial import InitialConditions
+    main = read_elastodyn_main(main_path)
+    return main.dofs, InitialConditions(
+        oop_deflection=main.oop_deflection, ip_deflection=main.ip_deflection,
+        azimuth=main.azimuth - main.azimuth_blade1_up, nacelle_yaw=main.nacelle_yaw, rotor_speed=main.rotor_speed,
+        tower_top_fa=main.tower_top_fa, tower_top_ss=main.tower_top_ss)

@@ -15,17 +15,32 @@ subtracted first, so that a flexible foundation does not enter the polynomial.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..sections import Blade, SectionTable
+from .elastodyn_integrals import (  # noqa: F401 - re-exported
+    centrifugal_load,
+    elastodyn_forms,
+    elastodyn_frequency,
+    elastodyn_nodes,
+    gravity_load,
+)
 from .results import ModalResult, Mode
+from .sextic import (  # noqa: F401 - the polynomial's tools, re-exported for the users of this module
+    GAUSS_POINTS,
+    POWERS,
+    PolynomialFit,
+    composite_gauss,
+    fit_sextic,
+    fit_sextic_at_frequency,
+    monomials,
+    polynomial,
+    quality,
+)
 
-POWERS = np.arange(2, 7)
-#: Gauss points per finite element: (sextic - cubic)^2 is a polynomial of degree 12, integrated exactly by 7.
-GAUSS_POINTS = 7
 #: Two frequencies closer than this (relative) form a degenerate pair (a tower with equal FA and SS stiffness).
 DEGENERATE_RTOL = 1e-6
 #: Default warning threshold on |tip displacement| / max |displacement| of the fitted component.
@@ -35,63 +50,6 @@ BLADE_MODES = {"flap1": ("flap", 1), "flap2": ("flap", 2), "edge1": ("edge", 1)}
 TOWER_MODES = {"fa1": ("flap", 1), "fa2": ("flap", 2), "ss1": ("edge", 1), "ss2": ("edge", 2)}
 LABELS = {"flap1": "blade flap 1", "flap2": "blade flap 2", "edge1": "blade edge 1", "fa1": "tower fore-aft 1",
           "fa2": "tower fore-aft 2", "ss1": "tower side-side 1", "ss2": "tower side-side 2"}
-
-
-# -- the polynomial -----------------------------------------------------------------------------------------------
-
-def polynomial(coefficients: NDArray, x: NDArray, derivative: int = 0) -> NDArray:
-    """``d^k/dx^k sum_i c_i x^i`` (i = 2..6) at normalised positions ``x``."""
-    x = np.asarray(x, dtype=float)
-    total = np.zeros_like(x)
-    for c, power in zip(coefficients, POWERS):
-        if power >= derivative:
-            total = total + c * math.perm(int(power), derivative) * x ** (power - derivative)
-    return total
-
-
-def composite_gauss(breakpoints: NDArray, order: int = GAUSS_POINTS) -> tuple[NDArray, NDArray]:
-    """Points and weights of ``order``-point Gauss-Legendre rules on every interval between ``breakpoints``."""
-    xi, wi = np.polynomial.legendre.leggauss(order)
-    a, b = breakpoints[:-1, None], breakpoints[1:, None]
-    points = (a + b) / 2 + (b - a) / 2 * xi[None, :]
-    weights = (b - a) / 2 * wi[None, :]
-    return points.ravel(), weights.ravel()
-
-
-@dataclass(frozen=True)
-class PolynomialFit:
-    """A tip-normalised sextic and how well it reproduces a target shape.
-
-    coefficients : c_2 .. c_6 (sum exactly 1 up to rounding)
-    rms_error : sqrt(int_0^1 (phi - y)^2 dx), y the target normalised by its tip displacement
-    tip_slope_error : phi'(1) - y'(1), slopes per unit normalised span (so relative to tip displacement / length)
-    condition_number : 2-norm condition number of the weighted least-squares design matrix
-    """
-
-    coefficients: NDArray[np.float64]
-    rms_error: float
-    tip_slope_error: float
-    condition_number: float
-
-
-def fit_sextic(points: NDArray, weights: NDArray, target: NDArray, tip_slope: float) -> PolynomialFit:
-    """Least-squares fit of ``sum c_i x^i`` with ``sum c_i = 1`` to ``target`` (tip-normalised) at quadrature
-    ``points`` with ``weights`` over [0, 1]; ``tip_slope`` is the target's slope at x = 1."""
-    basis = points[:, None] ** POWERS[None, :-1] - points[:, None] ** 6      # x^i - x^6, i = 2..5
-    root_w = np.sqrt(weights)
-    design = root_w[:, None] * basis
-    free, *_ = np.linalg.lstsq(design, root_w * (target - points**6), rcond=None)
-    coefficients = np.append(free, 1.0 - free.sum())
-    return quality(coefficients, points, weights, target, tip_slope, float(np.linalg.cond(design)))
-
-
-def quality(coefficients: NDArray, points: NDArray, weights: NDArray, target: NDArray, tip_slope: float,
-            condition_number: float = float("nan")) -> PolynomialFit:
-    """RMS and tip-slope errors of given coefficients against a tip-normalised target."""
-    residual = polynomial(coefficients, points) - target
-    rms = math.sqrt(float(np.sum(weights * residual**2)))
-    slope_error = float(polynomial(coefficients, np.array([1.0]), 1)[0]) - tip_slope
-    return PolynomialFit(np.asarray(coefficients, dtype=float), rms, slope_error, condition_number)
 
 
 # -- from a finite-element mode -----------------------------------------------------------------------------------
@@ -155,7 +113,9 @@ class ModeFit:
     name : 'flap1', 'flap2', 'edge1' (blade) or 'fa1', 'fa2', 'ss1', 'ss2' (tower)
     fit : coefficients and fit quality
     fe_frequency_hz : the finite-element frequency of the mode, Hz
-    elastodyn_frequency_hz : the frequency ElastoDyn derives from the polynomial (its own node integrals), Hz
+    elastodyn_frequency_hz : the frequency of the polynomial mode alone in ElastoDyn's equations of motion (its own
+        node integrals; blades: the shapes twisted as in its equations, so slightly below the untwisted estimate
+        ElastoDyn prints as FreqBF), Hz
     tip_ratio : |tip displacement| / max |displacement| of the fitted component
     warnings : e.g. a tip displacement too small for a tip-normalised polynomial
     """
@@ -172,61 +132,13 @@ class ModeFit:
         return LABELS.get(self.name, self.name)
 
 
-# -- ElastoDyn's own generalized mass and stiffness ---------------------------------------------------------------
-
-def elastodyn_nodes(length: float, count: int) -> tuple[NDArray, float]:
-    """ElastoDyn's analysis nodes: midpoints of ``count`` equal elements over ``length``; (positions m, dr m)."""
-    dr = length / count
-    return (np.arange(count) + 0.5) * dr, dr
-
-
-def centrifugal_load(sections: SectionTable, nodes: NDArray, dr: float, hub_radius: float, tip_mass: float,
-                     omega: float, precone: float) -> NDArray:
-    """Axial load N (N) at each node from the node masses outboard of it, lumped as ElastoDyn lumps them (the
-    outer half of a node's own element sits at r + dr/4), plus the tip mass at the tip."""
-    element = sections.at(nodes, "mass") * dr
-    moments = element * (hub_radius + nodes)
-    outboard = np.cumsum(moments[::-1])[::-1] - moments
-    own = 0.5 * element * (hub_radius + nodes + dr / 4)
-    tip = tip_mass * (hub_radius + sections.length)
-    return omega**2 * math.cos(precone) ** 2 * (outboard + own + tip)
-
-
-def gravity_load(sections: SectionTable, nodes: NDArray, dr: float, top_mass: float, gravity: float) -> NDArray:
-    """Compressive axial load (N) at each tower node: the weight of the node masses above it (the upper half of
-    its own element included) and of the top mass."""
-    element = sections.at(nodes, "mass") * dr
-    above = np.cumsum(element[::-1])[::-1] - element / 2
-    return gravity * (above + top_mass)
-
-
-def elastodyn_frequency(coefficients: NDArray, sections: SectionTable, stiffness: str, nodes: int, *,
-                        tip_mass: float = 0.0, omega: float = 0.0, hub_radius: float = 0.0, precone: float = 0.0,
-                        in_plane: bool = False, gravity: float = 0.0) -> float:
-    """Frequency (Hz) ElastoDyn derives for a polynomial mode from its generalized mass and stiffness:
-    ``M = sum m phi^2 dr + M_tip``, ``K = sum EI phi''^2 dr + sum N phi'^2 dr - sum P phi'^2 dr`` over its own
-    ``nodes``, with ``stiffness`` the EI column ('flap_stiffness' or 'edge_stiffness'), the centrifugal tension
-    ``N`` at rotor speed ``omega`` (rad/s), for an in-plane blade mode the spin softening ``- omega^2 M``, and for
-    a tower the gravity load ``P`` (``gravity`` in m/s^2, 0 for none)."""
-    length = sections.length
-    r, dr = elastodyn_nodes(length, nodes)
-    x = r / length
-    phi, phi1, phi2 = (polynomial(coefficients, x, k) / length**k for k in (0, 1, 2))
-    mass = float(np.sum(sections.at(r, "mass") * phi**2) * dr) + tip_mass
-    elastic = float(np.sum(sections.at(r, stiffness) * phi2**2) * dr)
-    load = centrifugal_load(sections, r, dr, hub_radius, tip_mass, omega, precone)
-    load = load - gravity_load(sections, r, dr, tip_mass, gravity)
-    geometric = float(np.sum(load * phi1**2) * dr)
-    softening = omega**2 * mass if in_plane else 0.0
-    return math.sqrt(max(elastic + geometric - softening, 0.0) / mass) / (2 * math.pi)
-
-
 # -- whole blades and towers --------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class BeamIntegrals:
     """What ElastoDyn's integrals need besides the polynomial: sections, the tip (or top) point mass, kg, the hub
-    radius, m, the precone, rad, the rotor speed, rad/s, and gravity, m/s^2 (towers)."""
+    radius, m, the precone, rad, the rotor speed, rad/s, gravity, m/s^2 (towers), and for blades the pitch, rad
+    (blade shapes are twisted by the structural twist plus pitch, as in ElastoDyn's equations of motion)."""
 
     sections: SectionTable
     tip_mass: float = 0.0
@@ -235,11 +147,20 @@ class BeamIntegrals:
     omega: float = 0.0
     gravity: float = 0.0
     tower: bool = False
+    pitch: float = 0.0
+
+    def forms(self, kind: str, nodes: int) -> tuple[NDArray, NDArray]:
+        """ElastoDyn's stiffness and mass quadratic forms of a ``kind`` ('flap', 'edge') mode (see
+        :func:`elastodyn_forms`)."""
+        return elastodyn_forms(self.sections, f"{kind}_stiffness", nodes, tip_mass=self.tip_mass, omega=self.omega,
+                               hub_radius=self.hub_radius, precone=self.precone,
+                               in_plane=kind == "edge" and not self.tower, gravity=self.gravity,
+                               twist_pitch=None if self.tower else self.pitch)
 
     def frequency(self, coefficients: NDArray, kind: str, nodes: int) -> float:
-        return elastodyn_frequency(coefficients, self.sections, f"{kind}_stiffness", nodes, tip_mass=self.tip_mass,
-                                   omega=self.omega, hub_radius=self.hub_radius, precone=self.precone,
-                                   in_plane=kind == "edge" and not self.tower, gravity=self.gravity)
+        K, M = self.forms(kind, nodes)
+        c = np.asarray(coefficients, dtype=float)
+        return math.sqrt(max(float(c @ K @ c), 0.0) / float(c @ M @ c)) / (2 * math.pi)
 
 
 def _tip_warning(name: str, target: Target, fit: PolynomialFit, min_tip_ratio: float) -> tuple[str, ...]:
@@ -250,10 +171,15 @@ def _tip_warning(name: str, target: Target, fit: PolynomialFit, min_tip_ratio: f
 
 
 def fit_modes(result: ModalResult, beam: BeamIntegrals, wanted: dict[str, tuple[str, int]], nodes: int,
-              shipped: dict[str, NDArray] | None = None,
-              min_tip_ratio: float = MIN_TIP_RATIO) -> tuple[dict[str, ModeFit], dict[str, ModeFit] | None]:
+              shipped: dict[str, NDArray] | None = None, min_tip_ratio: float = MIN_TIP_RATIO,
+              preserve_frequency: bool = True) -> tuple[dict[str, ModeFit], dict[str, ModeFit] | None]:
     """Fit the modes named in ``wanted`` (name -> (kind, number)) of ``result``; also evaluate the ``shipped``
-    coefficients (e.g. those already in a file) against the same modes."""
+    coefficients (e.g. those already in a file) against the same modes.
+
+    ``preserve_frequency``: constrain each fit so that ElastoDyn's own integrals of the polynomial (``beam`` on
+    ``nodes``) give the finite-element frequency (:func:`fit_sextic_at_frequency`; when no sextic reaches it, the
+    displacement fit, with a warning). A warning also when ElastoDyn's frequency of the fit is farther from the
+    finite element's than that of the ``shipped`` coefficients."""
     by_kind = {kind: modes_of_kind(result, kind) for kind in ("flap", "edge")}
     fits, compared = {}, {}
     for name, (kind, number) in wanted.items():
@@ -263,14 +189,60 @@ def fit_modes(result: ModalResult, beam: BeamIntegrals, wanted: dict[str, tuple[
         mode = by_kind[kind][number - 1]
         target = fitting_target(mode, kind, beam.sections.length, remove_base_motion=beam.tower)
         fit = fit_sextic(target.points, target.weights, target.values, target.tip_slope)
+        warnings = _tip_warning(name, target, fit, min_tip_ratio)
+        if preserve_frequency:
+            fit, note = _frequency_preserving(fit, target, beam, kind, nodes, mode.frequency_hz)
+            warnings += (f"{LABELS[name]}: {note}",) if note else ()
         fits[name] = ModeFit(name, fit, mode.frequency_hz, beam.frequency(fit.coefficients, kind, nodes),
-                             target.tip_ratio, _tip_warning(name, target, fit, min_tip_ratio))
+                             target.tip_ratio, warnings)
         if shipped and name in shipped:
             old = quality(np.asarray(shipped[name], dtype=float), target.points, target.weights, target.values,
                           target.tip_slope)
             compared[name] = ModeFit(name, old, mode.frequency_hz, beam.frequency(old.coefficients, kind, nodes),
                                      target.tip_ratio)
+            fits[name] = _compare_with_shipped(fits[name], compared[name])
     return fits, (compared or None)
+
+
+#: a frequency-preserving fit is kept while its RMS error stays within this factor of the displacement fit's (or
+#: below 1e-2 of the tip deflection)
+DISTORTION_FACTOR = 10.0
+#: an unreachable FE frequency is reported when the displacement fit is farther from it than this (relative)
+UNREACHED_TOLERANCE = 1e-3
+
+
+def _frequency_preserving(plain: PolynomialFit, target: Target, beam: BeamIntegrals, kind: str, nodes: int,
+                          frequency_hz: float) -> tuple[PolynomialFit, str | None]:
+    """The fit constrained to the FE frequency in ElastoDyn's integrals, or the displacement fit with a note when
+    no sextic reaches that frequency, or when reaching it would distort the shape (the mode holds what ElastoDyn's
+    integrals cannot see, e.g. a tower top's rotary inertia)."""
+    K, M = beam.forms(kind, nodes)
+    constrained = fit_sextic_at_frequency(target.points, target.weights, target.values, target.tip_slope, K, M,
+                                          2 * math.pi * frequency_hz)
+    reached = beam.frequency(plain.coefficients, kind, nodes)
+    if not constrained.frequency_preserved:
+        if abs(reached / frequency_hz - 1) <= UNREACHED_TOLERANCE:
+            return plain, None
+        return plain, (f"no sextic has the finite-element frequency {frequency_hz:.5g} Hz with ElastoDyn's "
+                       f"integrals on {nodes} nodes; the displacement fit gives {reached:.5g} Hz")
+    if constrained.rms_error > max(DISTORTION_FACTOR * plain.rms_error, 1e-2):
+        return plain, (f"holding the finite-element frequency {frequency_hz:.5g} Hz would distort the shape (RMS "
+                       f"{constrained.rms_error:.2g} against {plain.rms_error:.2g}): ElastoDyn's integrals do not "
+                       f"hold what sets it; the displacement fit ({reached:.5g} Hz) is kept")
+    return constrained, None
+
+
+def _compare_with_shipped(fresh: ModeFit, shipped: ModeFit) -> ModeFit:
+    """The fresh fit with a warning when ElastoDyn's frequency of it is farther from the finite element's than that
+    of the shipped coefficients (by more than 1e-4, relative)."""
+    def frequency_error(fit: ModeFit) -> float:
+        return abs(fit.elastodyn_frequency_hz / fit.fe_frequency_hz - 1)
+
+    if frequency_error(fresh) <= frequency_error(shipped) + 1e-4:
+        return fresh
+    note = (f"{fresh.label}: ElastoDyn's frequency of the fit is {100 * frequency_error(fresh):.2f} % from the "
+            f"finite element's, that of the file's coefficients {100 * frequency_error(shipped):.2f} %",)
+    return replace(fresh, warnings=fresh.warnings + note)
 
 
 @dataclass(frozen=True)
@@ -302,13 +274,14 @@ class ElastoDynCoefficients:
 
 
 def blade_coefficients(blade: Blade, rpm: float, *, nodes: int = 17, n_modes: int = 12, elements: int | None = None,
-                       shipped: dict[str, NDArray] | None = None,
-                       min_tip_ratio: float = MIN_TIP_RATIO) -> ElastoDynCoefficients:
+                       shipped: dict[str, NDArray] | None = None, min_tip_ratio: float = MIN_TIP_RATIO,
+                       preserve_frequency: bool = True) -> ElastoDynCoefficients:
     """ElastoDyn blade coefficients (flap 1, flap 2, edge 1) from the FE modes at ``rpm`` (rpm); ``nodes`` is
-    ElastoDyn's BldNodes; ``shipped`` coefficients, if given, are evaluated against the same modes."""
+    ElastoDyn's BldNodes; ``shipped`` coefficients, if given, are evaluated against the same modes;
+    ``preserve_frequency`` constrains each fit to the FE frequency (see :func:`fit_modes`)."""
     from . import modes
     result = modes(blade, rpm, n_modes, elements)
     beam = BeamIntegrals(blade.sections, blade.tip_mass.mass if blade.tip_mass is not None else 0.0,
-                         blade.hub_radius, blade.precone, rpm * math.pi / 30.0)
-    fits, compared = fit_modes(result, beam, BLADE_MODES, nodes, shipped, min_tip_ratio)
+                         blade.hub_radius, blade.precone, rpm * math.pi / 30.0, pitch=blade.pitch)
+    fits, compared = fit_modes(result, beam, BLADE_MODES, nodes, shipped, min_tip_ratio, preserve_frequency)
     return ElastoDynCoefficients(fits, rpm, nodes, False, compared, result.notes)

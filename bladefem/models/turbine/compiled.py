@@ -2,91 +2,186 @@
 
 The kinematics are the two rules of ``kinematics.py`` written as loops over frames, span nodes and blades; the
 generalized inertia and active forces are summed in the factored form ``Z^T (sum_p m_p G_p^T G_p) Z`` per node
-group. :func:`compiled_equations` returns None when numba is not installed; tests check that both paths give the
-same mass matrix and forcing to rounding.
+group (``compiled_kernels``); adaptive Dormand-Prince integrators with dense output (``compiled_integrators``) and
+the root-moment outputs (``compiled_outputs``) call them. :func:`compiled_equations` returns None when numba is not
+installed; tests check that both paths give the same mass matrix and forcing to rounding.
+
+numba compiles each kernel on its first use and caches it on disk (next to the sources, or in NUMBA_CACHE_DIR);
+only the kernels a run needs are compiled, and a notice goes to stderr while that takes more than a second.
 """
 
 from __future__ import annotations
 
 import os
+import sys
+import threading
+import time
+from collections.abc import Callable
+from contextlib import contextmanager, nullcontext
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 try:
-    from numba import njit
+    import numba
 except ImportError:                                    # pragma: no cover - numba is optional
-    njit = None
+    numba = None
 
-if njit is not None:
-    from .compiled_integrators import dormand_prince, dormand_prince_853
-    from .compiled_kernels import derivative, equations
+#: seconds a first call may take before the compile notice is shown
+NOTICE_AFTER = 1.0
 
 
-def _kernels():
-    """The compiled (equations, derivative, Dormand-Prince 5(4), DOP853) kernels."""
-    return equations, derivative, dormand_prince, dormand_prince_853
+#: kernels called at least once in this process (compiled or loaded from the cache)
+_READY: set[str] = set()
+
+
+def first_call(kernel: str, what: str):
+    """:func:`compile_notice` around the first call of ``kernel`` in this process, nothing afterwards (a timer per
+    call would cost more than a right-hand side)."""
+    if kernel in _READY:
+        return nullcontext()
+    _READY.add(kernel)
+    return compile_notice(what)
+
+
+@contextmanager
+def compile_notice(what: str, stream=None):
+    """Tell the user on stderr when a first kernel call (numba compilation) takes longer than a second, and how
+    long it took."""
+    stream = stream or sys.stderr
+    start = time.perf_counter()
+    shown = threading.Event()
+
+    def notice() -> None:
+        shown.set()
+        print(f"bladefem: compiling the {what} with numba (first run only, cached afterwards; about a minute)...",
+              file=stream, flush=True)
+
+    timer = threading.Timer(NOTICE_AFTER, notice)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        if shown.is_set():
+            print(f"bladefem: compiled in {time.perf_counter() - start:.0f} s", file=stream, flush=True)
+
+
+def model_data(model) -> tuple:
+    """The model's arrays in the order the kernels unpack them."""
+    tower, blade = model.tower_nodes, model.blade_nodes
+    return (model.n,
+            tower.across_flat.reshape(tower.k, tower.P, 3).copy(), tower.shortening_flat.reshape(4, 4, -1).copy(),
+            _axial(tower), model.tower_masses.copy(),
+            blade.across_flat.reshape(blade.k, blade.P, 3).copy(),
+            blade.shortening_flat.reshape(blade.k, blade.k, -1).copy(), _axial(blade),
+            model.blade_masses[0].copy(), model.blade_columns.astype(np.int64), model.blade_rotations.copy(),
+            model.fore_aft_tilt.copy(), model.side_side_tilt.copy(), model.yaw.copy(), model.azimuth.copy(),
+            model.generator_angle.copy(), model.tilt.copy(), model.rigid_offsets.copy(), model.rigid_masses.copy(),
+            np.array(model.inertias, dtype=float), model.gravity.copy(), model.K.copy(), model.C.copy(),
+            float(model.params.tower_base_height))
+
+
+def _axial(nodes) -> NDArray:
+    """Undeflected axial positions of a node group (the offsets' axial component at zero deflection)."""
+    return np.broadcast_to(np.asarray(nodes.axial, dtype=float), (nodes.P,)).copy()
 
 
 def _dop853_tableau() -> tuple[NDArray, ...]:
-    """Hairer's DOP853 coefficients as scipy ships them (A, B, C for the 12 stages; E3, E5 error weights)."""
+    """Hairer's DOP853 coefficients as scipy ships them: A, C for the 16 stages (12 of the step, 3 more for the
+    dense output after the derivative at the step's end), B, error weights E3, E5, interpolator D."""
     from scipy.integrate._ivp import dop853_coefficients as d
-    stages = d.N_STAGES
-    return (np.ascontiguousarray(d.A[:stages, :stages]), np.ascontiguousarray(d.B),
-            np.ascontiguousarray(d.C[:stages]), np.ascontiguousarray(d.E3), np.ascontiguousarray(d.E5))
+    return tuple(np.ascontiguousarray(a, dtype=float) for a in (d.A, d.B, d.C, d.E3, d.E5, d.D))
 
 
-_KERNELS = None
+def _dp54_tableau() -> tuple[NDArray, ...]:
+    """scipy's RK45 (Dormand-Prince 5(4)) coefficients A, B, C, E and its dense-output matrix P."""
+    from scipy.integrate._ivp.rk import RK45
+    return tuple(np.ascontiguousarray(a, dtype=float) for a in (RK45.A, RK45.B, RK45.C, RK45.E, RK45.P))
+
+
+@dataclass
+class Integration:
+    """States at the output times (T, size), right-hand sides used, and, if it stopped early, the status (1: not
+    finite, 2: a coordinate beyond its limit, 3: step size underflow), time and index of the offending state."""
+
+    states: NDArray
+    evaluations: int
+    status: int = 0
+    time: float = 0.0
+    offending: int = -1
 
 
 class CompiledEquations:
-    """The compiled kernels bound to one model's data: ``equations(q, u) -> (M, f)`` and
-    ``derivative(t, x, q0, u0, index)`` for :class:`FreeSystem`."""
+    """The compiled kernels bound to one model's data: ``equations(q, u) -> (M, f)``, ``derivative(t, x, q0, u0,
+    index)`` for :class:`FreeSystem`, :meth:`integrate` and :meth:`root_moments`."""
 
-    def __init__(self, kernels, data) -> None:
-        self.kernels, self.data = kernels, data
+    def __init__(self, data: tuple, hub_radius: float) -> None:
+        self.data, self.hub_radius = data, hub_radius
+        n, blade_across, blades = data[0], data[5], data[10].shape[0]
+        k, nodes = blade_across.shape[:2]
+        self.work = (np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)),
+                     np.zeros((blades, nodes, 3, k)), np.zeros((blades, 6 + k, n)), np.zeros((blades, 3, 3)),
+                     np.zeros(3))
 
     def __call__(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
-        return self.kernels[0](np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float),
-                               *self.data)
+        from .compiled_kernels import equations
+        with first_call("equations", "turbine equations"):
+            return equations(np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.data,
+                             self.work)
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
-        return self.kernels[1](float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, *self.data)
+        from .compiled_kernels import derivative
+        with first_call("derivative", "turbine equations"):
+            return derivative(float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.data, self.work)
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
-                  index: NDArray, order: int = 5) -> tuple[NDArray, int]:
-        """Compiled adaptive Dormand-Prince from times[0], 5(4) (``order=5``) or 8(5,3) (``order=8``); states at
-        ``times`` and the number of right-hand sides."""
+                  index: NDArray, order: int = 8, limit: NDArray | None = None,
+                  progress: Callable[[float], None] | None = None, chunks: int = 100) -> Integration:
+        """Adaptive Dormand-Prince 8(5,3) (``order=8``) or 5(4) (``order=5``) from ``times[0]`` to ``times[-1]``
+        with dense output at ``times``, in ``chunks`` pieces (``progress(t)`` after each); stops at the first
+        state beyond ``limit`` (per state, default none) or not finite."""
+        from .compiled_integrators import dop853_chunk, dp54_chunk
+        kernel, tableau = (dop853_chunk, _dop853_tableau()) if order == 8 else (dp54_chunk, _dp54_tableau())
         times = np.ascontiguousarray(times, dtype=float)
-        x0 = np.ascontiguousarray(x0, dtype=float)
-        if order == 8:
-            return self.kernels[3](times, x0, float(rtol), float(atol), *_dop853_tableau(), q0, u0, index,
-                                   *self.data)
-        return self.kernels[2](times, x0, float(rtol), float(atol), q0, u0, index, *self.data)
+        x = np.ascontiguousarray(x0, dtype=float)
+        limit = np.full(len(x), np.inf) if limit is None else np.ascontiguousarray(limit, dtype=float)
+        out = np.full((len(times), len(x)), np.nan)
+        out[0] = x
+        index = np.ascontiguousarray(index, dtype=np.int64)
+        q0, u0 = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float)
+        f = self.derivative(times[0], x, q0, u0, index)
+        t, h, next_out, evaluations = float(times[0]), min(1e-3, max(times[-1] - times[0], 1e-12)), 1, 1
+        ends = np.linspace(times[0], times[-1], chunks + 1)[1:]
+        ends[-1] = times[-1]
+        for end in ends:
+            with first_call(f"integrator {order}", "turbine integrator"):
+                t, x, f, h, next_out, count, status, bad = kernel(t, x, f, h, float(end), times, out, next_out,
+                                                                  float(rtol), float(atol), limit, tableau, q0, u0,
+                                                                  index, self.data, self.work)
+            evaluations += count
+            if status:
+                return Integration(out, evaluations, int(status), float(t), int(bad))
+            if progress is not None:
+                progress(t)
+        return Integration(out, evaluations)
+
+    def root_moments(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
+                     blade: int = 0) -> NDArray:
+        """Out-of-plane and in-plane root bending moments (T, 2), N m, of ``blade`` at every output row."""
+        from .compiled_outputs import root_moments
+        with first_call("outputs", "turbine outputs"):
+            return root_moments(np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(states, dtype=float),
+                                np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
+                                np.ascontiguousarray(index, dtype=np.int64), self.data, float(self.hub_radius),
+                                blade)
 
 
 def compiled_equations(model) -> CompiledEquations | None:
     """The compiled kernels on ``model``'s data; None without numba or with the environment variable
     BLADEFEM_NO_NUMBA set."""
-    global _KERNELS
-    if njit is None or os.environ.get("BLADEFEM_NO_NUMBA"):
+    if numba is None or os.environ.get("BLADEFEM_NO_NUMBA"):
         return None
-    if _KERNELS is None:
-        _KERNELS = _kernels()
-    tower, blade = model.tower_nodes, model.blade_nodes
-    data = (model.n,
-            tower.across_flat.reshape(tower.k, tower.P, 3).copy(), tower.shortening_flat.reshape(4, 4, -1).copy(),
-            _axial_array(tower), model.tower_masses.copy(),
-            blade.across_flat.reshape(blade.k, blade.P, 3).copy(),
-            blade.shortening_flat.reshape(blade.k, blade.k, -1).copy(), _axial_array(blade),
-            model.blade_masses[0].copy(), model.blade_columns.astype(np.int64), model.blade_rotations.copy(),
-            model.fore_aft_tilt.copy(), model.side_side_tilt.copy(), model.yaw.copy(), model.azimuth.copy(),
-            model.generator_angle.copy(), model.tilt.copy(), model.rigid_offsets.copy(), model.rigid_masses.copy(),
-            np.array(model.inertias, dtype=float), model.gravity.copy(), model.K.copy(),
-            model.C.copy())
-    return CompiledEquations(_KERNELS, data)
-
-
-def _axial_array(nodes) -> NDArray:
-    """Undeflected axial positions of a node group (the offsets' axial component at zero deflection)."""
-    return np.broadcast_to(np.asarray(nodes.axial, dtype=float), (nodes.P,)).copy()
+    return CompiledEquations(model_data(model), model.params.hub_radius)

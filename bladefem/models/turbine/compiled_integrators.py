@@ -1,4 +1,13 @@
-"""Compiled adaptive Dormand-Prince integrators, 5(4) and 8(5,3), over the compiled right-hand side."""
+"""Compiled adaptive Dormand-Prince integrators, 8(5,3) and 5(4), with dense output, over the compiled right-hand
+side.
+
+Each call advances one chunk of time, ``t -> t_end``; the steps are chosen by the error control alone and the
+states at the output times inside a step come from the method's continuous extension (DOP853: Hairer's 7th-order
+interpolant, three extra right-hand sides on the steps that hold an output time; DP54: the free 4th-order one), so
+the output interval does not constrain the step. After each accepted step the state is checked: non-finite values
+or a coordinate beyond its ``limit`` stop the chunk with a status (1: not finite, 2: beyond the limit, 3: step
+size underflow) and the index of the offending state.
+"""
 
 from __future__ import annotations
 
@@ -10,103 +19,149 @@ except ImportError:                                    # pragma: no cover - numb
     njit = None
 
 if njit is not None:
-    from .compiled_kernels import derivative
+    from .compiled_kernels import derivative, store_row
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
-    # Dormand-Prince 5(4) tableau
-    _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
-    _A = np.array([[0, 0, 0, 0, 0, 0],
-                   [1 / 5, 0, 0, 0, 0, 0],
-                   [3 / 40, 9 / 40, 0, 0, 0, 0],
-                   [44 / 45, -56 / 15, 32 / 9, 0, 0, 0],
-                   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0, 0],
-                   [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0],
-                   [35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84]])
-    _B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0])
-    _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+    @njit(cache=True)
+    def check_state(x, limit):
+        """-1 if every |x_i| <= limit_i and finite, else the first offending index (status via sign of the
+        value: not finite or beyond the limit)."""
+        for i in range(x.shape[0]):
+            if not np.isfinite(x[i]) or abs(x[i]) > limit[i]:
+                return i
+        return -1
 
     @njit(cache=True)
-    def dormand_prince(times, x0, rtol, atol, q0, u0, index, *data):
-        """Adaptive Dormand-Prince 5(4) with local extrapolation (scipy's RK45 scheme), steps landing on the
-        output times; returns the states at ``times`` and the number of right-hand sides."""
-        size = x0.shape[0]
-        out = np.empty((times.shape[0], size))
-        out[0] = x0
-        x = x0.copy()
-        t = times[0]
-        k = np.empty((7, size))
-        k[0] = derivative(t, x, q0, u0, index, *data)
-        count = 1
-        h = min(1e-3, times[-1] - t) if times.shape[0] > 1 else 0.0
-        for n in range(1, times.shape[0]):
-            target = times[n]
-            while t < target - 1e-12 * max(1.0, abs(target)):
-                h = min(h, target - t)
-                for i in range(1, 7):
-                    stage = x.copy()
-                    for j in range(i):
-                        if _A[i, j] != 0.0:
-                            stage += h * _A[i, j] * k[j]
-                    k[i] = derivative(t + _C[i] * h, stage, q0, u0, index, *data)
-                    count += 1
-                new = x + h * (_B @ k)
-                error = h * (_E @ k)
-                scale = atol + rtol * np.maximum(np.abs(x), np.abs(new))
-                norm = np.sqrt(np.mean((error / scale) ** 2))
-                if norm <= 1.0:
-                    t += h
-                    x = new
-                    k[0] = k[6]                          # first same as last
-                    factor = 5.0 if norm == 0.0 else min(5.0, 0.9 * norm ** -0.2)
-                else:
-                    factor = max(0.2, 0.9 * norm ** -0.2)
-                h *= factor
-            out[n] = x
-        return out, count
+    def combination(x, h, weights, K, stages):
+        """x + h sum_j weights_j K_j over the first ``stages`` rows of K."""
+        out = x.copy()
+        for j in range(stages):
+            w = weights[j]
+            if w != 0.0:
+                for i in range(x.shape[0]):
+                    out[i] += h * w * K[j, i]
+        return out
 
     @njit(cache=True)
-    def dormand_prince_853(times, x0, rtol, atol, A, B, C, E3, E5, q0, u0, index, *data):
-        """Adaptive 8th-order Dormand-Prince with the 5th/3rd-order error estimate (Hairer's DOP853, scipy's
-        scheme and tableau), steps landing on the output times; states at ``times`` and right-hand sides."""
-        size = x0.shape[0]
+    def dop853_chunk(t, x, f0, h, t_end, times, out, next_out, rtol, atol, limit, tableau, q0, u0, index, data,
+                     work):
+        """DOP853 (Hairer's 8(5,3) with scipy's tableau ``(A, B, C, E3, E5, D)``) from t to t_end with the first
+        step h; fills ``out[k]`` for the output ``times[k] <= t_end``, k from ``next_out``. Returns
+        ``(t, x, f, h, next_out, evaluations, status, offending index)``."""
+        A, B, C, E3, E5, D = tableau
+        size = x.shape[0]
         stages = B.shape[0]
-        out = np.empty((times.shape[0], size))
-        out[0] = x0
-        x = x0.copy()
-        t = times[0]
-        k = np.zeros((stages + 1, size))
-        k[0] = derivative(t, x, q0, u0, index, *data)
-        count = 1
-        h = min(1e-3, times[-1] - t) if times.shape[0] > 1 else 0.0
-        for n in range(1, times.shape[0]):
-            target = times[n]
-            while t < target - 1e-12 * max(1.0, abs(target)):
-                h = min(h, target - t)
-                for i in range(1, stages):
-                    stage = x.copy()
-                    for j in range(i):
-                        if A[i, j] != 0.0:
-                            stage += h * A[i, j] * k[j]
-                    k[i] = derivative(t + C[i] * h, stage, q0, u0, index, *data)
-                    count += 1
-                new = x.copy()
-                for j in range(stages):
-                    new += h * B[j] * k[j]
-                k[stages] = derivative(t + h, new, q0, u0, index, *data)
-                count += 1
-                scale = atol + rtol * np.maximum(np.abs(x), np.abs(new))
-                err5 = (E5 @ k) / scale
-                err3 = (E3 @ k) / scale
-                e5, e3 = np.sum(err5**2), np.sum(err3**2)
-                norm = 0.0 if e5 == 0.0 and e3 == 0.0 else h * e5 / np.sqrt((e5 + 0.01 * e3) * size)
-                if norm <= 1.0:
-                    t += h
-                    x = new
-                    k[0] = k[stages]
-                    factor = 10.0 if norm == 0.0 else min(10.0, 0.9 * norm ** -0.125)
-                else:
-                    factor = max(0.2, 0.9 * norm ** -0.125)
-                h *= factor
-            out[n] = x
-        return out, count
+        K = np.zeros((A.shape[0], size))
+        store_row(K, 0, f0)
+        count = 0
+        while t < t_end:
+            h = min(h, t_end - t)
+            if h <= 1e-14 * max(1.0, abs(t)):
+                return t, x, K[0], h, next_out, count, 3, -1
+            for s in range(1, stages):
+                stage = combination(x, h, A[s], K, s)
+                store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
+            new = combination(x, h, B, K, stages)
+            store_row(K, stages, derivative(t + h, new, q0, u0, index, data, work))
+            count += stages
+            e5, e3 = 0.0, 0.0
+            for i in range(size):
+                scale = atol + rtol * max(abs(x[i]), abs(new[i]))
+                a5, a3 = 0.0, 0.0
+                for j in range(stages + 1):
+                    a5 += E5[j] * K[j, i]
+                    a3 += E3[j] * K[j, i]
+                e5 += (a5 / scale) ** 2
+                e3 += (a3 / scale) ** 2
+            norm = 0.0 if e5 == 0.0 and e3 == 0.0 else h * e5 / np.sqrt((e5 + 0.01 * e3) * size)
+            if norm <= 1.0:
+                t_new = t_end if t + h >= t_end else t + h
+                if next_out < times.shape[0] and times[next_out] <= t_new:
+                    for s in range(stages + 1, A.shape[0]):
+                        stage = combination(x, h, A[s], K, s)
+                        store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
+                        count += 1
+                    F = np.zeros((7, size))
+                    for i in range(size):
+                        delta = new[i] - x[i]
+                        F[0, i] = delta
+                        F[1, i] = h * K[0, i] - delta
+                        F[2, i] = 2.0 * delta - h * (K[stages, i] + K[0, i])
+                        for r in range(4):
+                            value = 0.0
+                            for j in range(A.shape[0]):
+                                value += D[r, j] * K[j, i]
+                            F[3 + r, i] = h * value
+                    while next_out < times.shape[0] and times[next_out] <= t_new:
+                        theta = (times[next_out] - t) / h
+                        for i in range(size):
+                            y = 0.0
+                            for r in range(7):
+                                y = (y + F[6 - r, i]) * (theta if r % 2 == 0 else 1.0 - theta)
+                            out[next_out, i] = x[i] + y
+                        next_out += 1
+                t = t_new
+                x = new
+                store_row(K, 0, K[stages])
+                bad = check_state(x, limit)
+                if bad >= 0:
+                    return t, x, K[0], h, next_out, count, 1 if not np.isfinite(x[bad]) else 2, bad
+                factor = 10.0 if norm == 0.0 else min(10.0, 0.9 * norm ** -0.125)
+            else:
+                factor = max(0.2, 0.9 * norm ** -0.125)
+            h *= factor
+        return t, x, K[0], h, next_out, count, 0, -1
+
+    @njit(cache=True)
+    def dp54_chunk(t, x, f0, h, t_end, times, out, next_out, rtol, atol, limit, tableau, q0, u0, index, data,
+                   work):
+        """Dormand-Prince 5(4) (scipy's RK45 scheme, tableau ``(A, B, C, E, P)``), as :func:`dop853_chunk`."""
+        A, B, C, E, P = tableau
+        size = x.shape[0]
+        K = np.zeros((7, size))
+        store_row(K, 0, f0)
+        count = 0
+        while t < t_end:
+            h = min(h, t_end - t)
+            if h <= 1e-14 * max(1.0, abs(t)):
+                return t, x, K[0], h, next_out, count, 3, -1
+            for s in range(1, 6):
+                stage = combination(x, h, A[s], K, s)
+                store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
+            new = combination(x, h, B, K, 6)
+            store_row(K, 6, derivative(t + h, new, q0, u0, index, data, work))
+            count += 6
+            total = 0.0
+            for i in range(size):
+                error = 0.0
+                for j in range(7):
+                    error += E[j] * K[j, i]
+                total += (h * error / (atol + rtol * max(abs(x[i]), abs(new[i])))) ** 2
+            norm = np.sqrt(total / size)
+            if norm <= 1.0:
+                t_new = t_end if t + h >= t_end else t + h
+                while next_out < times.shape[0] and times[next_out] <= t_new:
+                    theta = (times[next_out] - t) / h
+                    y = x.copy()
+                    for i in range(size):
+                        power = 1.0
+                        for r in range(4):
+                            power *= theta
+                            value = 0.0
+                            for j in range(7):
+                                value += K[j, i] * P[j, r]
+                            y[i] += h * value * power
+                    store_row(out, next_out, y)
+                    next_out += 1
+                t = t_new
+                x = new
+                store_row(K, 0, K[6])
+                bad = check_state(x, limit)
+                if bad >= 0:
+                    return t, x, K[0], h, next_out, count, 1 if not np.isfinite(x[bad]) else 2, bad
+                factor = 5.0 if norm == 0.0 else min(5.0, 0.9 * norm ** -0.2)
+            else:
+                factor = max(0.2, 0.9 * norm ** -0.2)
+            h *= factor
+        return t, x, K[0], h, next_out, count, 0, -1

@@ -1,5 +1,9 @@
-"""numba kernels of the Kane equations: small linear algebra, the chain of frames, span-node sums, and the
-right-hand side ``derivative`` for time integration (see :mod:`bladefem.models.turbine.compiled`)."""
+"""numba kernels of the Kane equations (see :mod:`bladefem.models.turbine.compiled`).
+
+Everything is written as loops over 3-vectors and small matrices (no BLAS, no LAPACK: that keeps the compile time
+down and the small products fast). The model's arrays travel as one tuple ``data`` (:func:`compiled.model_data`);
+``work`` holds, per blade node, what external loads need (see :func:`equations`).
+"""
 
 from __future__ import annotations
 
@@ -14,91 +18,82 @@ except ImportError:                                    # pragma: no cover - numb
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
     @njit(cache=True)
-    def cross(a, b):
-        return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+    def solve_spd(A, b):
+        """x with A x = b for a symmetric positive definite A (Cholesky by loops); A and b are left intact."""
+        n = b.shape[0]
+        L = np.zeros((n, n))
+        for j in range(n):
+            s = A[j, j]
+            for k in range(j):
+                s -= L[j, k] * L[j, k]
+            if not s > 0.0:
+                return np.full(n, np.nan)
+            L[j, j] = np.sqrt(s)
+            for i in range(j + 1, n):
+                s = A[i, j]
+                for k in range(j):
+                    s -= L[i, k] * L[j, k]
+                L[i, j] = s / L[j, j]
+        x = b.copy()
+        for i in range(n):
+            for k in range(i):
+                x[i] -= L[i, k] * x[k]
+            x[i] /= L[i, i]
+        for i in range(n - 1, -1, -1):
+            for k in range(i + 1, n):
+                x[i] -= L[k, i] * x[k]
+            x[i] /= L[i, i]
+        return x
 
     @njit(cache=True)
-    def mm(A, B):
-        """A @ B by loops (small matrices: no BLAS call)."""
-        out = np.zeros((A.shape[0], B.shape[1]))
-        for i in range(A.shape[0]):
-            for k in range(A.shape[1]):
-                a = A[i, k]
-                if a != 0.0:
-                    for j in range(B.shape[1]):
-                        out[i, j] += a * B[k, j]
-        return out
+    def store_row(matrix, row, vector):
+        """matrix[row] = vector by a loop (slice assignment makes numba type its error messages: slow to compile)."""
+        for i in range(vector.shape[0]):
+            matrix[row, i] = vector[i]
 
     @njit(cache=True)
-    def mv(A, x):
-        """A @ x by loops."""
-        out = np.zeros(A.shape[0])
-        for i in range(A.shape[0]):
-            for k in range(A.shape[1]):
-                out[i] += A[i, k] * x[k]
-        return out
+    def store_block(matrix, row, column, block):
+        """matrix[row:row + m, column:column + k] = block (m x k) by loops."""
+        for i in range(block.shape[0]):
+            for j in range(block.shape[1]):
+                matrix[row + i, column + j] = block[i, j]
 
     @njit(cache=True)
-    def tmv(A, x):
-        """A^T @ x by loops."""
-        out = np.zeros(A.shape[1])
-        for k in range(A.shape[0]):
-            xk = x[k]
-            if xk != 0.0:
-                for i in range(A.shape[1]):
-                    out[i] += A[k, i] * xk
-        return out
-
-    @njit(cache=True)
-    def add_gram(M, J, m):
-        """M += m J^T J by loops."""
-        for i in range(J.shape[1]):
-            for j in range(J.shape[1]):
-                value = 0.0
-                for r in range(J.shape[0]):
-                    value += J[r, i] * J[r, j]
-                M[i, j] += m * value
-
-    @njit(cache=True)
-    def axis_rotation(axis, angle):
+    def rotation_step(R, axis, angle):
+        """R @ (rotation by ``angle`` about the frame's own axis ``axis``)."""
         c, s = np.cos(angle), np.sin(angle)
-        R = np.eye(3)
         i, j = (1, 2) if axis == 0 else ((2, 0) if axis == 1 else (0, 1))
-        R[i, i] = c
-        R[j, j] = c
-        R[j, i] = s
-        R[i, j] = -s
-        return R
+        out = R.copy()
+        for r in range(3):
+            out[r, i] = c * R[r, i] + s * R[r, j]
+            out[r, j] = -s * R[r, i] + c * R[r, j]
+        return out
 
     @njit(cache=True)
     def rotate(R, w, W, al, axis, coefficients, q, u):
-        """Frame turned about its own axis by coefficients . q (see kinematics.rotate)."""
+        """Frame turned about its own axis by ``coefficients . q`` (see kinematics.rotate): R, omega, partial
+        angular velocities W (3, n) and bias angular acceleration."""
         angle = 0.0
         rate = 0.0
         for i in range(q.shape[0]):
             angle += coefficients[i] * q[i]
             rate += coefficients[i] * u[i]
-        k = R[:, axis].copy()
-        al = al + cross(w, k) * rate
-        w = w + k * rate
-        W = W.copy()
+        k0, k1, k2 = R[0, axis], R[1, axis], R[2, axis]
+        al2 = al.copy()
+        al2[0] += (w[1] * k2 - w[2] * k1) * rate
+        al2[1] += (w[2] * k0 - w[0] * k2) * rate
+        al2[2] += (w[0] * k1 - w[1] * k0) * rate
+        w2 = w.copy()
+        w2[0] += k0 * rate
+        w2[1] += k1 * rate
+        w2[2] += k2 * rate
+        W2 = W.copy()
         for i in range(coefficients.shape[0]):
             if coefficients[i] != 0.0:
-                for r in range(3):
-                    W[r, i] += k[r] * coefficients[i]
-        return mm(R, axis_rotation(axis, angle)), w, W, al
-
-    @njit(cache=True)
-    def add_group(M, f, A, F, Z):
-        """M += Z^T A Z, f += Z^T F."""
-        AZ = mm(A, Z)
-        for i in range(Z.shape[1]):
-            for j in range(Z.shape[1]):
-                value = 0.0
-                for r in range(Z.shape[0]):
-                    value += Z[r, i] * AZ[r, j]
-                M[i, j] += value
-        f += tmv(Z, F)
+                W2[0, i] += k0 * coefficients[i]
+                W2[1, i] += k1 * coefficients[i]
+                W2[2, i] += k2 * coefficients[i]
+        return rotation_step(R, axis, angle), w2, W2, al2
 
     @njit(cache=True)
     def accumulate_node(A, F, G, m, load):
@@ -112,6 +107,51 @@ if njit is not None:                                   # module-level kernels: n
                 A[i, j] += value
                 if j != i:
                     A[j, i] += value
+
+    @njit(cache=True)
+    def add_group(M, f, A, F, Z):
+        """M += Z^T A Z, f += Z^T F (Z is c x n)."""
+        c, n = Z.shape
+        AZ = np.zeros((c, n))
+        for i in range(c):
+            for k in range(c):
+                a = A[i, k]
+                if a != 0.0:
+                    for j in range(n):
+                        AZ[i, j] += a * Z[k, j]
+        for i in range(n):
+            for r in range(c):
+                z = Z[r, i]
+                if z != 0.0:
+                    f[i] += z * F[r]
+                    for j in range(n):
+                        M[i, j] += z * AZ[r, j]
+
+    @njit(cache=True)
+    def add_rigid_point(M, f, J, m, load):
+        """M += m J^T J, f += J^T load for a point with partial velocities J (3 x n)."""
+        n = J.shape[1]
+        for i in range(n):
+            f[i] += J[0, i] * load[0] + J[1, i] * load[1] + J[2, i] * load[2]
+            for j in range(n):
+                M[i, j] += m * (J[0, i] * J[0, j] + J[1, i] * J[1, j] + J[2, i] * J[2, j])
+
+    @njit(cache=True)
+    def add_rotor_body(M, f, R, w, W, al, axis, inertia):
+        """A body with one principal inertia about its axis k: M += I (W^T k)(W^T k)^T,
+        f -= I [(k . alpha) W^T k + (k . omega) W^T (omega x k)]."""
+        k0, k1, k2 = R[0, axis], R[1, axis], R[2, axis]
+        c0, c1, c2 = w[1] * k2 - w[2] * k1, w[2] * k0 - w[0] * k2, w[0] * k1 - w[1] * k0
+        spin = k0 * w[0] + k1 * w[1] + k2 * w[2]
+        acceleration = k0 * al[0] + k1 * al[1] + k2 * al[2]
+        n = W.shape[1]
+        partial = np.empty(n)
+        for i in range(n):
+            partial[i] = W[0, i] * k0 + W[1, i] * k1 + W[2, i] * k2
+        for i in range(n):
+            f[i] -= inertia * (acceleration * partial[i] + spin * (W[0, i] * c0 + W[1, i] * c1 + W[2, i] * c2))
+            for j in range(n):
+                M[i, j] += inertia * partial[i] * partial[j]
 
     @njit(cache=True)
     def beam_node(across, shortening, axial, p, q, u, order, D, d, rate, bias):
@@ -143,123 +183,216 @@ if njit is not None:                                   # module-level kernels: n
         bias[order] = bias_axial
 
     @njit(cache=True)
-    def equations(q, u, n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns,
-                  b_rotations, fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass,
-                  inertias, gravity, K, C):
+    def work_arrays(data):
+        """Per blade node: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3), R D (B, P, 3,
+        k); per blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); the apex position (3,);
+        all earth components."""
+        n, b_across, b_rotations = data[0], data[5], data[10]
+        B, k, P = b_rotations.shape[0], b_across.shape[0], b_across.shape[1]
+        return (np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3, k)),
+                np.zeros((B, 6 + k, n)), np.zeros((B, 3, 3)), np.zeros(3))
+
+    @njit(cache=True)
+    def equations(q, u, data, work):
+        """Mass matrix M (n, n) and forcing f (n,) of ``M du/dt = f`` at (q, u); fills ``work`` with the blade
+        nodes' motion (:func:`work_arrays`: node positions are ``apex + rho``), so that nodal forces F (B, P, 3)
+        add ``Z_b^T sum_p G_p^T F_p`` (:func:`nodal_forces`)."""
+        (n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns, b_rotations,
+         fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
+         K, C, base_height) = data
+        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w = work
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
         qt, ut = q[:4], u[:4]
-        Pt = t_axial.shape[0]
-        top_J = np.zeros((3, n))
-        top_a = np.zeros(3)
         A = np.zeros((4, 4))
         F = np.zeros(4)
         D = np.zeros((3, 4))
         d, rate, bias, load = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
-        for p in range(Pt):
+        for p in range(t_axial.shape[0]):
             beam_node(t_across, t_short, t_axial, p, qt, ut, 2, D, d, rate, bias)
             m = t_mass[p]
             for r in range(3):
                 load[r] = m * (gravity[r] - bias[r])
             accumulate_node(A, F, D, m, load)
-        top_J[:, :4] = D
+        top_J = np.zeros((3, n))
+        store_block(top_J, 0, 0, D)
         top_a = bias.copy()
-        M[:4, :4] += A
-        f[:4] += F
+        top_r = d.copy()                     # the last tower node is the tower top
+        top_r[2] += base_height
+        for i in range(4):
+            f[i] += F[i]
+            for j in range(4):
+                M[i, j] += A[i, j]
         # frames: tower top (fore-aft then side-side tilt), nacelle (yaw), shaft (tilt), rotor, generator
-        R, w, W, al = np.eye(3), np.zeros(3), np.zeros((3, n)), np.zeros(3)
+        R, w, W, al = np.zeros((3, 3)), np.zeros(3), np.zeros((3, n)), np.zeros(3)
+        R[0, 0] = R[1, 1] = R[2, 2] = 1.0
         R, w, W, al = rotate(R, w, W, al, 1, fore_aft, q, u)
         R, w, W, al = rotate(R, w, W, al, 0, side_side, q, u)
         RN, wN, WN, alN = rotate(R, w, W, al, 2, yaw, q, u)
-        RS = mm(RN, tilt)
+        RS = np.zeros((3, 3))
+        for r in range(3):
+            for c in range(3):
+                RS[r, c] = RN[r, 0] * tilt[0, c] + RN[r, 1] * tilt[1, c] + RN[r, 2] * tilt[2, c]
         RL, wL, WL, alL = rotate(RS, wN, WN, alN, 0, azimuth, q, u)
         RG, wG, WG, alG = rotate(RS, wN, WN, alN, 0, generator, q, u)
         # rigid points in the nacelle frame: nacelle centre of mass, apex, hub centre of mass
         apex_J = np.zeros((3, n))
         apex_a = np.zeros(3)
+        rho, wr, a = np.zeros(3), np.zeros(3), np.zeros(3)
         for i in range(3):
-            rho = mv(RN, rigid_offsets[i])
+            for r in range(3):
+                rho[r] = RN[r, 0] * rigid_offsets[i, 0] + RN[r, 1] * rigid_offsets[i, 1] \
+                    + RN[r, 2] * rigid_offsets[i, 2]
             J = top_J.copy()
             for c in range(n):
-                J[:, c] += cross(WN[:, c], rho)
-            a = top_a + cross(alN, rho) + cross(wN, cross(wN, rho))
+                J[0, c] += WN[1, c] * rho[2] - WN[2, c] * rho[1]
+                J[1, c] += WN[2, c] * rho[0] - WN[0, c] * rho[2]
+                J[2, c] += WN[0, c] * rho[1] - WN[1, c] * rho[0]
+            wr[0] = wN[1] * rho[2] - wN[2] * rho[1]
+            wr[1] = wN[2] * rho[0] - wN[0] * rho[2]
+            wr[2] = wN[0] * rho[1] - wN[1] * rho[0]
+            a[0] = top_a[0] + alN[1] * rho[2] - alN[2] * rho[1] + wN[1] * wr[2] - wN[2] * wr[1]
+            a[1] = top_a[1] + alN[2] * rho[0] - alN[0] * rho[2] + wN[2] * wr[0] - wN[0] * wr[2]
+            a[2] = top_a[2] + alN[0] * rho[1] - alN[1] * rho[0] + wN[0] * wr[1] - wN[1] * wr[0]
             m = rigid_mass[i]
-            add_gram(M, J, m)
-            f += tmv(J, m * (gravity - a))
+            for r in range(3):
+                load[r] = m * (gravity[r] - a[r])
+            add_rigid_point(M, f, J, m, load)
             if i == 1:
-                apex_J, apex_a = J, a
+                store_block(apex_J, 0, 0, J)
+                for r in range(3):
+                    apex_a[r] = a[r]
+                    apex_w[r] = top_r[r] + rho[r]
         # blade nodes: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade]
         kb = b_across.shape[0]
-        Pb = b_axial.shape[0]
         D = np.zeros((3, kb))
-        rho, moving, load = np.zeros(3), np.zeros(3), np.zeros(3)
+        moving = np.zeros(3)
+        apex_v = np.zeros(3)
+        for r in range(3):
+            for c in range(n):
+                apex_v[r] += apex_J[r, c] * u[c]
         for b in range(b_rotations.shape[0]):
-            Rb = mm(RL, b_rotations[b])
+            Rb = np.zeros((3, 3))
+            for r in range(3):
+                for c in range(3):
+                    Rb[r, c] = RL[r, 0] * b_rotations[b, 0, c] + RL[r, 1] * b_rotations[b, 1, c] \
+                        + RL[r, 2] * b_rotations[b, 2, c]
+            store_block(frame_w[b], 0, 0, Rb)
             cols = b_columns[b]
-            qb, ub = q[cols], u[cols]
+            qb, ub = np.empty(kb), np.empty(kb)
+            for i in range(kb):
+                qb[i] = q[cols[i]]
+                ub[i] = u[cols[i]]
             A = np.zeros((6 + kb, 6 + kb))
             F = np.zeros(6 + kb)
             G = np.zeros((3, 6 + kb))
             G[0, 0] = 1.0
             G[1, 1] = 1.0
             G[2, 2] = 1.0
-            for p in range(Pb):
+            w0, w1, w2 = wL[0], wL[1], wL[2]
+            for p in range(b_axial.shape[0]):
                 beam_node(b_across, b_short, b_axial, p, qb, ub, 0, D, d, rate, bias)
+                rho = rho_w[b, p]
                 for r in range(3):
                     rho[r] = Rb[r, 0] * d[0] + Rb[r, 1] * d[1] + Rb[r, 2] * d[2]
                     moving[r] = Rb[r, 0] * rate[0] + Rb[r, 1] * rate[1] + Rb[r, 2] * rate[2]
                     for i in range(kb):
                         G[r, 6 + i] = Rb[r, 0] * D[0, i] + Rb[r, 1] * D[1, i] + Rb[r, 2] * D[2, i]
+                        RD_w[b, p, r, i] = G[r, 6 + i]
                 # a = a_apex + alpha x rho + omega x (omega x rho) + 2 omega x R d' + R d'' (d'' is axial only)
-                w0, w1, w2 = wL[0], wL[1], wL[2]
                 wr0 = w1 * rho[2] - w2 * rho[1]
                 wr1 = w2 * rho[0] - w0 * rho[2]
                 wr2 = w0 * rho[1] - w1 * rho[0]
+                velocity_w[b, p, 0] = apex_v[0] + wr0 + moving[0]
+                velocity_w[b, p, 1] = apex_v[1] + wr1 + moving[1]
+                velocity_w[b, p, 2] = apex_v[2] + wr2 + moving[2]
+                bias_w[b, p, 0] = apex_a[0] + alL[1] * rho[2] - alL[2] * rho[1] + w1 * wr2 - w2 * wr1 \
+                    + 2.0 * (w1 * moving[2] - w2 * moving[1]) + Rb[0, 0] * bias[0]
+                bias_w[b, p, 1] = apex_a[1] + alL[2] * rho[0] - alL[0] * rho[2] + w2 * wr0 - w0 * wr2 \
+                    + 2.0 * (w2 * moving[0] - w0 * moving[2]) + Rb[1, 0] * bias[0]
+                bias_w[b, p, 2] = apex_a[2] + alL[0] * rho[1] - alL[1] * rho[0] + w0 * wr1 - w1 * wr0 \
+                    + 2.0 * (w0 * moving[1] - w1 * moving[0]) + Rb[2, 0] * bias[0]
                 m = b_mass[p]
-                load[0] = m * (gravity[0] - (apex_a[0] + alL[1] * rho[2] - alL[2] * rho[1] + w1 * wr2 - w2 * wr1
-                                             + 2.0 * (w1 * moving[2] - w2 * moving[1]) + Rb[0, 0] * bias[0]))
-                load[1] = m * (gravity[1] - (apex_a[1] + alL[2] * rho[0] - alL[0] * rho[2] + w2 * wr0 - w0 * wr2
-                                             + 2.0 * (w2 * moving[0] - w0 * moving[2]) + Rb[1, 0] * bias[0]))
-                load[2] = m * (gravity[2] - (apex_a[2] + alL[0] * rho[1] - alL[1] * rho[0] + w0 * wr1 - w1 * wr0
-                                             + 2.0 * (w0 * moving[1] - w1 * moving[0]) + Rb[2, 0] * bias[0]))
+                for r in range(3):
+                    load[r] = m * (gravity[r] - bias_w[b, p, r])
                 G[0, 4], G[0, 5] = rho[2], -rho[1]
                 G[1, 3], G[1, 5] = -rho[2], rho[0]
                 G[2, 3], G[2, 4] = rho[1], -rho[0]
                 accumulate_node(A, F, G, m, load)
-            Z = np.zeros((6 + kb, n))
-            Z[:3] = apex_J
-            Z[3:6] = WL
+            Z = Z_w[b]
+            store_block(Z, 0, 0, apex_J)
+            store_block(Z, 3, 0, WL)
             for i in range(kb):
+                for c in range(n):
+                    Z[6 + i, c] = 0.0
                 Z[6 + i, cols[i]] = 1.0
             add_group(M, f, A, F, Z)
         # rigid bodies with one principal inertia: nacelle about yaw, hub and generator about the shaft
-        for axis_frame, W_b, w_b, al_b, inertia in ((RN[:, 2].copy(), WN, wN, alN, inertias[0]),
-                                                     (RL[:, 0].copy(), WL, wL, alL, inertias[1]),
-                                                     (RG[:, 0].copy(), WG, wG, alG, inertias[2])):
-            partial = tmv(W_b, axis_frame)
-            M += inertia * np.outer(partial, partial)
-            f -= inertia * ((axis_frame @ al_b) * partial + (axis_frame @ w_b) * tmv(W_b, cross(w_b, axis_frame)))
-        f -= mv(K, q) + mv(C, u)
+        add_rotor_body(M, f, RN, wN, WN, alN, 2, inertias[0])
+        add_rotor_body(M, f, RL, wL, WL, alL, 0, inertias[1])
+        add_rotor_body(M, f, RG, wG, WG, alG, 0, inertias[2])
+        for i in range(n):
+            for j in range(n):
+                f[i] -= K[i, j] * q[j] + C[i, j] * u[j]
         return M, f
 
     @njit(cache=True)
-    def derivative(t, x, q0, u0, index, *data):
-        """dx/dt of the free coordinates x = (q_f, u_f); locked ones move on at their initial rate."""
+    def nodal_forces(f, forces, work):
+        """f += sum_b Z_b^T sum_p G_p^T F_bp: the generalized forces of forces (B, P, 3) (N, earth components)
+        acting on the blade nodes whose motion :func:`equations` left in ``work``."""
+        rho_w, RD_w, Z_w = work[0], work[3], work[4]
+        B, P, k = RD_w.shape[0], RD_w.shape[1], RD_w.shape[3]
+        for b in range(B):
+            shared = np.zeros(6 + k)
+            for p in range(P):
+                F, rho = forces[b, p], rho_w[b, p]
+                shared[0] += F[0]
+                shared[1] += F[1]
+                shared[2] += F[2]
+                shared[3] += rho[1] * F[2] - rho[2] * F[1]
+                shared[4] += rho[2] * F[0] - rho[0] * F[2]
+                shared[5] += rho[0] * F[1] - rho[1] * F[0]
+                for i in range(k):
+                    shared[6 + i] += RD_w[b, p, 0, i] * F[0] + RD_w[b, p, 1, i] * F[1] + RD_w[b, p, 2, i] * F[2]
+            Z = Z_w[b]
+            for i in range(Z.shape[1]):
+                for r in range(6 + k):
+                    f[i] += Z[r, i] * shared[r]
+
+    @njit(cache=True)
+    def free_accelerations(M, f, index):
+        """du/dt of the free coordinates ``index`` (the locked ones have none)."""
         size = index.shape[0]
-        q = q0 + u0 * t
-        u = u0.copy()
-        for i in range(size):
-            q[index[i]] = x[i]
-            u[index[i]] = x[size + i]
-        M, f = equations(q, u, *data)
         Mf = np.empty((size, size))
         ff = np.empty(size)
         for i in range(size):
             ff[i] = f[index[i]]
             for j in range(size):
                 Mf[i, j] = M[index[i], index[j]]
+        return solve_spd(Mf, ff)
+
+    @njit(cache=True)
+    def full_state(t, x, q0, u0, index):
+        """All coordinates and rates at time t for the free state x (locked ones move on at their initial
+        rate)."""
+        size = index.shape[0]
+        q = q0 + u0 * t
+        u = u0.copy()
+        for i in range(size):
+            q[index[i]] = x[i]
+            u[index[i]] = x[size + i]
+        return q, u
+
+    @njit(cache=True)
+    def derivative(t, x, q0, u0, index, data, work):
+        """dx/dt of the free coordinates x = (q_f, u_f)."""
+        q, u = full_state(t, x, q0, u0, index)
+        M, f = equations(q, u, data, work)
+        size = index.shape[0]
         out = np.empty(2 * size)
-        out[:size] = x[size:]
-        out[size:] = np.linalg.solve(Mf, ff)
+        du = free_accelerations(M, f, index)
+        for i in range(size):
+            out[i] = x[size + i]
+            out[size + i] = du[i]
         return out

@@ -108,15 +108,15 @@ class TurbineModel:
         self.gravity = np.array([0.0, 0.0, -p.gravity])
         nacelle_own = p.nacelle_yaw_inertia - p.nacelle_mass * (p.nacelle_cm[0] ** 2 + p.nacelle_cm[1] ** 2)
         self.inertias = (nacelle_own, p.hub_inertia, p.generator_inertia)
-        tower_top_mass = p.rotor_nacelle_mass
         springs = [(np.array([index["drivetrain"]]), np.array([[p.drivetrain_stiffness]])),
                    (np.array([index["yaw"]]), np.array([[p.yaw_stiffness]]))]
         dampers = [(np.array([index["drivetrain"]]), np.array([[p.drivetrain_damping]])),
                    (np.array([index["yaw"]]), np.array([[p.yaw_damping]]))]
-        blade_K, blade_C = p.blade.generalized_stiffness(), p.blade.damping_matrix(p.blade_tip_mass)
+        blade_K = p.blade.generalized_stiffness()
+        blade_C, tower_C = p.damping_matrices()
         self.K = block_diagonal(n, [(self.tower_columns, p.tower.generalized_stiffness()), *springs,
                                     *[(cols, blade_K) for cols in self.blade_columns]])
-        self.C = block_diagonal(n, [(self.tower_columns, p.tower.damping_matrix(tower_top_mass)), *dampers,
+        self.C = block_diagonal(n, [(self.tower_columns, tower_C), *dampers,
                                     *[(cols, blade_C) for cols in self.blade_columns]])
 
     def fast_equations(self):
@@ -165,7 +165,8 @@ class TurbineModel:
         span = self.blade_nodes.deflect(q[self.blade_columns], u[self.blade_columns])
         blades = carry_nodes(pick(rigid, 1), blade_frames, span.offset, span.partials, self.blade_nodes.selection,
                              span.velocity, span.bias)
-        return TurbineMotion(tower=tower, tower_top=top, rigid=rigid, blades=blades, tower_top_frame=bent, nacelle=nacelle,
+        return TurbineMotion(tower=tower, tower_top=top, rigid=rigid, blades=blades, tower_top_frame=bent,
+                             nacelle=nacelle,
                              shaft=shaft, rotor=rotor, generator=generator, blade_frames=blade_frames)
 
     def positions(self, motion: TurbineMotion) -> NDArray:
@@ -181,12 +182,16 @@ class TurbineModel:
 
     # -- Kane's equations ---------------------------------------------------------------------------------------
 
-    def equations(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
-        """Mass matrix M(q) (n, n) and forcing f(q, u) (n,) with ``M du/dt = f``."""
+    def equations(self, q: NDArray, u: NDArray, blade_forces: NDArray | None = None) -> tuple[NDArray, NDArray]:
+        """Mass matrix M(q) (n, n) and forcing f(q, u) (n,) with ``M du/dt = f``; ``blade_forces`` (B, P + 1, 3),
+        N in earth components, are external forces on the blade nodes (tip last), added to the forcing as
+        ``sum_p J_p^T F_p`` (e.g. aerodynamic loads from :meth:`motion`'s node velocities)."""
         motion = self.motion(q, u)
         M, f = np.zeros((self.n, self.n)), np.zeros(self.n)
-        for group, masses in ((motion.tower, self.tower_masses), (motion.blades, self.blade_masses)):
-            dM, df = group.generalized(masses, masses[..., None] * (self.gravity - group.a))
+        for group, masses, external in ((motion.tower, self.tower_masses, None),
+                                        (motion.blades, self.blade_masses, blade_forces)):
+            loads = masses[..., None] * (self.gravity - group.a)
+            dM, df = group.generalized(masses, loads if external is None else loads + external)
             M += dM
             f += df
         rigid = motion.rigid

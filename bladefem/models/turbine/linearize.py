@@ -1,30 +1,44 @@
 """Linearization about an operating point: state matrix, multi-blade coordinates, modes with names.
 
-The operating point is the undeflected turbine at rotor speed ``Omega`` and azimuth ``psi`` (as bladefem's modal
-solvers: static deflections are not included). With ``M`` frozen at the operating point (exact at an equilibrium),
-``A = [[0, I], [M^-1 df/dq, M^-1 df/du]]``; the Jacobians of the Kane forcing are central finite differences.
-For a spinning rotor the blade coordinates are moved to multi-blade (Coleman) coordinates — collective,
-cosine, sine — and the state matrix is averaged over the azimuth, which removes the periodicity for 3 blades.
+The operating point is the undeflected turbine at rotor speed ``Omega``, rotor azimuth ``psi`` and nacelle yaw (as
+bladefem's modal solvers, and as OpenFAST linearizes at its initial state: static deflections are not included).
+With ``M`` frozen at the operating point (exact at an equilibrium), ``A = [[0, I], [M^-1 df/dq, M^-1 df/du]]``;
+the Jacobians of the Kane forcing are central finite differences.
+
+Parked (``Omega = 0``) the turbine is linearized at the one azimuth given, as OpenFAST does; when the three blades
+are alike the blade coordinates are then expressed in multi-blade (Coleman) coordinates — collective, cosine,
+sine — at that azimuth, a constant change of basis that leaves the eigenvalues of the blade-coordinate
+linearization unchanged and only serves the names. For a spinning rotor the state matrix is transformed to
+multi-blade coordinates and averaged over the azimuth, which removes the periodicity for 3 blades.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .kane import TurbineModel
-from .parameters import BLADE_DOFS, DOF_LABELS
+from .mode_names import name_modes, participation
+from .parameters import BLADE_DOFS
 from .system import FreeSystem
 
-ORDINALS = {"1": "1st", "2": "2nd"}
+#: below this natural frequency a mode is a rigid-body motion (a zero pair, split by the state's loads)
+RIGID_HZ = 0.02
+#: participations below this share are left out of :attr:`LinearMode.participation`
+SHARE_SHOWN = 1e-3
+
+Forcing = Callable[[NDArray, NDArray], NDArray]
 
 
-def forcing_jacobians(system: FreeSystem, q: NDArray, u: NDArray, step: float = 1e-6) -> tuple[NDArray, NDArray,
-                                                                                                  NDArray]:
-    """M_ff, df_f/dq_f and df_f/du_f at (q, u) by central differences (relative step ``step``)."""
+def forcing_jacobians(system: FreeSystem, q: NDArray, u: NDArray, step: float = 1e-6,
+                      forcing: Forcing | None = None) -> tuple[NDArray, NDArray, NDArray]:
+    """M_ff, df_f/dq_f and df_f/du_f at (q, u) by central differences (relative step ``step``); ``forcing(q, u)``
+    (default the model's Kane forcing) may add external loads, whose stiffness and damping then enter."""
     model, ix = system.model, system.index
+    forcing = forcing or (lambda qq, uu: model.equations(qq, uu)[1])
     M, _ = model.equations(q, u)
     dq = np.zeros((len(ix), len(ix)))
     du = np.zeros((len(ix), len(ix)))
@@ -36,13 +50,13 @@ def forcing_jacobians(system: FreeSystem, q: NDArray, u: NDArray, step: float = 
             minus[i] -= h
             args_plus = (plus, u) if vector is q else (q, plus)
             args_minus = (minus, u) if vector is q else (q, minus)
-            target[:, column] = (model.equations(*args_plus)[1][ix] - model.equations(*args_minus)[1][ix]) / (2 * h)
+            target[:, column] = (forcing(*args_plus)[ix] - forcing(*args_minus)[ix]) / (2 * h)
     return M[np.ix_(ix, ix)], dq, du
 
 
-def state_matrix(system: FreeSystem, q: NDArray, u: NDArray) -> NDArray:
+def state_matrix(system: FreeSystem, q: NDArray, u: NDArray, forcing: Forcing | None = None) -> NDArray:
     """A of the free coordinates at (q, u), states (q_f, u_f)."""
-    M, dq, du = forcing_jacobians(system, q, u)
+    M, dq, du = forcing_jacobians(system, q, u, forcing=forcing)
     m = system.size
     A = np.zeros((2 * m, 2 * m))
     A[:m, m:] = np.eye(m)
@@ -101,7 +115,7 @@ def mbc_state_matrix(A: NDArray, T: NDArray, dT: NDArray, ddT: NDArray, speed: f
 @dataclass(frozen=True)
 class LinearMode:
     """A mode of the linearized turbine: name, natural frequency (Hz), damping ratio, damped frequency (Hz), and
-    the participation of each coordinate (largest 1)."""
+    the participation of each coordinate (energy shares, summing to 1; shares below 0.1 % left out)."""
 
     name: str
     frequency_hz: float
@@ -109,111 +123,101 @@ class LinearMode:
     damped_frequency_hz: float
     participation: dict[str, float]
 
+    def as_dict(self) -> dict:
+        return {"name": self.name, "frequency_hz": self.frequency_hz, "damping_ratio": self.damping_ratio,
+                "participation": self.participation}
+
 
 @dataclass(frozen=True)
 class LinearModel:
     """State matrix at an operating point (averaged over azimuth in multi-blade coordinates when the rotor
-    spins), the names of its coordinates, and its modes sorted by frequency."""
+    spins), the names of its coordinates, the rotor speed (rpm) and azimuth (deg; None when averaged over it),
+    its modes sorted by frequency and the rigid-body motions left out of them."""
 
     A: NDArray
     coordinates: list[str]
     rpm: float
+    azimuth_deg: float | None
     modes: list[LinearMode]
+    rigid: list[str]
+
+    def as_dict(self) -> dict:
+        """``{"rpm", "azimuth_deg", "modes": [{"name", "frequency_hz", "damping_ratio", "participation"}]}``."""
+        return {"rpm": self.rpm, "azimuth_deg": self.azimuth_deg, "modes": [m.as_dict() for m in self.modes]}
 
 
-def mode_name(coordinate: str, used: set[str]) -> str:
-    """Readable mode name from its dominant coordinate, e.g. 'tower_fa1' -> '1st tower fore-aft',
-    'collective_flap1' -> '1st blade collective flap', 'cosine_flap1' -> '1st blade asymmetric flap'; a mode led
-    by the generator azimuth is the drivetrain torsion, one led by the drivetrain twist the collective edge
-    coupled to it. A repeated name gets a count, '(2)'."""
-    kind, _, mode = coordinate.partition("_")
-    if kind in ("collective", "cosine", "sine"):
-        family = "flap" if mode.startswith("flap") else "edge"
-        group = "collective" if kind == "collective" else "asymmetric"
-        name = f"{ORDINALS[mode[-1]]} blade {group} {family}"
-    elif kind.startswith("blade"):
-        name = f"{ORDINALS[mode[-1]]} {'flap' if mode.startswith('flap') else 'edge'} of blade {kind[5:]}"
-    elif kind == "tower":
-        name = f"{ORDINALS[mode[-1]]} tower {'fore-aft' if mode.startswith('fa') else 'side-side'}"
-    elif coordinate == "generator_azimuth":
-        name = "1st drivetrain torsion"
-    elif coordinate == "drivetrain":
-        name = "1st blade collective edge / drivetrain"
-    else:
-        name = DOF_LABELS.get(coordinate, coordinate)
-    base, count = name, 2
-    while name in used:
-        name = f"{base} ({count})"
-        count += 1
-    used.add(name)
-    return name
+def operating_point(model: TurbineModel, rpm: float, azimuth: float = 0.0, yaw: float = 0.0) -> tuple[NDArray,
+                                                                                                     NDArray]:
+    """Undeflected turbine at rotor speed ``rpm`` (rpm), rotor azimuth and nacelle yaw (rad)."""
+    q, u = np.zeros(model.n), np.zeros(model.n)
+    q[model.dofs.index("generator_azimuth")] = azimuth
+    q[model.dofs.index("yaw")] = yaw
+    u[model.dofs.index("generator_azimuth")] = rpm * np.pi / 30.0
+    return q, u
 
 
-#: below this natural frequency a mode is the rigid rotor rotation (a zero pair, split by the state's loads)
-RIGID_HZ = 0.02
-
-
-def modes_of(A: NDArray, coordinates: list[str], scale: NDArray, rpm: float) -> list[LinearMode]:
-    """Eigen-analysis: one mode per complex-conjugate pair (and per real eigenvalue), named by the coordinate
-    with the largest ``|z_i| scale_i`` (``scale`` = sqrt of the modal mass diagonal, so blades and tower compare
-    by kinetic energy); the rigid rotor rotation (below :data:`RIGID_HZ`) is left out."""
+def modes_of(A: NDArray, coordinates: list[str], stiffness: NDArray, mass: NDArray, spinning: bool
+             ) -> tuple[list[LinearMode], list[str]]:
+    """Modes (one per complex-conjugate pair and per real eigenvalue) sorted by frequency, named by their
+    participation (:mod:`.mode_names`), and the names of the rigid-body motions (below :data:`RIGID_HZ`)."""
     values, vectors = np.linalg.eig(A)
     m = len(coordinates)
     rows = []
     for i, lam in enumerate(values):
-        frequency = abs(lam) / (2 * np.pi)
-        if lam.imag < -1e-9 or frequency < RIGID_HZ:
+        if lam.imag < -1e-9:
             continue
-        weights = np.abs(vectors[:m, i]) * scale
-        rows.append((frequency, -lam.real / abs(lam), abs(lam.imag) / (2 * np.pi), weights / weights.max(), i))
+        omega = abs(lam)
+        z = vectors[:m, i]
+        # a rigid-body motion has no strain: its coordinates compare by kinetic energy alone
+        rigid_motion = omega < 2 * np.pi * RIGID_HZ
+        share = participation(z, 0 * stiffness if rigid_motion else stiffness, mass, max(omega, 1.0) if
+                              rigid_motion else omega)
+        rows.append((omega / (2 * np.pi), -lam.real / omega if omega > 0 else 0.0, abs(lam.imag) / (2 * np.pi),
+                     z, share, lam.imag > 1e-9 * max(omega, 1.0)))
     rows.sort(key=lambda row: row[0])
-    used: set[str] = set()
-    names = [mode_name(coordinates[int(np.argmax(row[3]))], used) for row in rows]
-    names = whirl_names(names)
-    return [LinearMode(name=name, frequency_hz=float(frequency), damping_ratio=float(damping),
-                       damped_frequency_hz=float(damped),
-                       participation={c: float(p) for c, p in zip(coordinates, participation)})
-            for name, (frequency, damping, damped, participation, _) in zip(names, rows)]
+    rigid = [row[0] < RIGID_HZ for row in rows]
+    names = name_modes([row[3] for row in rows], [row[4] for row in rows], coordinates, rigid, spinning,
+                       [row[5] for row in rows])
+    modes = [LinearMode(name=name, frequency_hz=float(f), damping_ratio=float(zeta), damped_frequency_hz=float(fd),
+                        participation={c: round(float(s), 6) for c, s in zip(coordinates, share) if s >= SHARE_SHOWN})
+             for name, (f, zeta, fd, _, share, _), is_rigid in zip(names, rows, rigid) if not is_rigid]
+    return modes, list(dict.fromkeys(name for name, is_rigid in zip(names, rigid) if is_rigid))
 
 
-def whirl_names(names: list[str]) -> list[str]:
-    """An asymmetric pair ('... asymmetric flap' and '... asymmetric flap (2)', in frequency order) becomes its
-    backward and forward whirl: in the fixed frame the backward whirl is the lower, at w - Omega, the forward at
-    w + Omega (at rest the two coincide and the names are a convention)."""
-    renamed = list(names)
-    for i, name in enumerate(names):
-        if " asymmetric " in name and not name.endswith(")") and f"{name} (2)" in names:
-            renamed[i] = f"{name} (backward whirl)"
-            renamed[names.index(f"{name} (2)")] = f"{name} (forward whirl)"
-    return renamed
+def linearize(model: TurbineModel, free: NDArray, rpm: float = 0.0, azimuth: float = 0.0, azimuths: int = 8,
+              mbc: bool = True, yaw: float = 0.0, forcing: Forcing | None = None) -> LinearModel:
+    """Linear model of the free coordinates at rotor speed ``rpm`` (rpm), nacelle yaw (rad).
 
-
-def operating_point(model: TurbineModel, rpm: float, azimuth: float = 0.0) -> tuple[NDArray, NDArray]:
-    """Undeflected turbine at rotor speed ``rpm`` (rpm) and rotor azimuth (rad)."""
-    q, u = np.zeros(model.n), np.zeros(model.n)
-    q[5] = azimuth
-    u[5] = rpm * np.pi / 30.0
-    return q, u
-
-
-def linearize(model: TurbineModel, free: NDArray, rpm: float = 0.0, azimuths: int = 8,
-              mbc: bool = True) -> LinearModel:
-    """Linear model of the free coordinates at rotor speed ``rpm``; with a spinning 3-blade rotor and ``mbc``, in
-    multi-blade coordinates averaged over ``azimuths`` equally spaced azimuths (else at azimuth 0)."""
-    q, u = operating_point(model, rpm)
+    Parked (rpm 0): at rotor ``azimuth`` (rad), named in multi-blade coordinates when the blades allow it.
+    Spinning with 3 alike free blades and ``mbc``: multi-blade coordinates averaged over ``azimuths`` equally
+    spaced azimuths from ``azimuth``; otherwise in blade coordinates at ``azimuth``.
+    """
+    q, u = operating_point(model, rpm, azimuth, yaw)
     system = FreeSystem(model, free, q, u)
-    speed = u[5]
-    transform = mbc_transform(system, 0.0) if mbc else None
+    speed = u[model.dofs.index("generator_azimuth")]
+    transform = mbc_transform(system, azimuth) if mbc else None
     names = [model.dofs[i] for i in system.index]
-    mass_diagonal = np.diag(model.equations(q, u)[0])[system.index]
+    block = np.ix_(system.index, system.index)
     if transform is None:
-        A = state_matrix(system, q, u)
-        scale = np.sqrt(mass_diagonal)
+        A = state_matrix(system, q, u, forcing)
+        stiffness, mass = np.diag(model.K[block]), np.diag(model.equations(q, u)[0][block])
+    elif rpm == 0.0:
+        T, _, _, names = transform
+        Tx = np.kron(np.eye(2), T)
+        A = np.linalg.solve(Tx, state_matrix(system, q, u, forcing) @ Tx)
+        stiffness = np.diag(T.T @ model.K[block] @ T)
+        mass = np.diag(T.T @ model.equations(q, u)[0][block] @ T)
     else:
         A = np.zeros((2 * system.size, 2 * system.size))
-        for psi in np.arange(azimuths) * 2 * np.pi / azimuths:
-            q, u = operating_point(model, rpm, psi)
-            T, dT, ddT, names = mbc_transform(FreeSystem(model, free, q, u), psi)
-            A += mbc_state_matrix(state_matrix(FreeSystem(model, free, q, u), q, u), T, dT, ddT, speed) / azimuths
-        scale = np.sqrt(np.abs(transform[0]).T @ mass_diagonal / np.maximum(np.abs(transform[0]).sum(axis=0), 1))
-    return LinearModel(A=A, coordinates=names, rpm=rpm, modes=modes_of(A, names, scale, rpm))
+        stiffness, mass = np.zeros(system.size), np.zeros(system.size)
+        for psi in azimuth + np.arange(azimuths) * 2 * np.pi / azimuths:
+            q, u = operating_point(model, rpm, psi, yaw)
+            at = FreeSystem(model, free, q, u)
+            T, dT, ddT, names = mbc_transform(at, psi)
+            A += mbc_state_matrix(state_matrix(at, q, u, forcing), T, dT, ddT, speed) / azimuths
+            stiffness += np.diag(T.T @ model.K[block] @ T) / azimuths
+            mass += np.diag(T.T @ model.equations(q, u)[0][block] @ T) / azimuths
+    averaged = transform is not None and rpm != 0.0
+    modes, rigid = modes_of(A, names, stiffness, mass, spinning=rpm != 0.0)
+    return LinearModel(A=A, coordinates=names, rpm=float(rpm),
+                       azimuth_deg=None if averaged else float(np.degrees(azimuth)), modes=modes, rigid=rigid)

@@ -25,6 +25,17 @@ DOF_LABELS = {"tower_fa1": "tower fore-aft 1", "tower_fa2": "tower fore-aft 2", 
               "tower_ss2": "tower side-side 2", "yaw": "nacelle yaw", "generator_azimuth": "generator azimuth",
               "drivetrain": "drivetrain torsion", "flap1": "flap 1", "edge1": "edge 1", "flap2": "flap 2"}
 STANDARD_GRAVITY = 9.80665
+#: structural damping conventions (see :attr:`TurbineParameters.damping`)
+DAMPING_CONVENTIONS = ("elastodyn", "rna")
+
+
+def coordinate_label(dof: str) -> str:
+    """Readable name of a generalized coordinate: 'tower_fa1' -> 'tower fore-aft 1', 'blade2_edge1' -> 'blade 2
+    edge 1'."""
+    if dof.startswith("blade") and "_" in dof:
+        blade, mode = dof.split("_", 1)
+        return f"blade {blade[5:]} {DOF_LABELS[mode]}"
+    return DOF_LABELS.get(dof, dof)
 
 
 def dof_names(n_blades: int) -> tuple[str, ...]:
@@ -55,6 +66,9 @@ class TurbineParameters:
     yaw_stiffness : N m/rad and yaw_damping : N m s/rad (ServoDyn's YawSpr and YawDamp)
     blade_tip_mass : point mass on the pitch axis at each blade tip, kg
     pitch : blade pitch, rad (already in the blade shapes and stiffness; kept for reports)
+    damping : how the beams' modal damping ratios become damping forces: 'elastodyn' (ElastoDyn's CBF, CBE, CTFA,
+        CTSS: each mode's frequency of the beam alone, without tip or tower-top mass) or 'rna' (modal mass with the
+        blade tip mass and, for the tower, the rotor-nacelle assembly at the top)
     gravity : m/s^2
     name : a label
     """
@@ -83,6 +97,7 @@ class TurbineParameters:
     yaw_damping: float = 0.0
     blade_tip_mass: float = 0.0
     pitch: float = 0.0
+    damping: str = "elastodyn"
     gravity: float = STANDARD_GRAVITY
     name: str = "turbine"
     notes: tuple[str, ...] = ()
@@ -94,6 +109,9 @@ class TurbineParameters:
         if self.tower.n_modes != 4 or self.blade.n_modes != 3:
             raise InputError("the tower needs 4 modes (FA1, FA2, SS1, SS2) and the blade 3 (flap 1, edge 1, flap 2)",
                              field="modes")
+        if self.damping not in DAMPING_CONVENTIONS:
+            raise InputError(f"damping convention must be one of {', '.join(DAMPING_CONVENTIONS)}, got "
+                             f"'{self.damping}'", field="damping")
         if self.nacelle_yaw_inertia < self.nacelle_mass * (self.nacelle_cm[0] ** 2 + self.nacelle_cm[1] ** 2):
             raise InputError("nacelle yaw inertia about the yaw axis is smaller than its centre of mass's own share",
                              field="NacYIner")
@@ -122,6 +140,13 @@ class TurbineParameters:
     def with_(self, **changes: object) -> TurbineParameters:
         """A copy with some fields changed (e.g. ``params.with_(gravity=0.0)``)."""
         return replace(self, **changes)
+
+    def damping_matrices(self) -> tuple[NDArray, NDArray]:
+        """Modal damping of the blade (3, 3) and the tower (4, 4), N s/m, in the chosen convention."""
+        if self.damping == "elastodyn":
+            return self.blade.damping_matrix("elastodyn"), self.tower.damping_matrix("elastodyn")
+        return (self.blade.damping_matrix("end-mass", self.blade_tip_mass),
+                self.tower.damping_matrix("end-mass", self.rotor_nacelle_mass))
 
     def without_damping(self) -> TurbineParameters:
         """The same turbine with structural, drivetrain and yaw damping off."""

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,6 +23,8 @@ GAUSS_POINTS = 4
 #: Gauss points for the partial shortening integrals (exact to degree 11: polynomial shapes of degree 6)
 SHORTENING_POINTS = 6
 
+#: how modal damping ratios become damping forces (see :meth:`ModalBeam.damping_matrix`)
+DampingConvention = Literal["elastodyn", "end-mass"]
 Evaluator = Callable[[NDArray], tuple[NDArray, NDArray, NDArray]]
 
 
@@ -41,6 +44,10 @@ class ModalBeam:
     length : m
     damping_ratio : (n,) modal structural damping ratios (fraction of critical)
     names : a label per mode
+    elastic_stiffness : (n, n) generalized elastic stiffness given directly (ElastoDyn's KBF, KBE, KTFA, KTSS
+        with its stiffness tuners), or None for the curvature integral
+    damping_mass : (n,) generalized masses of the beam alone that the ElastoDyn damping convention uses (its
+        untwisted-polynomial MBF, MBE less the tip mass), or None for the beam's own generalized mass
     """
 
     x: NDArray
@@ -57,6 +64,8 @@ class ModalBeam:
     length: float
     damping_ratio: NDArray
     names: tuple[str, ...]
+    elastic_stiffness: NDArray | None = None
+    damping_mass: NDArray | None = None
 
     @property
     def n_modes(self) -> int:
@@ -68,7 +77,10 @@ class ModalBeam:
         return self.mass * self.weight
 
     def generalized_stiffness(self) -> NDArray:
-        """Elastic modal stiffness ``K_ij = int kappa_i . D kappa_j dx``, N/m per unit amplitudes."""
+        """Elastic modal stiffness ``K_ij = int kappa_i . D kappa_j dx`` (or the one given), N/m per unit
+        amplitudes."""
+        if self.elastic_stiffness is not None:
+            return self.elastic_stiffness
         return np.einsum("p,ipa,pab,jpb->ij", self.weight, self.curvature, self.stiffness, self.curvature)
 
     def generalized_mass(self, tip_mass: float = 0.0) -> NDArray:
@@ -76,11 +88,22 @@ class ModalBeam:
         beam = np.einsum("p,ipa,jpa->ij", self.point_mass, self.value, self.value)
         return beam + tip_mass * self.tip_value @ self.tip_value.T
 
-    def damping_matrix(self, tip_mass: float = 0.0) -> NDArray:
-        """Diagonal modal damping ``c_i = 2 zeta_i sqrt(k_ii m_ii)`` from the damping ratios, N s/m."""
-        k = np.diag(self.generalized_stiffness())
-        m = np.diag(self.generalized_mass(tip_mass))
-        return np.diag(2.0 * self.damping_ratio * np.sqrt(k * m))
+    def damping_matrix(self, convention: DampingConvention = "elastodyn", end_mass: float = 0.0) -> NDArray:
+        """Modal damping matrix from the damping ratios, N s/m.
+
+        'elastodyn' (ElastoDyn's CBF, CBE, CTFA, CTSS): ``C_il = 2 zeta_l K_il / w_l`` with ``w_l`` the frequency
+        of mode l of the beam alone (``sqrt(K_ll / m_l)``, no end mass, no centrifugal or gravity stiffness);
+        'end-mass' (named 'rna' for a tower): diagonal ``c_i = 2 zeta_i sqrt(K_ii m_ii)`` with the modal mass
+        including ``end_mass`` at the free end (the rotor-nacelle assembly on a tower, a tip mass on a blade).
+        """
+        K = self.generalized_stiffness()
+        if convention == "elastodyn":
+            own = np.diag(self.generalized_mass()) if self.damping_mass is None else self.damping_mass
+            return K * (2.0 * self.damping_ratio * np.sqrt(own / np.diag(K)))[None, :]
+        if convention == "end-mass":
+            m = np.diag(self.generalized_mass(end_mass))
+            return np.diag(2.0 * self.damping_ratio * np.sqrt(np.diag(K) * m))
+        raise ValueError(f"unknown damping convention '{convention}'")
 
     def with_damping(self, damping_ratio: NDArray | float) -> ModalBeam:
         """A copy with other modal damping ratios (fraction of critical)."""

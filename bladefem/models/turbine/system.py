@@ -14,10 +14,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import InputError
+from .initial import ELASTODYN_DOFS
 from .kane import TurbineModel
 from .parameters import BLADE_DOFS, PLATFORM_DOFS
 
-#: groups of degrees of freedom accepted by ``--dof`` (besides single coordinate names)
+#: groups of degrees of freedom accepted by ``--dof`` (besides single coordinate names and ElastoDyn's switches)
 GROUPS = {
     "tower": ("tower_fa1", "tower_fa2", "tower_ss1", "tower_ss2"),
     "tower1": ("tower_fa1", "tower_ss1"),
@@ -27,25 +28,42 @@ GROUPS = {
     "flap1": ("flap1",), "edge1": ("edge1",), "flap2": ("flap2",),
     "blades": BLADE_DOFS,
 }
+SWITCH_VALUES = {"true": True, "on": True, "1": True, "false": False, "off": False, "0": False}
 
 
-def select_dofs(dofs: tuple[str, ...], names: Iterable[str]) -> NDArray[np.bool_]:
-    """Mask of the free coordinates from names: 'all', a coordinate ('blade2_edge1'), a group ('tower', 'tower1',
-    'blades', 'flap1', ...; blade groups apply to every blade)."""
-    free = np.zeros(len(dofs), dtype=bool)
-    for name in names:
-        if name == "all":
-            free[:] = True
-        elif name in dofs:
-            free[dofs.index(name)] = True
-        elif name in GROUPS:
-            for member in GROUPS[name]:
-                for i, dof in enumerate(dofs):
-                    if dof == member or (member in BLADE_DOFS and dof.endswith("_" + member)):
-                        free[i] = True
-        else:
-            known = ", ".join(("all",) + tuple(GROUPS) + PLATFORM_DOFS)
-            raise InputError(f"unknown degree of freedom '{name}' (use {known}, or bladeK_flap1 etc.)", field="dof")
+def dof_members(dofs: tuple[str, ...], name: str) -> list[int]:
+    """Indices of the coordinates a name stands for: 'all', a coordinate ('blade2_edge1'), a group ('tower',
+    'tower1', 'blades', 'flap1', ...; blade groups apply to every blade) or an ElastoDyn switch ('GenDOF',
+    'FlapDOF1', ...)."""
+    if name == "all":
+        return list(range(len(dofs)))
+    if name in dofs:
+        return [dofs.index(name)]
+    members = GROUPS.get(name) or ((ELASTODYN_DOFS[name],) if name in ELASTODYN_DOFS else None)
+    if members is None:
+        known = ", ".join(("all",) + tuple(GROUPS) + PLATFORM_DOFS + tuple(ELASTODYN_DOFS))
+        raise InputError(f"unknown degree of freedom '{name}' (use {known}, or bladeK_flap1 etc.)", field="dof")
+    return [i for i, dof in enumerate(dofs) for member in members
+            if dof == member or (member in BLADE_DOFS and dof.endswith("_" + member))]
+
+
+def select_dofs(dofs: tuple[str, ...], names: Iterable[str], base: NDArray[np.bool_] | None = None
+                ) -> NDArray[np.bool_]:
+    """Mask of the free coordinates. Plain names (see :func:`dof_members`) are the free set; ``NAME=on|off``
+    (also ``True``/``False``, e.g. ``GenDOF=False``) frees or locks coordinates of ``base`` (default all free) or
+    of the named set."""
+    names = list(names)
+    plain = [name for name in names if "=" not in name]
+    free = np.zeros(len(dofs), dtype=bool) if plain else (
+        np.ones(len(dofs), dtype=bool) if base is None else np.asarray(base, dtype=bool).copy())
+    for name in plain:
+        free[dof_members(dofs, name)] = True
+    for entry in names:
+        if "=" in entry:
+            name, _, value = entry.partition("=")
+            if value.strip().lower() not in SWITCH_VALUES:
+                raise InputError(f"expected NAME=on or NAME=off, got '{entry}'", field="dof")
+            free[dof_members(dofs, name.strip())] = SWITCH_VALUES[value.strip().lower()]
     return free
 
 

@@ -1,0 +1,26 @@
+"""Optional numba compilation of the scalar aerodynamic kernels.
+
+The kernels are plain Python functions on floats and numpy arrays. With numba installed (the ``fast`` extra) they
+are compiled with ``@njit(cache=True)``; without it, or with the environment variable ``BLADEFEM_NO_NUMBA`` set,
+the same functions run as Python (same results, about a hundred times slower). Calls between kernels go through the
+module globals, so a compiled kernel calls compiled kernels and a Python kernel calls Python kernels.
+"""
+
+from __future__ import annotations
+
+import os
+
+try:
+    from numba import njit
+except ImportError:                                    # pragma: no cover - numba is optional
+    njit = None
+
+#: True when the kernels of :mod:`bladefem.aero` are compiled.
+COMPILED = njit is not None and not os.environ.get("BLADEFEM_NO_NUMBA")
+
+
+def kernel(function):
+    """``function`` compiled by numba (cached on disk) when available, else unchanged."""
+    if not COMPILED:
+        return function
+    return njit(cache=True)(function)

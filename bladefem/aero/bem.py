@@ -1,0 +1,273 @@
+"""Quasi-steady blade-element momentum theory at one blade node, solved in the inflow angle.
+
+Ning's one-equation method (S. A. Ning, "A simple solution method for the blade element momentum equations with
+guaranteed convergence", Wind Energy 17:1327-1345, 2014), as AeroDyn's BEMT uses it. For the local velocity
+components ``vx`` (normal to the rotor plane of the coned blade, positive downwind) and ``vy`` (in the plane of
+rotation, positive from the leading towards the trailing edge, i.e. opposite to the blade motion), the induction
+factors follow from the inflow angle phi alone:
+
+    sigma' = B c / (2 pi r)                          local solidity
+    cn = cl cos phi + cd sin phi,  ct = cl sin phi - cd cos phi     (drag only if AIDrag / TIDrag)
+    F = F_tip F_hub,  F_tip = 2/pi acos(exp(-B (z_tip - z) / (2 z |sin phi|))),
+                      F_hub = 2/pi acos(exp(-B (z - z_hub) / (2 z_hub |sin phi|)))    Prandtl
+    k = sigma' cn / (4 F sin^2 phi),  k' = sigma' ct / (4 F sin phi cos phi)
+    a = k / (1 + k)                                  momentum region, k <= 2/3 (a <= 0.4)
+    a = (g1 - sqrt(g2)) / g3                         Buhl's high-induction thrust curve, k > 2/3
+    a = k / (k - 1)                                  propeller-brake region (phi < 0 for vx > 0)
+    a' = k' / (1 - k')                               tangential induction (TanInd)
+
+and the residual  R(phi) = sin phi / (1 - a) - cos phi (1 - k') vx / vy  (propeller brake:
+sin phi (1 - k) - cos phi (1 - k') vx / vy) has a sign change on one of the intervals (0, pi/2], [-pi/4, 0),
+(pi/2, pi) (mirrored for vx < 0), where Brent's method finds it: the solve cannot fail to converge.
+
+After the solve the axial induction is redistributed for a skewed wake (Glauert/Pitt-Peters, AeroDyn's SkewMod 2 /
+Skew_Mod 1):  a <- a (1 + K tan(chi / 2) (r / R) cos psi),  chi = (1 + 0.6 a) chi0,  K = 15 pi / 32, psi the angle
+between the blade and the most downwind direction of the rotor plane. The loads then follow from the induced
+velocities: W^2 = (vx (1 - a))^2 + (vy (1 + a'))^2, phi = atan2(vx (1 - a), vy (1 + a')), alpha = phi - theta.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ._jit import kernel
+from .induction import induction, loss_factor
+from .options import (
+    FORMULATION,
+    HUB_LOSS,
+    INDUCTION,
+    MAX_ITER,
+    SKEW_FACTOR,
+    SKEW_REDISTRIBUTION,
+    TIP_LOSS,
+    TOLERANCE,
+    USE_CM,
+)
+from .polars import polar_lookup
+
+#: A velocity component below this counts as zero (AeroDyn's VelocityIsZero), m/s.
+ZERO_VELOCITY = 1e-3
+#: Distance of the bracket ends from the singular angles 0 and pi/2, rad.
+EDGE = 1e-6
+#: Steps from a previous solution to the other end of a first bracket, rad (the small one first).
+WARM_STEP, WARM_BRACKET = 1e-3, 0.03
+#: AeroDyn's limits on the induction factors (BEMT_MinInduction, BEMT_MaxInduction).
+A_MIN, A_MAX, AP_MIN, AP_MAX = -1.0, 1.5, -1.0, 1.0
+#: Number of values :func:`node_loads` returns.
+NODE_OUTPUTS = 13
+
+
+@kernel
+def residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start,
+             count, options):
+    """(residual, a, a', valid) at phi with the polar looked up at alpha = phi - theta."""
+    cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
+    loss = loss_factor(phi, tip_constant, hub_constant, options)
+    return induction(phi, vx, vy, solidity, cl, cd, loss, chi0, options)
+
+
+@kernel
+def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
+          coefs, start, count, options):
+    """Root of the residual in [lo, hi] (f_lo, f_hi of opposite signs) by Brent's method (inverse quadratic
+    interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad.
+    Returns (phi, a, a', valid) at the root."""
+    args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
+            options)
+    tolerance = options[TOLERANCE]
+    a, b, fa, fb = lo, hi, f_lo, f_hi
+    c, fc = b, fb
+    d = e = b - a
+    at_b, induced_a, induced_ap, valid = False, 0.0, 0.0, False
+    for _ in range(int(options[MAX_ITER])):
+        if (fb > 0.0) == (fc > 0.0):
+            c, fc = a, fa
+            d = e = b - a
+        if abs(fc) < abs(fb):
+            a, b, c = b, c, b
+            fa, fb, fc = fb, fc, fb
+            at_b = False
+        step_tolerance = 4.0e-16 * abs(b) + 0.5e-13
+        half = 0.5 * (c - b)
+        if abs(half) <= step_tolerance or abs(fb) <= tolerance:
+            break
+        if abs(e) >= step_tolerance and abs(fa) > abs(fb):
+            s = fb / fa
+            if a == c:
+                p, q = 2.0 * half * s, 1.0 - s
+            else:
+                q, r = fa / fc, fb / fc
+                p = s * (2.0 * half * q * (q - r) - (b - a) * (r - 1.0))
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+            if p > 0.0:
+                q = -q
+            p = abs(p)
+            if 2.0 * p < min(3.0 * half * q - abs(step_tolerance * q), abs(e * q)):
+                e, d = d, p / q
+            else:
+                d = e = half
+        else:
+            d = e = half
+        a, fa = b, fb
+        b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
+        fb, induced_a, induced_ap, valid = residual(b, *args)
+        at_b = True
+    if not at_b:
+        _, induced_a, induced_ap, valid = residual(b, *args)
+    return b, induced_a, induced_ap, valid
+
+
+@kernel
+def search_intervals(vx, guess):
+    """The three phi intervals of Ning's method in AeroDyn's order (lower ends, upper ends): the momentum region
+    first, then the propeller brake and the region beyond pi/2 (the one nearer the guess first)."""
+    q, h = math.pi / 4.0, math.pi / 2.0
+    near_zero = -q < guess < q
+    if vx > 0.0:
+        first = (EDGE, h - EDGE)
+        brake, beyond = (-q, -EDGE), (h + EDGE, math.pi - EDGE)
+    else:
+        first = (-EDGE, -h + EDGE)
+        brake, beyond = (q, EDGE), (-h - EDGE, -math.pi + EDGE)
+    if near_zero:
+        return (first[0], brake[0], beyond[0]), (first[1], brake[1], beyond[1])
+    return (first[0], beyond[0], brake[0]), (first[1], beyond[1], brake[1])
+
+
+@kernel
+def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs,
+                       start, count, options, guess):
+    """(phi, valid, a, a'): the inflow angle solving the BEM equations (rad) and the induction there. A finite
+    ``guess`` (the previous solution) is tried first, then brackets next to it, then Ning's three intervals. Without
+    a valid BEM solution: the geometric angle atan2(vx, vy), valid False and zero induction (as AeroDyn).
+    The warm start brackets the root between the guess and a point WARM_STEP away (downhill first, then uphill),
+    then WARM_BRACKET away, before the full search: the guarantee of convergence is kept."""
+    if abs(vx) < ZERO_VELOCITY:
+        return 0.0, True, 0.0, 0.0
+    if abs(vy) < ZERO_VELOCITY:
+        return math.copysign(math.pi / 2.0, vx), True, 0.0, 0.0
+    args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
+            options)
+    tolerance = options[TOLERANCE]
+    if math.isfinite(guess) and abs(guess) > EDGE and abs(abs(guess) - math.pi / 2.0) > EDGE:
+        f_guess, a, ap, valid = residual(guess, *args)
+        if abs(f_guess) < tolerance and valid:
+            return guess, True, a, ap
+        side = math.floor(guess / (math.pi / 2.0))          # quadrant: the bracket must not cross 0 or +-pi/2
+        floor, ceiling = side * math.pi / 2.0 + EDGE, (side + 1) * math.pi / 2.0 - EDGE
+        step = -math.copysign(WARM_STEP, f_guess)           # R usually grows with phi: look downhill first
+        for _ in range(2):
+            for direction in (1.0, -1.0):
+                other = min(max(guess + direction * step, floor), ceiling)
+                f_other = residual(other, *args)[0]
+                if (f_other > 0.0) != (f_guess > 0.0):
+                    lo, hi, f_lo, f_hi = (guess, other, f_guess, f_other) if other > guess else (
+                        other, guess, f_other, f_guess)
+                    phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args)
+                    if valid:
+                        return phi, True, a, ap
+                    break
+            step *= WARM_BRACKET / WARM_STEP
+    else:
+        guess = math.atan2(vx, vy)
+    lows, highs = search_intervals(vx, guess)
+    for i in range(3):
+        lo, hi = lows[i], highs[i]
+        f_lo, a_lo, ap_lo, valid_lo = residual(lo, *args)
+        f_hi, a_hi, ap_hi, valid_hi = residual(hi, *args)
+        if abs(f_lo) < tolerance:                      # an end of the interval is already a root
+            if abs(f_hi) < abs(f_lo) and valid_hi:
+                return hi, True, a_hi, ap_hi
+            if valid_lo:
+                return lo, True, a_lo, ap_lo
+        elif abs(f_hi) < tolerance and valid_hi:
+            return hi, True, a_hi, ap_hi
+        if (f_lo > 0.0) != (f_hi > 0.0):
+            phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args)
+            if valid:
+                return phi, True, a, ap
+    return math.atan2(vx, vy), False, 0.0, 0.0
+
+
+@kernel
+def skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options):
+    """Axial induction redistributed over the azimuth for a wake skewed by chi0 (Glauert/Pitt-Peters)."""
+    chi = (0.6 * a + 1.0) * abs(chi0)
+    chi = chi - 2.0 * math.pi * math.floor((chi + math.pi) / (2.0 * math.pi))
+    half_tangent = math.copysign(1.0, chi) if abs(chi) > math.pi / 2.0 else math.tan(0.5 * chi)
+    weight = loss if options[FORMULATION] == 2.0 else 1.0
+    return a * (1.0 + options[SKEW_FACTOR] * weight * half_tangent * tip_ratio * skew_cos)
+
+
+@kernel
+def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0, skew_cos,
+               induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, guess):
+    """Quasi-steady BEM loads at one blade node.
+
+    Inputs (SI, rad): vx, vy the relative velocity of the air at the node without induction (wind minus structural
+    velocity) normal to the coned rotor plane (downwind) and in the plane of rotation (towards the trailing edge);
+    r_local distance from the rotor axis; chord; theta local twist plus pitch (alpha = phi - theta);
+    tip_constant B (z_tip - z) / (2 z) and hub_constant B (z - z_hub) / (2 z_hub) with z the distance from the rotor
+    centre along the blade; n_blades; tip_ratio r_local / R_tip, chi0 the wake skew angle and skew_cos the cosine of
+    the angle between the blade and the most downwind direction (skewed-wake model); induction_weight (1, or
+    AeroDyn's low-tip-speed-ratio blend); airfoil the polar index; the packed polars; the option vector;
+    air_density; guess the previous phi (nan for none).
+
+    Returns (phi_solved, a, a', phi, alpha, W, cl, cd, cm, fn, ft, m, valid): fn the force per unit length along
+    +x (downwind normal), ft along the direction of rotation (-y), m the pitching moment per unit length (N m/m,
+    nose up); phi_solved is the root of the BEM equations (keep it as the next guess), phi the inflow angle after
+    the skew correction.
+    """
+    solidity = n_blades * chord / (2.0 * math.pi * r_local)
+    fixed = ((options[TIP_LOSS] != 0.0 and tip_constant == 0.0)
+             or (options[HUB_LOSS] != 0.0 and hub_constant == 0.0))
+    a, ap, valid = 0.0, 0.0, True
+    if options[INDUCTION] == 0.0:
+        phi_solved = math.atan2(vx, vy)
+    elif fixed:                                        # node at the tip or hub with loss: no flow through it
+        phi_solved, a = math.atan2(vx, vy), 1.0
+    else:
+        phi_solved, valid, a, ap = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0,
+                                                      airfoil, knots, values, coefs, start, count, options, guess)
+        a, ap = min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
+        if valid and abs(vx) >= ZERO_VELOCITY and abs(vy) >= ZERO_VELOCITY:
+            if options[SKEW_REDISTRIBUTION] != 0.0:
+                loss = loss_factor(phi_solved, tip_constant, hub_constant, options)
+                a = skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options)
+        a, ap = a * induction_weight, ap * induction_weight
+    phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs,
+                                                         start, count, options, air_density)
+    return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
+
+
+@kernel
+def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options, air_density):
+    """Loads of a blade section for given induction factors a, a' (no solve): (phi, alpha, W, cl, cd, cm, fn, ft, m)
+    as in :func:`node_loads`; drag always included. About a tenth of a node solve: for right-hand sides evaluated
+    between two solves with the induction held."""
+    x, y = vx * (1.0 - a), vy * (1.0 + ap)
+    phi = math.atan2(x, y) if (x != 0.0 or y != 0.0) else 0.0
+    alpha = phi - theta
+    cl, cd, cm = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
+    w = math.sqrt(x * x + y * y)
+    q = 0.5 * air_density * w * w
+    s, c = math.sin(phi), math.cos(phi)
+    fn = q * chord * (cl * c + cd * s)
+    ft = q * chord * (cl * s - cd * c)
+    m = q * chord * chord * cm if options[USE_CM] != 0.0 else 0.0
+    return phi, alpha, w, cl, cd, cm, fn, ft, m
+
+
+@kernel
+def solve_nodes(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0, skew_cos,
+                induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, guess, out):
+    """:func:`node_loads` at every node of flat arrays (scalars n_blades, induction_weight, air_density shared);
+    row i of ``out`` (n, NODE_OUTPUTS) receives node i's outputs in :func:`node_loads` order (valid as 1.0/0.0)."""
+    for i in range(vx.shape[0]):
+        phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
+            vx[i], vy[i], r_local[i], chord[i], theta[i], tip_constant[i], hub_constant[i], n_blades, tip_ratio[i],
+            chi0[i], skew_cos[i], induction_weight, airfoil[i], knots, values, coefs, start, count, options,
+            air_density, guess[i])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4] = phi_solved, a, ap, phi, alpha
+        out[i, 5], out[i, 6], out[i, 7], out[i, 8] = w, cl, cd, cm
+        out[i, 9], out[i, 10], out[i, 11], out[i, 12] = fn, ft, m, 1.0 if valid else 0.0

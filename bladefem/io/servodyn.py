@@ -1,0 +1,115 @@
+"""ServoDyn input file: fixed pitch, the simple variable-speed torque law, the nacelle-yaw spring and damper.
+
+Modelled: ``PCMode`` 0 (pitch held at ElastoDyn's ``BlPitch``), ``VSContrl`` 1 with ``VS_RtGnSp`` (rpm, high-speed
+shaft), ``VS_RtTq`` (N m), ``VS_Rgn2K`` (N m/rpm^2), ``VS_SlPc`` (%), ``GenEff`` (%), and ``YawNeut``, ``YawSpr``,
+``YawDamp``. Everything else that changes the turbine's behaviour (Bladed-style DLL and other controllers, other
+generator models, pitch and yaw manoeuvres, generator switching and brake events inside the simulated time,
+structural and flow control) is listed by :meth:`ServoDyn.unmodelled` with its file, line and label.
+SI inside: rad, rad/s, N m, N m s^2/rad^2 (the region-2 constant), fractions for percentages.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+
+from ._labels import Labels
+from .aerodyn_primary import Unmodelled
+
+RPM = math.pi / 30.0
+CONTROL_NAMES = {3: "user routine", 4: "Simulink/LabVIEW", 5: "Bladed-style DLL"}
+
+
+@dataclass(frozen=True)
+class ServoDyn:
+    """The entries of a ServoDyn file bladefem uses (SI).
+
+    pitch_mode : PCMode; torque_control : VSContrl; generator_model : GenModel; efficiency : GenEff / 100
+    rated_generator_speed : VS_RtGnSp, rad/s; rated_torque : VS_RtTq, N m; region2_constant : VS_Rgn2K in
+    N m / (rad/s)^2; slip : VS_SlPc / 100; yaw_neutral : YawNeut, rad; yaw_spring : YawSpr, N m/rad;
+    yaw_damper : YawDamp, N m s/rad; events : label -> time (s) of the timed events; lines : label -> line
+    """
+
+    path: str
+    pitch_mode: int
+    torque_control: int
+    generator_model: int
+    efficiency: float
+    rated_generator_speed: float
+    rated_torque: float
+    region2_constant: float
+    slip: float
+    yaw_neutral: float
+    yaw_spring: float
+    yaw_damper: float
+    settings: dict[str, float]
+    lines: dict[str, tuple[str, int]]
+
+    def unmodelled(self, end_time: float) -> list[Unmodelled]:
+        """Settings that ask for behaviour bladefem does not model within a simulation ending at ``end_time``."""
+        found = []
+
+        def refuse(label: str, message: str) -> None:
+            key, line = self.lines[label]
+            found.append(Unmodelled(self.path, line, key, message))
+
+        if self.pitch_mode != 0:
+            refuse("PCMode", f"pitch control PCMode {self.pitch_mode} ({CONTROL_NAMES.get(self.pitch_mode, '?')}) "
+                             "is not modelled: set PCMode 0 (pitch fixed at ElastoDyn's BlPitch)")
+        if self.torque_control != 1:
+            what = CONTROL_NAMES.get(self.torque_control, "no variable-speed law" if self.torque_control == 0
+                                     else "?")
+            refuse("VSContrl", f"torque control VSContrl {self.torque_control} ({what}) is not modelled: set "
+                               "VSContrl 1 (simple variable-speed law)")
+        s = self.settings
+        for label, message in (("YCMode", "yaw control"), ("AfCmode", "airfoil flow control"),
+                               ("NumBStC", "blade structural control"), ("NumNStC", "nacelle structural control"),
+                               ("NumTStC", "tower structural control"),
+                               ("NumSStC", "substructure structural control")):
+            if s.get(label, 0) != 0:
+                refuse(label, f"{message} ({label} {s[label]:g}) is not modelled: set {label} 0")
+        timed = [(f"TPitManS({i})", "pitch manoeuvre") for i in (1, 2, 3)] + [("TYawManS", "yaw manoeuvre")]
+        if s.get("HSSBrMode", 0) != 0:
+            timed.append(("THSSBrDp", "shaft-brake deployment"))
+        if s.get("GenTiStp", 1):
+            timed.append(("TimGenOf", "generator switch-off"))
+        for label, message in timed:
+            if label in s and s[label] < end_time:
+                refuse(label, f"{message} at {s[label]:g} s is not modelled: move it beyond the end of the run")
+        if not s.get("GenTiStr", 1):
+            refuse("GenTiStr", "generator start at a speed (GenTiStr False) is not modelled: set GenTiStr True")
+        elif s.get("TimGenOn", 0) > 0:
+            refuse("TimGenOn", f"generator switch-on at {s['TimGenOn']:g} s is not modelled: set TimGenOn 0")
+        return found
+
+
+#: Optional entries kept for :meth:`ServoDyn.unmodelled` (float, or 1/0 for flags).
+SETTINGS = ("YCMode", "AfCmode", "NumBStC", "NumNStC", "NumTStC", "NumSStC", "TPitManS(1)", "TPitManS(2)",
+            "TPitManS(3)", "TYawManS", "HSSBrMode", "THSSBrDp", "TimGenOn", "TimGenOf")
+FLAGS = ("GenTiStr", "GenTiStp")
+
+
+def read_servodyn(path: str | os.PathLike) -> ServoDyn:
+    """Read a ServoDyn file; malformed entries are :class:`InputError` naming file, line and label. The torque-law
+    constants are required only with VSContrl 1."""
+    labels = Labels.read(path)
+    torque_control = labels.int("VSContrl")
+    law = torque_control == 1
+    settings = {label: labels.float(label) for label in SETTINGS if labels.has(label)}
+    settings.update({label: float(labels.bool(label)) for label in FLAGS if labels.has(label)})
+    lines = {label: (labels.which(label), labels.line(label))
+             for label in ("PCMode", "VSContrl", *SETTINGS, *FLAGS) if labels.has(label)}
+    slip = labels.float("VS_SlPc", positive=True) / 100.0 if law else math.nan
+    if law and slip >= 1.0:
+        raise labels.error(f"must be below 100 %, got {slip * 100:g}", labels.line("VS_SlPc"), "VS_SlPc")
+    return ServoDyn(
+        path=labels.path, pitch_mode=labels.int("PCMode"), torque_control=torque_control,
+        generator_model=labels.int("GenModel") if labels.has("GenModel") else 1,
+        efficiency=labels.float("GenEff", positive=True) / 100.0,
+        rated_generator_speed=labels.float("VS_RtGnSp", positive=True) * RPM if law else math.nan,
+        rated_torque=labels.float("VS_RtTq", positive=True) if law else math.nan,
+        region2_constant=labels.float("VS_Rgn2K", non_negative=True) / RPM ** 2 if law else math.nan,
+        slip=slip, yaw_neutral=math.radians(labels.float("YawNeut")),
+        yaw_spring=labels.float("YawSpr", non_negative=True), yaw_damper=labels.float("YawDamp", non_negative=True),
+        settings=settings, lines=lines)
