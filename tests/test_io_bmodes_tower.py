@@ -197,3 +197,41 @@ def test_free_yaw_without_inertia_is_a_clear_error():
     with pytest.raises(InputError) as info:
         tower_from_bmodes(bare("bmodes_tower_plain.bmi", hub_conn=2))
     assert info.value.field == "hub_conn" and info.value.line == 13
+
+
+
+def test_a_rigid_segment_behind_a_property_step_is_read(tmp_path, capsys):
+    # monopile decks make the tower above the pile axially rigid at a property step (EA 1e7 times higher, a station
+    # given twice): a deliberate jump, read; the same jump between two distinct stations is refused as a unit slip
+    from bladefem.cli import main
+    header = (DATA / "bmodes_tower_sec_props.dat").read_text().splitlines()[:5]
+
+    def row(x: float, axial: float) -> str:
+        return f"{x} 0.0 0.0 5000.0 0.0 0.0 5.0e10 5.0e10 4.0e10 {axial} 0.0 0.0 0.0"
+
+    def deck(upper: float) -> str:
+        rows = [row(0.0, 1e12), row(0.5, 1e12), row(upper, 1e19), row(1.0, 1e19)]
+        (tmp_path / "bmodes_tower_sec_props.dat").write_text("\n".join([header[0], "4 n_secs", *header[2:], *rows]))
+        (tmp_path / "bmodes_tower_plain.bmi").write_text((DATA / "bmodes_tower_plain.bmi").read_text())
+        return str(tmp_path / "bmodes_tower_plain.bmi")
+    assert main(["modes", deck(0.5), "--n-modes", "2"]) == 0
+    assert main(["modes", deck(0.6), "--n-modes", "2"]) == 2
+    assert "unit slip" in capsys.readouterr().err
+
+
+def test_a_step_written_as_two_close_stations_is_a_step(tmp_path):
+    # a property step written as two stations 6e-6 of the height apart (as the IEA 15 MW monopile deck does) is one
+    # node: the same frequencies as the exact step to the ramp's width (the sliver element it would otherwise make
+    # scatters them by round-off)
+    header = (DATA / "bmodes_tower_sec_props.dat").read_text().splitlines()[:5]
+
+    def row(x: float, mass: float, stiffness: float) -> str:
+        return f"{x} 0.0 0.0 {mass} 0.0 0.0 {stiffness} {stiffness} 4.0e10 1.0e12 0.0 0.0 0.0"
+
+    def frequencies(upper: float) -> np.ndarray:
+        rows = [row(0.0, 8000.0, 9e10), row(0.5, 8000.0, 9e10), row(upper, 4000.0, 3e10), row(1.0, 4000.0, 3e10)]
+        (tmp_path / "bmodes_tower_sec_props.dat").write_text("\n".join([header[0], "4 n_secs", *header[2:], *rows]))
+        (tmp_path / "bmodes_tower_plain.bmi").write_text((DATA / "bmodes_tower_plain.bmi").read_text())
+        tower = tower_from_bmodes(read_bmodes(tmp_path / "bmodes_tower_plain.bmi")).with_(gravity=0.0)
+        return np.array(lateral(tower_modes(tower, 8, elements=200), 6))
+    assert frequencies(0.5 + 6e-6) == pytest.approx(frequencies(0.5), rel=1e-5)
