@@ -214,3 +214,22 @@ def test_cli_takes_the_rotor_speed_and_mode_count_from_the_deck(capsys):
                  "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["rotor_speed_rpm"] == 0.0 and len(data["modes"]) == 3
+
+
+def test_bmodes_bugs_are_named_not_copied(capsys):
+    # CertTest 02 (a rotating blade with a tip mass off the axis): bladefem keeps the tip mass's centrifugal tension
+    # (BModes leaves it out: switched to BModes' way, the lowest four fall by 0.9-5.7 %) and reads cm_loc as the
+    # transverse offset (BModes v3.00 reads the cm_axial line into cm_loc); the printed notes name both differences
+    from bmodes_physics import frequencies
+    path = DATA / "bmodes_certtest" / "Test02_blade_with_tip_mass.bmi"
+    deck = read_bmodes(path)
+    assert deck.rotor_speed_rpm > 0 and deck.tip["tip_mass"] > 0 and deck.tip["cm_loc"] != deck.tip["cm_axial"]
+    ours, without_tension = frequencies(deck, 4, 80), frequencies(deck, 4, 80, ("tip mass",))
+    assert np.all(ours > without_tension * (1 + 5e-3))
+    blade = blade_from_bmodes(deck)
+    assert np.linalg.norm(blade.tip_mass.offset[1:]) == pytest.approx(abs(deck.tip["cm_loc"]), rel=1e-14)
+    assert blade.tip_mass.offset[0] == deck.tip["cm_axial"]
+    assert main(["modes", str(path), "--n-modes", "4", "--elements", "40"]) == 0
+    out = capsys.readouterr().out
+    assert "the tip mass's own centrifugal force in the blade tension" in out
+    assert "BModes v3.00 reads the cm_axial line into cm_loc" in out
