@@ -85,7 +85,7 @@ def certtest01_kinds() -> list[str]:
 
 def test_certtest01_at_60_rpm_within_the_acceptance():
     # bladefem's own physics at the deck's 60 rpm, automatic mesh: flap 1, edge 1, flap 2 within 0.7 % and the first
-    # torsion within 1 % of the converged peer (issue 13's acceptance; measured: see VALIDATION.md)
+    # torsion within 1 % of the converged peer (the acceptance of the BModes reader; measured: see VALIDATION.md)
     deck = read_bmodes(DECKS["Test01_nonunif_blade"])
     assert deck.rotor_speed_rpm == 60.0
     expected, _ = reference("Test01_nonunif_blade")
