@@ -235,3 +235,15 @@ def test_a_step_written_as_two_close_stations_is_a_step(tmp_path):
         tower = tower_from_bmodes(read_bmodes(tmp_path / "bmodes_tower_plain.bmi")).with_(gravity=0.0)
         return np.array(lateral(tower_modes(tower, 8, elements=200), 6))
     assert frequencies(0.5 + 6e-6) == pytest.approx(frequencies(0.5), rel=1e-5)
+
+
+@pytest.mark.filterwarnings("ignore:the gravity load is")
+def test_a_floating_tower_chart_has_its_bending_modes():
+    # the six rigid-platform modes come first on a free-free platform: the soft-stiff chart asks for them on top of
+    # its modes, so its first bending mode is a tower bending mode, the same as the plain modal analysis finds
+    from bladefem.models.tower_campbell import BENDING, tower_campbell
+    tower = tower_from_bmodes(read_bmodes(DATA / "bmodes_tower_platform.bmi"))
+    assert len(tower.supports.free_base) == 6
+    chart = tower_campbell(tower, [0.0, 12.0], n_modes=2, elements=30)
+    bending = [m.frequency_hz for m in tower_modes(tower, 12, elements=30).modes if m.kind in BENDING]
+    assert chart.first_bending.frequency_hz == pytest.approx(bending[0], rel=1e-12)
