@@ -247,3 +247,7 @@ def test_a_floating_tower_chart_has_its_bending_modes():
     chart = tower_campbell(tower, [0.0, 12.0], n_modes=2, elements=30)
     bending = [m.frequency_hz for m in tower_modes(tower, 12, elements=30).modes if m.kind in BENDING]
     assert chart.first_bending.frequency_hz == pytest.approx(bending[0], rel=1e-12)
+    # and the ElastoDyn tower fit finds two fore-aft and two side-side modes past them
+    from bladefem.models.tower_fit import tower_coefficients
+    fitted = tower_coefficients(tower, n_modes=4, elements=30)
+    assert all(fitted.fits[name].fe_frequency_hz > 0 for name in ("fa1", "fa2", "ss1", "ss2"))
