@@ -251,3 +251,25 @@ def test_a_floating_tower_chart_has_its_bending_modes():
     from bladefem.models.tower_fit import tower_coefficients
     fitted = tower_coefficients(tower, n_modes=4, elements=30)
     assert all(fitted.fits[name].fe_frequency_hz > 0 for name in ("fa1", "fa2", "ss1", "ss2"))
+
+
+@pytest.mark.filterwarnings("ignore:the gravity load is")
+def test_an_arpack_failure_on_a_tower_falls_back_to_dense(monkeypatch):
+    # ARPACK forced to fail (every error it raises) on a tapered tower with wires (CertTest 04) and a floating one:
+    # the same frequencies from the dense solvers, no traceback (to 1e-8: the shifted solve of a free platform gives
+    # its soft rigid-body modes to ~1e-8, solve_tower)
+    import scipy.sparse.linalg as spla
+
+    import bladefem.modal.solve as solve_module
+    import bladefem.models.tower as tower_module
+    towers = [tower_from_bmodes(read_bmodes(DATA / "bmodes_certtest" / "Test04_wires_supported_tower.bmi")),
+              tower_from_bmodes(read_bmodes(DATA / "bmodes_tower_platform.bmi"))]
+    expected = [tower_modes(tower, 8, elements=60).frequencies_hz for tower in towers]
+
+    def failing(*args, **kwargs):
+        raise spla.ArpackError(-9)
+
+    monkeypatch.setattr(tower_module.spla, "eigsh", failing)
+    monkeypatch.setattr(solve_module.spla, "eigsh", failing)
+    for tower, frequencies in zip(towers, expected):
+        assert tower_modes(tower, 8, elements=60).frequencies_hz == pytest.approx(frequencies, rel=1e-8)

@@ -75,7 +75,7 @@ def inverse_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray
             warnings.simplefilter("error", spla.MatrixRankWarning)
             try:
                 mu, vectors = spla.eigsh(K, k=k, M=M, sigma=0.0, which="LM")
-            except (RuntimeError, spla.MatrixRankWarning, spla.ArpackNoConvergence) as error:
+            except (RuntimeError, spla.MatrixRankWarning, spla.ArpackError) as error:   # incl. no convergence
                 raise la.LinAlgError(str(error)) from None
         mu = 1.0 / mu
     if np.any(mu <= 0):
