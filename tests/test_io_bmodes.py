@@ -216,6 +216,13 @@ def test_cli_takes_the_rotor_speed_and_mode_count_from_the_deck(capsys):
     assert data["rotor_speed_rpm"] == 0.0 and len(data["modes"]) == 3
 
 
+def test_export_takes_the_rotor_speed_from_the_deck(tmp_path):
+    assert main(["export", str(DATA / "bmodes_blade.bmi"), "-o", str(tmp_path), "--elements", "20", "--n-modes", "2",
+                 "--quiet"]) == 0
+    sidecar = json.loads((tmp_path / "modes.json").read_text())
+    assert [speed["rotor_speed_rpm"] for speed in sidecar["speeds"]] == [30.0]          # rot_rpm x rpm_mult
+
+
 def test_bmodes_bugs_are_named_not_copied(capsys):
     # CertTest 02 (a rotating blade with a tip mass off the axis): bladefem keeps the tip mass's centrifugal tension
     # (BModes leaves it out: switched to BModes' way, the lowest four fall by 0.9-5.7 %) and reads cm_loc as the

@@ -116,8 +116,9 @@ def run_modes(args: argparse.Namespace) -> int:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
-    if args.operating_rpm is None and deck_settings(args.input)[0]:
-        args.operating_rpm = (deck_settings(args.input)[0],) * 2
+    deck_rpm = deck_settings(args.input)[0]
+    if args.operating_rpm is None and deck_rpm:
+        args.operating_rpm = (deck_rpm, deck_rpm)
     options.check_sweep(args.rpm, args.n_modes, args.elements)
     options.check_output(args.plot)
     if args.vtk:
