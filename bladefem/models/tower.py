@@ -4,7 +4,8 @@ Results reuse :class:`~bladefem.modal.results.ModalResult`; for a tower the mode
 deflection ``w`` and ``edge`` the side-side deflection ``v``, and the kinds are ``fore-aft``, ``side-side``,
 ``torsion``, ``axial`` and, on a floating platform, ``surge``, ``sway``, ``heave``, ``roll``, ``pitch``, ``yaw``
 (the coordinate or field with the largest share of kinetic energy; platform shares are those of the rigid-body
-motion of the whole system, beam shares those of the elastic motion relative to the platform). A mode's
+motion of the whole system, beam shares those of the elastic motion relative to the platform; a mode that mostly
+strains the tower is named after the tower's motion, :func:`mode_kind`). A mode's
 ``residual`` is the normwise backward error of the eigenpair (:func:`backward_errors`).
 """
 
@@ -32,6 +33,9 @@ from ..sections.tower import (
 
 #: tower kind of each beam field
 TOWER_FIELD_KINDS: dict[str, str] = {"w": "fore-aft", "v": "side-side", "phi": "torsion", "u": "axial"}
+#: a mode whose tower strain energy is more than this share of its potential energy is a tower mode (measured on
+#: the floating reference decks: rigid-platform modes below 0.08, the coupled first bending modes 0.99-1.02)
+TOWER_STRAIN_SHARE = 0.5
 TOWER_KINDS: tuple[str, ...] = ("fore-aft", "side-side", "torsion", "axial", "surge", "sway", "heave", "roll",
                                 "pitch", "yaw")
 #: modes whose frequencies differ by less than this (relative) form a degenerate cluster, rotated into clean
@@ -248,17 +252,36 @@ def backward_errors(K: sp.spmatrix, M: sp.spmatrix, values: NDArray, vectors: ND
     return np.linalg.norm(r, axis=0) / scale
 
 
+def strain_shares(matrices: TowerMatrices, K: sp.spmatrix, vectors: NDArray) -> NDArray:
+    """Share of each mode's potential energy (``x^T K x``, reduced K) that is the tower's elastic strain energy;
+    0 for a rigid-body mode."""
+    elastic = matrices.Z[:, :matrices.n_elastic]
+    part = vectors[:matrices.n_elastic]
+    strain = np.einsum("ij,ij->j", part, (elastic.T @ matrices.K_elastic @ elastic) @ part)
+    total = np.abs(np.einsum("ij,ij->j", vectors, K @ vectors))
+    return np.divide(strain, total, out=np.zeros_like(strain), where=total > 0)
+
+
+def mode_kind(fractions: dict[str, float], strain_share: float) -> str:
+    """The kind with the largest kinetic share; a mode that mostly strains the tower (:data:`TOWER_STRAIN_SHARE`)
+    is named after the tower's own motion even where a massive platform holds most of its kinetic energy (the
+    first bending modes of a floating tower, platform pitch and roll coupled in)."""
+    kinds = TOWER_FIELD_KINDS.values() if strain_share > TOWER_STRAIN_SHARE else fractions
+    return max(kinds, key=fractions.get)
+
+
 def modal_result(matrices: TowerMatrices, values: NDArray, vectors: NDArray,
                  notes: tuple[str, ...] = ()) -> ModalResult:
     """A :class:`ModalResult` with tower kinds, relative residuals and mode shapes (shapes include base motion)."""
     K, M = matrices.reduced()
     residuals = backward_errors(K, M, values, vectors)
     fractions = energy_shares(matrices, vectors)
+    strain = strain_shares(matrices, K, vectors)
     view = _BeamView(matrices.dofs, np.arange(matrices.dofs.size))
     full = matrices.expand(vectors)
     modes = []
     for j, value in enumerate(values):
-        kind = max(fractions[j], key=fractions[j].get)
+        kind = mode_kind(fractions[j], strain[j])
         modes.append(Mode(frequency_hz=float(_frequencies(np.array([value]))[0]), kind=kind,
                           energy_fractions=fractions[j], residual=float(residuals[j]),
                           shape=mode_shape(view, full[:matrices.dofs.size, j], kind)))
