@@ -15,7 +15,12 @@ from bladefem.aero.performance import performance_at
 from bladefem.io.openfast_fst import read_openfast_deck
 from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel
-from bladefem.models.turbine.aero import TurbineAero, aero_forcing, aero_loads, aero_nodes
+from bladefem.models.turbine.aero import (
+    TurbineAero,
+    aero_forcing,
+    aero_loads,
+    aero_nodes,
+)
 
 DECK = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
 RATED = 12.1 * np.pi / 30

@@ -83,7 +83,7 @@ def test_power_balance(rated):
     the generator is held at 12.1 rpm by the torque it takes (GenTq). With the change of stored energy (kinetic,
     gravity, strain) the balance is exact: 1e-6 (measured 2e-8, the trapezoidal rule on 0.025 s samples). The
     powers are the loads' own work rates (u . Q)."""
-    model, system, result = rated
+    model, _, result = rated
     loads = result.loads
     column = {name: loads[:, i] for i, name in enumerate(LOAD_COLUMNS)}
     generator_speed = model.params.gearbox_ratio * result.u[:, 5]
@@ -124,7 +124,7 @@ def test_every_channel_follows_openfast_from_a_deflected_yawed_start(case):
     output step on) and its mean agrees within 3 % (the BEM_Mod 2 share). GenTq and GenPwr only with the torque law:
     with the rotor speed held OpenFAST writes the law at the imposed speed."""
     data = json.loads((DATA / "channel_signs.json").read_text())["cases"][case]
-    options = dict(blade_shapes="polynomial", elastodyn_compatible=True, gauss_points=1)
+    options = {"blade_shapes": "polynomial", "elastodyn_compatible": True, "gauss_points": 1}
     deck = read_turbine_deck(DECK, wind_speed=11.4, rpm=12.1, **options)
     model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
     switches = {**deck.switches, "GenDOF": case == "signs_free"}

@@ -17,7 +17,12 @@ from ..models.turbine.aero import TurbineAero
 from ..models.turbine.control import Generator
 from ..models.turbine.initial import InitialConditions
 from ..models.turbine.parameters import TurbineParameters
-from .turbine_elastodyn import NREL5MW_YAW_DAMPING, NREL5MW_YAW_STIFFNESS, deck_conditions, turbine_from_elastodyn
+from .turbine_elastodyn import (
+    NREL5MW_YAW_DAMPING,
+    NREL5MW_YAW_STIFFNESS,
+    deck_conditions,
+    turbine_from_elastodyn,
+)
 
 #: words of a .fst's first lines that tell it from an ElastoDyn main file
 FST_WORDS = {"CompElast", "EDFile"}

@@ -75,10 +75,10 @@ def signs(runs: Path) -> dict:
                            "changes_from_deck": ["all changes of rated_fixed_speed.json", CONDITIONS,
                                                  "TMax 10 s, DT_Out 0.05 s (every second row kept)",
                                                  "signs_free: GenDOF True"],
-                           "notes": ["At t = 0 OpenFAST writes the root moments without the blades' inertial loads; "
-                                     "compare from the first step on.",
-                                     "With GenDOF False ServoDyn's GenTq/GenPwr are the torque law at the imposed "
-                                     "speed, not the torque that holds it."]},
+                           "notes": [("At t = 0 OpenFAST writes the root moments without the blades' inertial "
+                                      "loads; compare from the first step on."),
+                                     ("With GenDOF False ServoDyn's GenTq/GenPwr are the torque law at the imposed "
+                                      "speed, not the torque that holds it.")]},
             "cases": cases}
 
 
