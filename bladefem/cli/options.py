@@ -91,13 +91,13 @@ def check_sweep(speeds: Any, modes: int, mesh: int | None, option: str = "--rpm"
         raise InputError(error.message, field=option) from None
 
 
-def check_folder(path: str) -> None:
-    """Fail now when an output folder is a file or cannot be created or written into."""
+def check_folder(path: str, field: str = "--output") -> None:
+    """Fail now when an output folder (the option ``field``) is a file or cannot be created or written into."""
     from pathlib import Path
 
     folder = Path(path)
     if folder.exists() and not folder.is_dir():
-        raise InputError("is a file, not a folder (give a folder for the outputs)", file=path, field="--output")
+        raise InputError("is a file, not a folder (give a folder for the outputs)", file=path, field=field)
     check_writable(folder / "probe")
 
 
