@@ -1,11 +1,12 @@
-"""``bladefem turbine``: the 16-DOF Kane turbine model of an ElastoDyn main file.
+"""``bladefem turbine``: the 16-DOF Kane turbine model of an OpenFAST deck (.fst) or an ElastoDyn main file.
 
-    bladefem turbine MAIN --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
-    bladefem turbine MAIN --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
-    bladefem turbine MAIN --simulate SECONDS [--dof ...] [--initial NAME=VALUE ...] [--output out.csv]
+    bladefem turbine DECK --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
+    bladefem turbine DECK --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
+    bladefem turbine DECK --simulate SECONDS [--wind-speed U] [--rpm R] [--dof ...] [--output out.csv]
 
 The deck is honoured: its DOF switches set the free coordinates and its initial conditions the initial state
-(``--dof`` and ``--initial`` override them).
+(``--dof`` and ``--initial`` override them); a .fst brings aerodynamics (AeroDyn, InflowWind), the generator torque
+law and the yaw spring (ServoDyn).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
-from .inputs import rpm_range
+from .options import check_output, rpm_sweep
 
 if TYPE_CHECKING:
     import numpy as np
@@ -30,24 +31,36 @@ ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflecti
                      "RotSpeed": ("rotor_speed", math.pi / 30)}
 #: coordinates that are angles, given in degrees as NAME_deg
 ANGLES = ("yaw", "generator_azimuth", "drivetrain")
+#: figure formats of --plot (by suffix)
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial")
+AERO_ONLY = ("wind_speed", "shear_exp")
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
-        "turbine", help="16-DOF Kane turbine model (ElastoDyn structure) fed by bladefem modes",
-        description="Linearize or simulate the 16-DOF structural turbine model (tower FA/SS 1-2, yaw, generator "
-                    "azimuth, drivetrain, blade flap 1, edge 1, flap 2) of an ElastoDyn main file; no "
-                    "aerodynamics. The deck's DOF switches and initial conditions are used unless overridden.")
-    parser.add_argument("main", metavar="ELASTODYN_MAIN", help="ElastoDyn main input file")
+        "turbine", help="16-DOF Kane turbine model (ElastoDyn structure, AeroDyn BEM) fed by bladefem modes",
+        description="Simulate or linearize the 16-DOF turbine model (tower FA/SS 1-2, yaw, generator azimuth, "
+                    "drivetrain, blade flap 1, edge 1, flap 2) of an OpenFAST deck (.fst: with quasi-steady BEM "
+                    "aerodynamics, the generator torque law and the yaw spring) or of an ElastoDyn main file "
+                    "(structure only). The deck's DOF switches and initial conditions are used unless overridden.")
+    parser.add_argument("main", metavar="DECK", help="OpenFAST main file (.fst) or ElastoDyn main input file")
     action = parser.add_mutually_exclusive_group(required=True)
     action.add_argument("--linearize", action="store_true", help="the full-system modes at --rpm")
-    action.add_argument("--campbell", type=rpm_range, metavar="START:STOP:COUNT",
+    action.add_argument("--campbell", type=rpm_sweep, metavar="START:STOP:COUNT",
                         help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm")
     action.add_argument("--simulate", type=float, metavar="SECONDS", help="integrate in time for SECONDS")
     parser.add_argument("--rpm", type=float, default=None,
                         help="rotor speed, rpm (default: RotSpeed of the main file); also the speed of the FE "
-                             "blade shapes")
+                             "blade shapes. With --simulate the generator is locked at this speed (add --dof "
+                             "GenDOF=on to start at it with the generator free)")
+    parser.add_argument("--wind-speed", type=float, default=None, metavar="M_S",
+                        help="steady wind speed at the reference height, m/s (default: InflowWind's HWindSpeed)")
+    parser.add_argument("--shear-exp", type=float, default=None, metavar="EXPONENT",
+                        help="power-law wind shear exponent (default: InflowWind's PLExp)")
+    parser.add_argument("--pitch-deg", type=float, default=None, metavar="DEG",
+                        help="collective blade pitch, deg (default: ElastoDyn's BlPitch)")
+    parser.add_argument("--no-aero", action="store_true", help="leave the aerodynamic loads of a .fst out")
     parser.add_argument("--azimuth-deg", type=float, default=None, metavar="DEG",
                         help="rotor azimuth of a parked (0 rpm) linearization, deg, blade 1 up at 0 (default: "
                              "Azimuth - AzimB1Up of the main file)")
@@ -77,16 +90,16 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--no-gravity", action="store_true", help="switch gravity off")
     parser.add_argument("--no-damping", action="store_true", help="switch structural, drivetrain, yaw damping off")
     parser.add_argument("--yaw-stiffness", type=float, default=None, metavar="N_M_PER_RAD",
-                        help="nacelle-yaw spring (ServoDyn YawSpr; default NREL 5MW 9.02832e9)")
+                        help="nacelle-yaw spring (default: ServoDyn's YawSpr, else the NREL 5MW's 9.02832e9)")
     parser.add_argument("--yaw-damping", type=float, default=None, metavar="N_M_S_PER_RAD",
-                        help="nacelle-yaw damper (ServoDyn YawDamp; default NREL 5MW 1.916e7)")
+                        help="nacelle-yaw damper (default: ServoDyn's YawDamp, else the NREL 5MW's 1.916e7)")
     parser.add_argument("--json", action="store_true", help="--linearize or --campbell results as JSON")
     parser.add_argument("--dt", type=float, default=None, help="output interval of --simulate, s (default 0.05)")
     parser.add_argument("--rtol", type=float, default=None, help="relative tolerance of --simulate (default 1e-6)")
     parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default=None,
-                        help="time integrator: auto (compiled 8th-order Dormand-Prince with numba, else scipy "
-                             "DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or DOP853, or fixed-step "
-                             "RK4 (--step)")
+                        help="time integrator: auto (with numba the compiled Dormand-Prince 8(5,3), or 5(4) with "
+                             "aerodynamics; else scipy DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or "
+                             "DOP853, or fixed-step RK4 (--step)")
     parser.add_argument("--step", type=float, default=None, help="step of --method RK4, s (default 0.01)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
@@ -112,12 +125,40 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value > 0):
             raise InputError(f"must be a positive number, got {value}", field="--" + name)
-    for name in ("rpm", "yaw_stiffness", "yaw_damping"):
+    check_duration(args.simulate, args.dt)
+    if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
+        raise InputError(f"the figure's format goes by its suffix: one of {', '.join(PLOT_SUFFIXES)}",
+                         file=args.plot, field="--plot")
+    check_output(args.output)
+    check_output(args.plot)
+    if args.no_aero:
+        for name in AERO_ONLY:
+            if getattr(args, name) is not None:
+                raise InputError("has no effect with --no-aero", field="--" + name.replace("_", "-"))
+    for name in ("rpm", "yaw_stiffness", "yaw_damping", "wind_speed"):
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
-    if args.azimuth_deg is not None and not math.isfinite(args.azimuth_deg):
-        raise InputError(f"must be a number, got {args.azimuth_deg}", field="--azimuth-deg")
+    for name in ("azimuth_deg", "shear_exp", "pitch_deg"):
+        value = getattr(args, name)
+        if value is not None and not math.isfinite(value):
+            raise InputError(f"must be a number, got {value}", field="--" + name.replace("_", "-"))
+
+
+def check_duration(seconds: float | None, dt: float | None) -> None:
+    """Refuse a --simulate longer than :data:`~bladefem.limits.MAX_SIMULATION_SECONDS` or with more output rows
+    than :data:`~bladefem.limits.MAX_OUTPUT_ROWS`, before the model is built."""
+    from ..limits import MAX_OUTPUT_ROWS, MAX_SIMULATION_SECONDS
+
+    if seconds is None:
+        return
+    if seconds > MAX_SIMULATION_SECONDS:
+        raise InputError(f"at most {MAX_SIMULATION_SECONDS:g} s (a day of turbine time) in one run, got {seconds:g}",
+                         field="--simulate")
+    rows = seconds / (0.05 if dt is None else dt)
+    if rows > MAX_OUTPUT_ROWS:
+        raise InputError(f"{rows:.3g} output rows (at most {MAX_OUTPUT_ROWS:g}): give a larger --dt or a shorter "
+                         "--simulate", field="--dt" if dt is not None else "--simulate")
 
 
 def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, float], dict[str, float]]:
@@ -150,45 +191,54 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
 
 
 def build_model(args: argparse.Namespace):
-    from ..io.turbine_elastodyn import (
-        NREL5MW_YAW_DAMPING,
-        NREL5MW_YAW_STIFFNESS,
-        turbine_from_elastodyn,
-    )
+    """The deck's turbine (:class:`~bladefem.io.turbine_deck.TurbineDeck`) and its model, with the options."""
+    from ..io.turbine_deck import read_turbine_deck
     from ..models.turbine import TurbineModel
 
     shapes = args.shapes or ("polynomial" if args.elastodyn_compatible else "fe")
-    params = turbine_from_elastodyn(
-        args.main, shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
-        yaw_stiffness=NREL5MW_YAW_STIFFNESS if args.yaw_stiffness is None else args.yaw_stiffness,
-        yaw_damping=NREL5MW_YAW_DAMPING if args.yaw_damping is None else args.yaw_damping,
+    deck = read_turbine_deck(
+        args.main, aero=not args.no_aero, wind_speed=args.wind_speed, shear_exponent=args.shear_exp,
+        pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg), yaw_stiffness=args.yaw_stiffness,
+        yaw_damping=args.yaw_damping, blade_shapes=shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
         elastodyn_compatible=args.elastodyn_compatible, damping=args.damping,
         gauss_points=1 if args.elastodyn_compatible else 2)
+    params = deck.params
     if args.no_gravity:
         params = params.with_(gravity=0.0)
     if args.no_damping:
         params = params.without_damping()
-    return params, TurbineModel(params)
+    return deck, params, TurbineModel(params, aero=deck.aero, generator=deck.generator)
 
 
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..io.turbine_elastodyn import deck_conditions
     from ..models.turbine import select_dofs
     from ..models.turbine.initial import free_from_switches, initial_state
 
     check_options(args)
-    switches, conditions = deck_conditions(args.main)
-    params, model = build_model(args)
+    deck, params, model = build_model(args)
+    if model.aero is not None and not args.simulate:
+        raise InputError("linearization with aerodynamics is not available yet (issue 12): add --no-aero for the "
+                         "structural modes", field="--no-aero")
+    switches, conditions = deck.switches, deck.conditions
+    if args.rpm is not None:
+        conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
+        if args.simulate:
+            switches = {**switches, "GenDOF": False}           # the generator held at --rpm
     free = select_dofs(model.dofs, args.dof or [], base=free_from_switches(model.dofs, switches))
     if not free.any():
         raise InputError("no free degree of freedom", field="--dof")
-    if args.rpm is not None:
-        conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
     notes = sys.stderr if args.json else sys.stdout            # JSON on stdout stays pure
     for note in params.notes:
         print(f"# {note}", file=notes)
+    if model.aero is not None:
+        inflow = model.aero.inflow
+        print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, wind "
+              f"{inflow.speed:g} m/s at {inflow.reference_height:g} m, shear exponent {inflow.shear_exponent:g}, "
+              f"pitch {math.degrees(model.aero.pitch):g} deg", file=notes)
+    if model.generator is not None and model.generator.torque_law:
+        print("# generator: ServoDyn's simple variable-speed torque law (VSContrl 1)", file=notes)
     rpm = conditions.rotor_speed * 30 / math.pi
     if args.linearize or args.campbell is not None:
         azimuth = conditions.azimuth if args.azimuth_deg is None else math.radians(args.azimuth_deg)

@@ -77,10 +77,16 @@ def block_diagonal(n: int, blocks: list[tuple[NDArray, NDArray]]) -> NDArray:
 
 
 class TurbineModel:
-    """The turbine's equations of motion ``M(q) du/dt = f(q, u)`` over all generalized coordinates ``q``."""
+    """The turbine's equations of motion ``M(q) du/dt = f(q, u)`` over all generalized coordinates ``q``.
 
-    def __init__(self, params: TurbineParameters) -> None:
+    params : the structure; aero : aerodynamic loads (:class:`~bladefem.models.turbine.aero.TurbineAero`, quasi-steady
+    BEM at the AeroDyn nodes) or None; generator : the generator torque law
+    (:class:`~bladefem.models.turbine.control.Generator`) or None. Both enter the forcing ``f``.
+    """
+
+    def __init__(self, params: TurbineParameters, aero=None, generator=None) -> None:
         p = self.params = params
+        self.aero, self.generator = aero, generator
         self.dofs = p.dofs
         n = self.n = len(self.dofs)
         index = {name: i for i, name in enumerate(self.dofs)}
@@ -185,7 +191,7 @@ class TurbineModel:
     def equations(self, q: NDArray, u: NDArray, blade_forces: NDArray | None = None) -> tuple[NDArray, NDArray]:
         """Mass matrix M(q) (n, n) and forcing f(q, u) (n,) with ``M du/dt = f``; ``blade_forces`` (B, P + 1, 3),
         N in earth components, are external forces on the blade nodes (tip last), added to the forcing as
-        ``sum_p J_p^T F_p`` (e.g. aerodynamic loads from :meth:`motion`'s node velocities)."""
+        ``sum_p J_p^T F_p``; the model's aerodynamic loads and generator torque, if any, are included."""
         motion = self.motion(q, u)
         M, f = np.zeros((self.n, self.n)), np.zeros(self.n)
         for group, masses, external in ((motion.tower, self.tower_masses, None),
@@ -205,7 +211,19 @@ class TurbineModel:
             f -= inertia * ((axis @ frame.alpha) * partial
                             + (axis @ frame.omega) * (frame.W.T @ (skew(frame.omega) @ axis)))
         f -= self.K @ q + self.C @ u
-        return M, f
+        return M, f + self.applied_forces(q, u)
+
+    def applied_forces(self, q: NDArray, u: NDArray) -> NDArray:
+        """Generalized forces (n,) of the aerodynamic loads and the generator torque at (q, u)."""
+        f = np.zeros(self.n)
+        if self.aero is not None:
+            from .aero import aero_loads
+            f += aero_loads(self, self.aero, q, u).generalized
+        if self.generator is not None:
+            g = self.dofs.index("generator_azimuth")
+            ratio = self.params.gearbox_ratio
+            f[g] -= ratio * self.generator.torque(ratio * u[g])
+        return f
 
     def energy(self, q: NDArray, u: NDArray) -> tuple[float, float]:
         """Kinetic energy and potential energy (gravity above the ground, strain, springs), J."""

@@ -1,0 +1,317 @@
+"""Aerodynamic loads on the Kane turbine model: quasi-steady BEM at the AeroDyn blade nodes (numpy reference).
+
+Each AeroDyn node (``BlSpn``) is a point of the flexible blade: its modal shapes, slopes and shortening integrals
+are linear interpolations of the structural beam's (root, span nodes, tip), as OpenFAST maps ElastoDyn's blade
+motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
+rotation) ride rigidly in the blade frame. At every state the node's absolute velocity (tower, nacelle, rotor and
+blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
+the node solver (:func:`bladefem.aero.bem.node_loads`) are AeroDyn's legacy projection (``NoSweepPitchTwist``):
+
+    n = (i1 - w' i3) / sqrt(1 + w'^2)     the coned blade's downwind normal turned by the out-of-plane slope w'
+    vx = (V_wind - v) . n,   vy = -(V_wind - v) . e_t      e_t the direction of rotation (toward the leading edge)
+    r_local = distance from the shaft axis,  theta = BlTwist + pitch
+
+with the disk-averaged relative wind giving the skew angle ``chi0``, the skewed-wake azimuth and the tip-speed ratio
+(AeroDyn's ``DiskAvgValues``). The loads per unit length, ``fn`` along ``n``, ``ft`` along ``e_t`` and the pitching
+moment along the deflected span axis, vary linearly between nodes along the undeflected arc length; they are lumped
+at the nodes by virtual work (force: ``L/3, L/6`` per element, whose moment about any point is the exact one of
+the line load; moment: ``L/2``), and enter Kane's equations as ``sum_p J_p^T F_p + W^T sum_p M_p`` (W the rotor's
+partial angular velocities). See docs/turbine.md.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...aero.bem import NODE_OUTPUTS, solve_nodes
+from ...aero.performance import COLUMNS, induction_weight
+from ...aero.polars import pack_polars
+from ...aero.rotor import Inflow, Rotor
+from ...errors import InputError
+from .kinematics import BeamNodes, NodeGroup, carry_nodes
+from .shapes import ModalBeam
+
+
+@dataclass(frozen=True)
+class TurbineAero:
+    """The rotor's aerodynamics on one turbine model (SI, rad); every blade alike.
+
+    rotor : planform, polars, air and BEM options (:class:`bladefem.aero.Rotor`)
+    inflow : steady wind (speed at the reference height, shear, direction, upflow)
+    pitch : collective blade pitch, rad (the structural model's blade shapes must be pitched alike)
+    axial : (Na,) node distance from the rotor apex along the pitch axis (HubRad + BlSpn), m
+    offset : (Na, 3) aerodynamic-centre offset in the blade frame (span, toward the leading edge, downwind), m
+    value, slope : (k, Na, 2) the blade's modal shapes and slopes (in-plane, out-of-plane) at the nodes
+    shortening : (k, k, Na) the shortening integrals S_ij at the nodes, 1/m
+    arc : (Na,) AeroDyn's zLocal: hub radius plus the polyline length through the undeflected nodes, m
+    tip_constant, hub_constant : (Na,) Prandtl's B (z_tip - z) / (2 z), B (z - z_hub) / (2 z_hub)
+    """
+
+    rotor: Rotor
+    inflow: Inflow
+    pitch: float
+    axial: NDArray
+    offset: NDArray
+    value: NDArray
+    slope: NDArray
+    shortening: NDArray
+    arc: NDArray
+    tip_constant: NDArray
+    hub_constant: NDArray
+
+    @property
+    def n_nodes(self) -> int:
+        return len(self.axial)
+
+    @property
+    def theta(self) -> NDArray:
+        """Twist plus pitch at the nodes, rad (alpha = phi - theta)."""
+        return self.rotor.twist + self.pitch
+
+    @cached_property
+    def polar_arrays(self) -> tuple[NDArray, ...]:
+        """The packed polars (:func:`bladefem.aero.polars.pack_polars`) the kernels read."""
+        return pack_polars(self.rotor.polars).arrays
+
+    @cached_property
+    def options(self) -> NDArray:
+        """The BEM switches as the kernels' option vector."""
+        return self.rotor.options.vector()
+
+    def force_lumping(self) -> NDArray:
+        """(Na, Na) nodal forces of nodal loads per unit length varying linearly along the arc: ``L/3`` on the
+        element's own node, ``L/6`` on the other."""
+        length = np.diff(self.arc)
+        L = np.zeros((self.n_nodes, self.n_nodes))
+        for e, h in enumerate(length):
+            L[e:e + 2, e:e + 2] += h / 6.0 * np.array([[2.0, 1.0], [1.0, 2.0]])
+        return L
+
+    def moment_weights(self) -> NDArray:
+        """(Na,) trapezoidal weights of a distributed moment along the arc, m."""
+        length = np.diff(self.arc)
+        return np.concatenate([[0.0], length / 2]) + np.concatenate([length / 2, [0.0]])
+
+    def with_wind(self, speed: float | None = None, shear_exponent: float | None = None) -> TurbineAero:
+        """A copy with another wind speed at the reference height (m/s) or shear exponent."""
+        inflow = Inflow(self.inflow.speed if speed is None else speed, self.inflow.reference_height,
+                        self.inflow.shear_exponent if shear_exponent is None else shear_exponent,
+                        self.inflow.direction, self.inflow.upflow)
+        return replace(self, inflow=inflow)
+
+    @classmethod
+    def from_deck(cls, deck, params, wind_speed: float | None = None, shear_exponent: float | None = None,
+                  pitch: float | None = None) -> TurbineAero:
+        """The aerodynamics of an OpenFAST deck (:class:`bladefem.io.openfast_fst.OpenFASTDeck`, or anything with
+        ``rotor()`` and ``inflow``) on the turbine ``params`` (:class:`TurbineParameters`); ``wind_speed`` (m/s)
+        and ``shear_exponent`` override InflowWind's, ``pitch`` (rad) the structural model's."""
+        inflow = deck.inflow
+        inflow = Inflow(inflow.speed if wind_speed is None else wind_speed, inflow.reference_height,
+                        inflow.shear_exponent if shear_exponent is None else shear_exponent, inflow.direction,
+                        inflow.upflow)
+        return turbine_aero(deck.rotor(), inflow, params, params.pitch if pitch is None else pitch)
+
+
+def turbine_aero(rotor: Rotor, inflow: Inflow, params, pitch: float) -> TurbineAero:
+    """:class:`TurbineAero` of a rigid-rotor description on the turbine ``params``: the beam's shapes interpolated
+    at the nodes, the loss constants from the undeflected arc length (AeroDyn computes them once)."""
+    blade: ModalBeam = params.blade
+    if rotor.n_blades != params.n_blades:
+        raise InputError(f"the aerodynamic rotor has {rotor.n_blades} blades, the structure {params.n_blades}",
+                         field="NumBl")
+    if abs(rotor.hub_radius - params.hub_radius) > 1e-9 * max(1.0, params.hub_radius):
+        raise InputError(f"the aerodynamic hub radius {rotor.hub_radius:g} m differs from the structure's "
+                         f"{params.hub_radius:g} m", field="HubRad")
+    if rotor.span[-1] > blade.length * (1 + 1e-6):
+        raise InputError(f"the AeroDyn blade reaches {rotor.span[-1]:g} m from the root but the structural blade is "
+                         f"{blade.length:g} m long", field="BlSpn")
+    value, slope, shortening = interpolated_shapes(blade, rotor.span)
+    offset = np.column_stack([np.zeros_like(rotor.span), -rotor.sweep, rotor.curve])
+    points = np.column_stack([params.hub_radius + rotor.span, offset[:, 1:]])
+    steps = np.linalg.norm(np.diff(np.vstack([[params.hub_radius, 0.0, 0.0], points]), axis=0), axis=1)
+    arc = params.hub_radius + np.cumsum(steps)
+    B, z_hub = params.n_blades, params.hub_radius
+    tip_constant = B * (arc[-1] - arc) / (2 * arc)
+    hub_constant = B * (arc - z_hub) / (2 * z_hub) if z_hub > 0 else np.full(arc.shape, np.inf)
+    return TurbineAero(rotor=rotor, inflow=inflow, pitch=float(pitch), axial=params.hub_radius + rotor.span,
+                       offset=offset, value=value, slope=slope, shortening=shortening, arc=arc,
+                       tip_constant=tip_constant, hub_constant=hub_constant)
+
+
+def interpolated_shapes(beam: ModalBeam, x: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    """The beam's shapes (k, len(x), 2), slopes and shortening integrals (k, k, len(x)) at ``x`` (m from the root),
+    interpolated linearly between the root (all zero), the beam's span nodes and its tip: the point is then the same
+    linear combination of the structural nodes, as OpenFAST's mesh mapping makes it."""
+    k = beam.n_modes
+    nodes = np.concatenate([[0.0], beam.x, [beam.length]])
+    value = np.concatenate([np.zeros((k, 1, 2)), beam.value, beam.tip_value[:, None]], axis=1)
+    slope = np.concatenate([np.zeros((k, 1, 2)), beam.slope, beam.tip_slope[:, None]], axis=1)
+    shortening = np.concatenate([np.zeros((k, k, 1)), beam.shortening, beam.tip_shortening[:, :, None]], axis=2)
+    x = np.clip(np.asarray(x, dtype=float), 0.0, beam.length)
+    weights = interpolation_matrix(nodes, x)                                  # (len(x), nodes)
+    return (np.einsum("xj,ija->ixa", weights, value), np.einsum("xj,ija->ixa", weights, slope),
+            np.einsum("xj,ikj->ikx", weights, shortening))
+
+
+def interpolation_matrix(nodes: NDArray, x: NDArray) -> NDArray:
+    """(len(x), len(nodes)) weights of linear interpolation between sorted ``nodes``."""
+    i = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 2)
+    t = (x - nodes[i]) / (nodes[i + 1] - nodes[i])
+    W = np.zeros((len(x), len(nodes)))
+    W[np.arange(len(x)), i] = 1.0 - t
+    W[np.arange(len(x)), i + 1] = t
+    return W
+
+
+@dataclass(frozen=True)
+class AeroLoads:
+    """Aerodynamic loads at one state (earth components, SI).
+
+    generalized : (n,) generalized forces on the model's coordinates, N or N m
+    forces, moments : (B, Na, 3) lumped nodal forces (N) and moments (N m)
+    positions, velocities : (B, Na, 3) the nodes (aerodynamic centres) and their absolute velocities
+    solution : (B, Na, 13) the node solver's outputs (:data:`bladefem.aero.performance.COLUMNS`; column 0 is the
+        next call's guess)
+    thrust, torque : RtAeroFxh (N) and RtAeroMxh (N m), along and about the shaft axis through the apex
+    power : RtAeroPwr = rotor speed about the shaft x torque, W
+    tsr, cp, ct : RtTSR, RtAeroCp, RtAeroCt; disk_velocity : disk-averaged relative wind along the shaft, m/s
+    skew : chi0, rad
+    """
+
+    generalized: NDArray
+    forces: NDArray
+    moments: NDArray
+    positions: NDArray
+    velocities: NDArray
+    solution: NDArray
+    thrust: float
+    torque: float
+    power: float
+    tsr: float
+    cp: float
+    ct: float
+    disk_velocity: float
+    skew: float
+
+    def column(self, name: str) -> NDArray:
+        """One node quantity (B, Na) by its name in :data:`bladefem.aero.performance.COLUMNS`."""
+        return self.solution[..., COLUMNS.index(name)]
+
+
+def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) -> NodeGroup:
+    """Positions, partial velocities (factored) and bias accelerations of every blade's aerodynamic nodes."""
+    motion = model.motion(q, u) if motion is None else motion
+    nodes = BeamNodes(aero.axial, aero.value, aero.shortening, (0, 1, 2), np.eye(model.n)[model.blade_columns])
+    span = nodes.deflect(q[model.blade_columns], u[model.blade_columns])
+    return carry_nodes(motion.apex, motion.blade_frames, span.offset + aero.offset, span.partials,
+                       nodes.selection, span.velocity, span.bias)
+
+
+def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
+               guess: NDArray | None = None) -> AeroLoads:
+    """Quasi-steady BEM loads on the turbine ``model`` at state (q, u) and time t (s; the wind is steady).
+
+    guess : (B, Na) previous inflow angles ``phi_solved`` (a warm start; None solves from scratch)
+    """
+    motion = model.motion(q, u)
+    group = aero_nodes(model, aero, q, u, motion)
+    r, v = group.r, group.velocity(u)
+    R = motion.blade_frames.R
+    i3, e_t, i1 = R[:, None, :, 0], R[:, None, :, 1], R[:, None, :, 2]
+    w_slope = np.einsum("bk,kp->bp", q[model.blade_columns], aero.slope[:, :, 1])[..., None]
+    stretch = np.sqrt(1.0 + w_slope**2)
+    normal = (i1 - w_slope * i3) / stretch
+    span_axis = (i3 + w_slope * i1) / stretch
+    relative = aero.inflow.velocity(r[..., 2]) - v
+    vx = np.einsum("bpk,bpk->bp", relative, normal)
+    vy = -np.einsum("bpk,bpk->bp", relative, np.broadcast_to(e_t, r.shape))
+    apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
+    arm = r - apex
+    r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
+    disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)
+    solution = solve_all(aero, vx, vy, r_local, disk, guess)
+    fn, ft, m = (solution[..., COLUMNS.index(name)][..., None] for name in ("fn", "ft", "m"))
+    forces = np.einsum("ij,bjk->bik", aero.force_lumping(), fn * normal + ft * e_t)
+    moments = aero.moment_weights()[None, :, None] * m * span_axis
+    _, generalized = group.generalized(np.zeros(forces.shape[:2]), forces)
+    generalized = generalized + motion.rotor.W.T @ moments.sum(axis=(0, 1))
+    total_force = forces.sum(axis=(0, 1))
+    total_moment = np.cross(arm, forces).sum(axis=(0, 1)) + moments.sum(axis=(0, 1))
+    thrust, torque = float(total_force @ shaft), float(total_moment @ shaft)
+    power = disk.speed * torque
+    area = math.pi * disk.max_radius**2
+    dynamic = 0.5 * aero.rotor.air_density * area * disk.velocity**2
+    return AeroLoads(generalized=generalized, forces=forces, moments=moments, positions=r, velocities=v,
+                     solution=solution, thrust=thrust, torque=torque, power=power, tsr=disk.tsr,
+                     cp=power / (dynamic * disk.velocity) if disk.velocity else 0.0,
+                     ct=thrust / dynamic if disk.velocity else 0.0, disk_velocity=disk.velocity, skew=disk.chi0)
+
+
+@dataclass(frozen=True)
+class DiskValues:
+    """AeroDyn's disk averages (``DiskAvgValues``): velocity = mean relative wind along the shaft (m/s), chi0 the
+    skew angle (rad), skew_cos (B,) the cosine of each blade's angle from the most downwind direction of the rotor
+    plane, speed the rotor's angular speed about the shaft (rad/s), max_radius the largest r_local (m), tsr and the
+    induction weight of AeroDyn's low tip-speed-ratio blend."""
+
+    velocity: float
+    chi0: float
+    skew_cos: NDArray
+    speed: float
+    max_radius: float
+    tsr: float
+    weight: float
+
+
+def disk_values(relative: NDArray, shaft: NDArray, pitch_axes: NDArray, speed: float, r_local: NDArray
+                ) -> DiskValues:
+    """Disk averages of the relative wind (B, Na, 3) for the shaft axis, the blades' pitch axes (B, 3), the rotor
+    speed (rad/s) and the nodes' distances from the shaft (B, Na)."""
+    mean = relative.reshape(-1, 3).mean(axis=0)
+    along = float(mean @ shaft)
+    size = float(np.linalg.norm(mean))
+    chi0 = math.acos(min(max(along / size, -1.0), 1.0)) if size > 0 else 0.0
+    in_plane = mean - along * shaft
+    norm = float(np.linalg.norm(in_plane))
+    in_plane = in_plane / norm if norm > 1e-12 * max(size, 1.0) else np.zeros(3)
+    radial = pitch_axes - (pitch_axes @ shaft)[:, None] * shaft
+    radial /= np.linalg.norm(radial, axis=1, keepdims=True)
+    max_radius = float(r_local.max())
+    tsr = speed * max_radius / along if along else 0.0
+    return DiskValues(velocity=along, chi0=chi0, skew_cos=radial @ in_plane, speed=float(speed),
+                      max_radius=max_radius, tsr=tsr, weight=induction_weight(tsr))
+
+
+def solve_all(aero: TurbineAero, vx: NDArray, vy: NDArray, r_local: NDArray, disk: DiskValues,
+              guess: NDArray | None) -> NDArray:
+    """The node solver at every node of every blade: (B, Na, NODE_OUTPUTS)."""
+    rotor = aero.rotor
+    shape = vx.shape
+    tip_ratio = r_local / r_local.max(axis=1, keepdims=True)
+    per_node = [np.ascontiguousarray(np.broadcast_to(x, shape).ravel()) for x in (
+        vx, vy, r_local, rotor.chord, aero.theta, aero.tip_constant, aero.hub_constant, tip_ratio,
+        np.full(shape, disk.chi0), disk.skew_cos[:, None], rotor.airfoil,
+        np.full(shape, np.nan) if guess is None else guess)]
+    vx_, vy_, r_, chord, theta, tip_c, hub_c, ratio, chi0, skew_cos, airfoil, start = per_node
+    out = np.empty((vx.size, NODE_OUTPUTS))
+    solve_nodes(vx_, vy_, r_, chord, theta, tip_c, hub_c, float(rotor.n_blades), ratio, chi0, skew_cos,
+                disk.weight, airfoil.astype(np.int64), *aero.polar_arrays, aero.options,
+                float(rotor.air_density), start, out)
+    return out.reshape(shape + (NODE_OUTPUTS,))
+
+
+def aero_forcing(model, aero: TurbineAero):
+    """``forcing(q, u)``: the model's Kane forcing plus the aerodynamic generalized forces (the BEM re-solved at
+    every call: quasi-steady induction), for :func:`bladefem.models.turbine.linearize.linearize`; ``model`` without
+    aerodynamics of its own (a model built with ``aero`` has them in its equations already)."""
+    if model.aero is not None:
+        raise ValueError("the model carries aerodynamic loads already: use model.equations")
+
+    def forcing(q: NDArray, u: NDArray) -> NDArray:
+        return model.equations(q, u)[1] + aero_loads(model, aero, q, u).generalized
+    return forcing

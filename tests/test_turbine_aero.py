@@ -1,0 +1,160 @@
+"""Aerodynamic loads on the Kane turbine model (numpy reference, ``bladefem.models.turbine.aero``): the rigid
+rotor's loads equal the rigid-rotor BEM (``bladefem.aero.rotor_performance``, itself checked against OpenFAST),
+the nodes' partial velocities are the derivatives of their positions, the generalized forces do the loads' work,
+and moving blades feel aerodynamic damping."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bladefem.aero.performance import performance_at
+from bladefem.io.openfast_fst import read_openfast_deck
+from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.models.turbine import TurbineModel
+from bladefem.models.turbine.aero import (
+    TurbineAero,
+    aero_forcing,
+    aero_loads,
+    aero_nodes,
+)
+
+DECK = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
+RATED = 12.1 * np.pi / 30
+
+
+@pytest.fixture(scope="module")
+def deck():
+    return read_openfast_deck(DECK)
+
+
+@pytest.fixture(scope="module")
+def model(deck) -> TurbineModel:
+    params = turbine_from_elastodyn(deck.elastodyn.path, "polynomial", gauss_points=2, blade_elements=20,
+                                    tower_elements=10)
+    return TurbineModel(params)
+
+
+def spinning(model, azimuth: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    q, u = np.zeros(model.n), np.zeros(model.n)
+    q[5], u[5] = azimuth, RATED
+    return q, u
+
+
+@pytest.mark.parametrize("shear", [0.0, 0.2])
+def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear):
+    """Undeflected turbine at 12.1 rpm, the deck's tilt, precone and aerodynamic-centre offsets: the same node
+    inputs as the rigid-rotor kinematics, so loads, thrust, torque, Cp and the tip-speed ratio agree to rounding;
+    the torque is the generalized force on the generator azimuth and on the drivetrain twist."""
+    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear)
+    for azimuth in (0.0, 0.7, 2.0):
+        loads = aero_loads(model, aero, *spinning(model, azimuth))
+        rigid = performance_at(deck.rotor(), aero.inflow, RATED, 0.0, 0.0, np.array([azimuth]))
+        np.testing.assert_allclose(loads.column("fn"), rigid.fn[0], rtol=0, atol=1e-10 * np.abs(rigid.fn).max())
+        np.testing.assert_allclose(loads.column("ft"), rigid.ft[0], rtol=0, atol=1e-10 * np.abs(rigid.ft).max())
+        for ours, theirs in ((loads.thrust, rigid.thrust), (loads.torque, rigid.torque), (loads.cp, rigid.cp),
+                             (loads.tsr, rigid.tsr)):
+            assert ours == pytest.approx(theirs, rel=1e-12)
+        generalized = loads.generalized[[model.dofs.index("generator_azimuth"), model.dofs.index("drivetrain")]]
+        np.testing.assert_allclose(generalized, rigid.torque, rtol=1e-12)
+
+
+def test_node_partial_velocities_are_position_derivatives(deck, model):
+    """J of every aerodynamic node (with its aerodynamic-centre offset) equals the central difference of its
+    position over each coordinate, at a deflected, yawed, spinning state."""
+    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4)
+    rng = np.random.default_rng(3)
+    q = rng.normal(scale=0.3, size=model.n)
+    u = rng.normal(scale=0.3, size=model.n)
+    nodes = aero_nodes(model, aero, q, u)
+    J = nodes.J
+    h = 1e-6
+    for i in range(model.n):
+        dq = np.zeros(model.n)
+        dq[i] = h
+        derivative = (aero_nodes(model, aero, q + dq, u).r - aero_nodes(model, aero, q - dq, u).r) / (2 * h)
+        np.testing.assert_allclose(J[..., i], derivative, rtol=0, atol=1e-7)
+    np.testing.assert_allclose(nodes.velocity(u), np.einsum("bpkn,n->bpk", J, u), atol=1e-12)
+
+
+def test_nodes_move_with_the_structural_blade(deck, model):
+    """An aerodynamic node without offsets is the linear interpolation of the structural span nodes (root and tip
+    included) at any deflection, as OpenFAST maps ElastoDyn's blade onto AeroDyn's nodes."""
+    aero = TurbineAero.from_deck(deck, model.params)
+    bare = TurbineAero(**{**{f: getattr(aero, f) for f in aero.__dataclass_fields__}, "offset": 0 * aero.offset})
+    q, u = spinning(model, 0.4)
+    q[model.blade_columns[1]] = [2.0, -0.5, 0.3]
+    q[:4] = [0.3, 0.05, -0.1, 0.02]
+    blades = model.motion(q, u).blades.r[1]
+    root = model.motion(q, u).apex.r + model.motion(q, u).blade_frames.R[1][:, 0] * model.params.hub_radius
+    structural = np.vstack([root, blades])
+    x = np.concatenate([[0.0], model.params.blade.x, [model.params.blade.length]])
+    span = np.clip(aero.axial - model.params.hub_radius, 0, x[-1])
+    expected = np.column_stack([np.interp(span, x, structural[:, k]) for k in range(3)])
+    np.testing.assert_allclose(aero_nodes(model, bare, q, u).r[1], expected, atol=1e-12)
+
+
+def test_generalized_forces_do_the_work_of_the_loads(deck, model):
+    """u . Q = sum F . v + (sum M) . omega_rotor at a random state: the generalized forces are the projection
+    of the nodal loads on the partial velocities."""
+    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.14)
+    rng = np.random.default_rng(8)
+    q, u = spinning(model, 1.1)
+    q += rng.normal(scale=0.2, size=model.n)
+    u += rng.normal(scale=0.2, size=model.n)
+    loads = aero_loads(model, aero, q, u)
+    omega = model.motion(q, u).rotor.omega
+    work = np.sum(loads.forces * loads.velocities) + np.sum(loads.moments.sum(axis=(0, 1)) * omega)
+    assert u @ loads.generalized == pytest.approx(work, rel=1e-12)
+
+
+def test_flapping_blade_feels_aerodynamic_damping(deck, model):
+    """A blade moving downwind sees less relative wind: its flap generalized force drops (positive aerodynamic
+    damping), and the model with aerodynamics includes the same loads in its forcing."""
+    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4)
+    q, u = spinning(model, 0.0)
+    flap = model.blade_columns[0, 0]
+    base = aero_loads(model, aero, q, u).generalized[flap]
+    u[flap] = 0.5
+    moving = aero_loads(model, aero, q, u).generalized[flap]
+    assert moving < base - 1e3
+    with_aero = TurbineModel(model.params, aero=aero)
+    np.testing.assert_allclose(with_aero.equations(q, u)[1], model.equations(q, u)[1]
+                               + aero_loads(model, aero, q, u).generalized, rtol=1e-13, atol=1e-6)
+    np.testing.assert_allclose(aero_forcing(model, aero)(q, u), with_aero.equations(q, u)[1], rtol=1e-13,
+                               atol=1e-6)
+
+
+@pytest.mark.parametrize("generator_free", [True, False])
+def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free):
+    """The compiled right-hand side with aerodynamics (sheared wind) and the generator's torque law equals the
+    numpy assembly to rounding at a random deflected, yawed, spinning state (both solve the BEM from scratch
+    there), and so do the load channels (root moments, shaft loads, generator torque, rotor summary, powers)."""
+    pytest.importorskip("numba")
+    if os.environ.get("BLADEFEM_NO_NUMBA"):
+        pytest.skip("compiled kernels switched off")
+    from bladefem.models.turbine import FreeSystem
+    from bladefem.models.turbine.compiled import compiled_equations
+    from bladefem.models.turbine.control import Generator
+    from bladefem.models.turbine.outputs import load_row
+    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1)
+    loaded = TurbineModel(model.params, aero=aero, generator=Generator.from_servodyn(deck.servodyn))
+    compiled = compiled_equations(loaded)
+    rng = np.random.default_rng(2)
+    q, u = rng.normal(scale=0.3, size=loaded.n), rng.normal(scale=0.3, size=loaded.n)
+    u[5] += 1.2
+    M, f = loaded.equations(q, u)
+    Mc, fc = compiled(q, u)
+    # the same sums in another order, and the same Brent iterations from the same start: rounding only
+    np.testing.assert_allclose(Mc, M, rtol=0, atol=1e-13 * np.abs(M).max())
+    np.testing.assert_allclose(fc, f, rtol=0, atol=1e-13 * np.abs(f).max())
+    free = np.ones(loaded.n, dtype=bool)
+    free[5] = generator_free
+    system = FreeSystem(loaded, free, q, u)
+    compiled.state[6][:] = np.nan                               # a cold start for both
+    row = compiled.outputs(np.zeros(1), system.initial_state()[None], q, u, system.index)[0]
+    expected = load_row(loaded, q, u, system.accelerations(q, u))
+    np.testing.assert_allclose(row, expected, rtol=1e-11, atol=1e-9)
