@@ -1,5 +1,6 @@
 """Robustness survey: every reference deck shipped with pybmodes (the 22 BModes decks of eleven reference turbines,
-a blade and a tower each) through ``bladefem modes`` at default options, one process per deck, with its wall time
+a blade and a tower each) and BModes' four CertTest decks (tests/data/bmodes_certtest) through ``bladefem modes``
+at default options (the deck's rotor speed and mode count), one process per deck, with its wall time
 and how it ended. Run: ``python bench/decks.py`` (needs ``pip install pybmodes``; installs nothing, says so and
 stops if pybmodes is absent).
 """
@@ -13,6 +14,7 @@ from pathlib import Path
 
 #: a deck still running after this many seconds counts as a failure
 TIMEOUT = 120
+CERTTEST = Path(__file__).resolve().parents[1] / "tests" / "data" / "bmodes_certtest"
 
 
 def reference_decks() -> list[Path]:
@@ -22,7 +24,7 @@ def reference_decks() -> list[Path]:
     except ImportError:
         return []
     root = Path(pybmodes.__file__).parent / "_examples" / "sample_inputs" / "reference_turbines"
-    return sorted(root.glob("*/*.bmi"))
+    return sorted(root.glob("*/*.bmi")) + sorted(CERTTEST.glob("*.bmi"))
 
 
 def run(deck: Path) -> tuple[str, float, str]:
@@ -46,9 +48,12 @@ def main() -> None:
         print("pybmodes is not installed: no reference decks to run (pip install pybmodes)")
         return
     print(f"{'deck':<40} {'result':<10} {'seconds':>8}  message")
+    slowest = 0.0
     for deck in decks:
         result, seconds, message = run(deck)
+        slowest = max(slowest, seconds)
         print(f"{deck.name:<40} {result:<10} {seconds:8.2f}  {message}")
+    print(f"slowest deck: {slowest:.2f} s")
 
 
 if __name__ == "__main__":

@@ -118,7 +118,10 @@ def test_interpolated_sliver_stations_leave_the_mesh():
     assert list(mesh_stations(span, [linear])) == [0.0, 10.0, 20.0]
     kinked = linear.copy()
     kinked[2] = 2.5
+    assert list(mesh_stations(span, [kinked])) == [0.0, 10.0, 20.0]     # within NEAR_STEP: a step at one node
+    span[2] = 10.5                                                       # a real kink half a metre on stays
     assert list(mesh_stations(span, [kinked])) == list(span)
+    assert list(mesh_stations(span, [np.interp(span, [0.0, 10.0, 20.0], [5.0, 3.0, 2.0])])) == [0.0, 10.0, 20.0]
 
 
 def test_lanczos_failure_falls_back_to_dense(monkeypatch):

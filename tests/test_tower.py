@@ -110,6 +110,22 @@ def test_self_weight_buckling_load():
     assert factor == pytest.approx(critical, rel=1e-6)
 
 
+@pytest.mark.parametrize("deck", ["Test03_tower", "Test04_wires_supported_tower"])
+def test_buckling_factor_is_the_dense_generalised_eigenvalue(deck):
+    # the sparse Lanczos value against the dense solve of every eigenvalue of G x = mu K x on BModes' CertTest
+    # towers (tapered, top mass with offsets, wires): the same largest mu to round-off
+    from pathlib import Path
+
+    import scipy.linalg as la
+
+    from bladefem.io.detect import read_model
+    matrices = assemble_tower(read_model(Path(__file__).parent / "data" / "bmodes_certtest" / f"{deck}.bmi"), 40)
+    K, _ = matrices.reduced(0.0)
+    K_g = (matrices.Z.T @ matrices.K_gravity @ matrices.Z).toarray()
+    largest = la.eigh(-0.5 * (K_g + K_g.T), K.toarray(), eigvals_only=True).max()
+    assert critical_load_factor(matrices) == pytest.approx(1.0 / largest, rel=1e-9)
+
+
 @pytest.mark.filterwarnings("ignore:the gravity load is")
 @pytest.mark.parametrize("g", [0.0, 2.0, 4.0, 6.0, 7.5, 7.8])
 def test_frequency_falls_with_self_weight_as_the_series_solution(g):

@@ -44,8 +44,12 @@ class DofMap:
         return cls(fields, basis.mesh.p[0][order], value, slope, field_dofs, basis.N)
 
     def root_dofs(self, root: str) -> NDArray[np.int64]:
-        """DOFs held at the root: all for a cantilever; values only (slopes free) for a hinge."""
-        held = [self.value[name][0] for name in self.fields]
+        """DOFs held at the root: all for a cantilever; values only (slopes free) for a hinge; axial displacement and
+        twist only for ``axial-torsion``; none for ``free``."""
+        if root == "free":
+            return np.zeros(0, dtype=np.int64)
+        fields = ("u", "phi") if root == "axial-torsion" else self.fields
+        held = [self.value[name][0] for name in fields if name in self.value]
         if root == "cantilever":
             held += [self.slope[name][0] for name in self.slope]
         return np.array(sorted(held), dtype=np.int64)

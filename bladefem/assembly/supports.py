@@ -19,30 +19,32 @@ from numpy.typing import NDArray
 
 from ..elements import SectionMotion, projected_inertia
 from ..elements.rigid_slice import uniform_field_second_order
-from ..sections.tower import Supports, Tower, openfast_to_tower
+from ..sections.tower import BASE_COORDINATES, Supports, Tower, openfast_to_tower
 from .dofs import DofMap
 
 #: names of the base coordinates of a floating platform (tower frame: x up, y side-side, z downwind)
-PLATFORM_KINDS: tuple[str, ...] = ("heave", "sway", "surge", "yaw", "pitch", "roll")
+PLATFORM_KINDS: tuple[str, ...] = BASE_COORDINATES
 #: the beam field each base coordinate moves (for a foundation the base motion counts as beam motion)
 BASE_FIELDS: tuple[str, ...] = ("u", "v", "w", "phi", "w", "v")
 BASE_SIZE = 6
 
 
-def base_constraint(dofs: DofMap, rigid_fields: tuple[str, ...], moving: bool, height: float) -> sp.csr_matrix:
+def base_constraint(dofs: DofMap, rigid_fields: tuple[str, ...], free_base: tuple[int, ...],
+                    height: float) -> sp.csr_matrix:
     """``Z`` with ``(x, q) = Z r``. The independent coordinates ``r`` are the beam's elastic DOFs relative to the
-    base (the bottom node held, rigid fields zero) followed, when the base moves, by ``q``, which moves the whole
-    tower rigidly (:func:`rigid_motion`). The total motion is the same as tying the bottom node to the base, but
-    the elastic stiffness never has to cancel on a rigid motion: it acts on the elastic columns only."""
+    base (the bottom node held, rigid fields zero) followed by the base coordinates that move (``free_base``,
+    indices into ``q``; the others are held at zero), each moving the whole tower rigidly (:func:`rigid_motion`).
+    The total motion is the same as tying the bottom node to the base, but the elastic stiffness never has to
+    cancel on a rigid motion: it acts on the elastic columns only."""
     n = dofs.size
     held = [dofs.value[name][0] for name in dofs.fields] + [dofs.slope[name][0] for name in dofs.slope]
     held += [dof for name in rigid_fields for dof in dofs.field_dofs[name]]
     independent = np.setdiff1d(np.arange(n), np.array(held, dtype=np.int64))
     elastic = sp.csr_matrix((np.ones(len(independent)), (independent, np.arange(len(independent)))),
                             shape=(n + BASE_SIZE, len(independent)))
-    if not moving:
+    if not free_base:
         return elastic
-    return sp.hstack([elastic, sp.csr_matrix(rigid_motion(dofs, height))]).tocsr()
+    return sp.hstack([elastic, sp.csr_matrix(rigid_motion(dofs, height)[:, list(free_base)])]).tocsr()
 
 
 def rigid_motion(dofs: DofMap, height: float) -> NDArray[np.float64]:
@@ -94,7 +96,7 @@ def base_matrices(tower: Tower, weight_above_base: float) -> BaseMatrices:
     rigid = projected_inertia(np.eye(3), np.float64(body.mass), body.mass * body.offset, body.second_moment)
     first_moment = body.mass * body.offset + weight_above_base * np.array([p.base_height, 0.0, 0.0])
     gravity = np.zeros((6, 6))
-    gravity[3:, 3:] = uniform_field_second_order(np.array([tower.gravity, 0.0, 0.0]), first_moment)
+    gravity[3:, 3:] = uniform_field_second_order(np.array([tower.gravity, 0.0, 0.0]), first_moment, beam_node=False)
     return BaseMatrices(stiffness=openfast_to_tower(p.hydrostatic + p.mooring),
                         mass=rigid + openfast_to_tower(p.added_mass), gravity=gravity)
 
@@ -138,3 +140,34 @@ def soil_springs(trial: SectionMotion, test: SectionMotion, p: SoilParameters) -
     """Distributed (Winkler) springs along the embedded length: k_lat (v dv + w dw) + k_ax u du + k_t phi dphi."""
     return (p.lateral * (test.v * trial.v + test.w * trial.w) + p.axial * test.u * trial.u
             + p.torsional * test.phi * trial.phi)
+
+
+def weight_in_restoring(K_gravity: sp.spmatrix, dofs: DofMap, height: float) -> sp.csr_matrix:
+    """A base-coordinate block that removes gravity's stiffness on rigid motions of the whole tower, ``-R^T K_g R``
+    with ``R`` = :func:`rigid_motion`: for a platform whose restoring matrices already hold the weight terms
+    (:attr:`bladefem.sections.tower.Platform.restoring_includes_weight`). Elastic motions have zero base
+    coordinates, so gravity still acts on them (axial load, top-mass pendulum) and on their coupling with the
+    rigid motion."""
+    R = rigid_motion(dofs, height)
+    block = -(R.T @ (K_gravity @ R))
+    size = dofs.size + BASE_SIZE
+    out = sp.lil_matrix((size, size))
+    out[dofs.size:, dofs.size:] = 0.5 * (block + block.T)
+    return out.tocsr()
+
+
+@dataclass(frozen=True)
+class AddedMassParameters:
+    """Distributed lateral added mass per length at the quadrature points, kg/m (zero outside its extent)."""
+
+    lateral: NDArray
+
+
+def added_mass_parameters(supports: Supports, x: NDArray) -> AddedMassParameters:
+    mass = supports.added_mass
+    return AddedMassParameters(np.zeros_like(x) if mass is None else mass.at(x))
+
+
+def lateral_added_mass(trial: SectionMotion, test: SectionMotion, p: AddedMassParameters) -> NDArray:
+    """Distributed added mass on the lateral translations: m_a (v dv + w dw) (inertia only, no weight)."""
+    return p.lateral * (test.v * trial.v + test.w * trial.w)

@@ -35,12 +35,15 @@ from .mesh import span_mesh, span_nodes
 from .parameters import SectionParameters
 from .supports import (
     BASE_SIZE,
+    added_mass_parameters,
     base_constraint,
     base_height,
     base_matrices,
+    lateral_added_mass,
     node_matrix,
     soil_parameters,
     soil_springs,
+    weight_in_restoring,
     wire_stiffness,
 )
 
@@ -156,7 +159,7 @@ class TowerMatrices:
     @property
     def n_elastic(self) -> int:
         """Number of elastic coordinates (the first columns of Z; the last six move the base, if it moves)."""
-        return self.n_free - (BASE_SIZE if self.tower.supports.moving_base else 0)
+        return self.n_free - len(self.tower.supports.free_base)
 
     def reduced(self, load_factor: float = 1.0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(K, M) on the independent coordinates, with ``load_factor`` times the gravity load."""
@@ -172,11 +175,19 @@ class TowerMatrices:
         return self.Z @ vectors
 
 
+#: support points closer than this (fraction of the height) to a section station are placed at the station
+SNAP = 1e-3
+
+
 def tower_nodes(tower: Tower, elements: int) -> NDArray:
-    """Mesh nodes: section stations, wire heights and soil points are all nodes."""
-    points = np.union1d(tower.sections.span, tower.supports.mesh_points())
-    keep = np.concatenate([[True], np.diff(points) > 1e-9 * tower.height])
-    return span_nodes(points[keep], elements)
+    """Mesh nodes: section stations, wire heights and soil points are all nodes (a support point within
+    :data:`SNAP` of the height from a station is that station: a sliver element would ruin the conditioning)."""
+    stations, support = tower.sections.nodes, np.unique(tower.supports.mesh_points())
+    if support.size:
+        gap = np.min(np.abs(support[:, None] - stations[None, :]), axis=1)
+        apart = np.concatenate([[True], np.diff(support) > SNAP * tower.height])
+        support = support[(gap > SNAP * tower.height) & apart]
+    return span_nodes(np.union1d(stations, support), elements)
 
 
 def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
@@ -194,13 +205,18 @@ def assemble_tower(tower: Tower, elements: int = 60) -> TowerMatrices:
     K = (_pad(assemble_terms(quadrature, soil_parameters(tower.supports, x), [soil_springs]), size)
          + wire_stiffness(tower.supports, dofs, size) + _base_block(base.stiffness, size))
     M = _pad(assemble_terms(quadrature, sections, [terms.inertia]), size) + M_top + _base_block(base.mass, size)
+    if tower.supports.added_mass is not None:
+        M = M + _pad(assemble_terms(quadrature, added_mass_parameters(tower.supports, x), [lateral_added_mass]), size)
     if tower.gravity > 0:
         gravity = gravity_parameters(tower, x)
         K_gravity = (_pad(assemble_terms(quadrature, gravity, [terms.axial_force_stiffness,
                                                                   terms.rotation_second_order]), size)
                      + G_top + _base_block(base.gravity, size))
+        platform = tower.supports.platform
+        if platform is not None and platform.restoring_includes_weight:
+            K_gravity = K_gravity + weight_in_restoring(K_gravity, dofs, base_height(tower.supports))
     else:
         K_gravity = sp.csr_matrix((size, size))
-    Z = base_constraint(dofs, rigid_fields(tower), tower.supports.moving_base, base_height(tower.supports))
+    Z = base_constraint(dofs, rigid_fields(tower), tower.supports.free_base, base_height(tower.supports))
     return TowerMatrices(K_elastic=K_elastic, K=K.tocsr(), K_gravity=K_gravity.tocsr(), M=M.tocsr(), Z=Z,
                          dofs=dofs, tower=tower)

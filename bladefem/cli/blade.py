@@ -15,7 +15,15 @@ from .damping import (
     reject_for_towers,
     wants_quadratic,
 )
-from .inputs import add_blade_options, is_blade, positive_int, read_structure, rpm_band
+from .inputs import (
+    add_blade_options,
+    apply_deck_settings,
+    deck_settings,
+    is_blade,
+    positive_int,
+    read_structure,
+    rpm_band,
+)
 
 METHODS = ("fe", "galerkin")
 
@@ -25,8 +33,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "modes", help="natural frequencies and mode shapes of a blade or tower",
         description="Natural frequencies (Hz) and mode shapes of a blade at one rotor speed, or of a tower.")
     add_blade_options(modes)
-    modes.add_argument("--rpm", type=options.rpm, default=0.0, help="rotor speed, rpm (blades; default 0)")
-    modes.add_argument("--n-modes", type=options.n_modes, default=10, metavar="N", help="number of modes (default 10)")
+    modes.add_argument("--rpm", type=options.rpm,
+                       help="rotor speed, rpm (blades; default: a BModes deck's rot_rpm x rpm_mult, else 0)")
+    modes.add_argument("--n-modes", type=options.n_modes, metavar="N",
+                       help="number of modes (default: a BModes deck's modepr, else 10)")
     modes.add_argument("--method", choices=METHODS, default="fe",
                        help="fe: finite elements (default); galerkin: the analytical assumed-modes model (blades)")
     modes.add_argument("--terms", metavar="NW,NV,NPHI",
@@ -50,7 +60,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     campbell.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="families (default 6)")
     campbell.add_argument("--operating-rpm", type=rpm_band, metavar="RPM|LOW:HIGH",
                           help="operating speed to mark, or operating range (towers: the range of the 1P and "
-                               "blade-passing bands; default the swept range)")
+                               "blade-passing bands; default a BModes deck's rot_rpm x rpm_mult, else the swept "
+                               "range)")
     campbell.add_argument("--blades", type=positive_int, default=3, metavar="N",
                           help="towers: number of blades, the blade-passing harmonic (default 3)")
     campbell.add_argument("--plot", metavar="FILE.png", help="write the diagram to this image (PNG, PDF, SVG)")
@@ -85,6 +96,7 @@ def compute_modes(blade, args: argparse.Namespace):
 
 
 def run_modes(args: argparse.Namespace) -> int:
+    apply_deck_settings(args, n_modes=True)
     _check_rpm(args.rpm)
     model = read_structure(args)
     if not is_blade(model):
@@ -104,6 +116,9 @@ def run_modes(args: argparse.Namespace) -> int:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
+    deck_rpm = deck_settings(args.input)[0]
+    if args.operating_rpm is None and deck_rpm:
+        args.operating_rpm = (deck_rpm, deck_rpm)
     options.check_sweep(args.rpm, args.n_modes, args.elements)
     options.check_output(args.plot)
     if args.vtk:

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from . import options
-from .inputs import add_blade_options, is_blade, read_structure
+from .inputs import add_blade_options, apply_deck_settings, is_blade, read_structure
 
 
 def rotor_speeds(text: str) -> tuple[float, ...]:
@@ -50,9 +50,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                     "With none of --vtk/--png/--gif, writes VTK. Every file written is listed on stdout.")
     add_blade_options(export)
     add_planform_option(export)
-    export.add_argument("--rpm", type=rotor_speeds, default=(0.0,), metavar="R|START:STOP:COUNT",
-                        help="rotor speed, rpm (default 0), or a sweep (VTK collection and Campbell diagram); "
-                             "blades only")
+    export.add_argument("--rpm", type=rotor_speeds, metavar="R|START:STOP:COUNT",
+                        help="rotor speed, rpm (default: a BModes deck's rot_rpm x rpm_mult, else 0), or a sweep "
+                             "(VTK collection and Campbell diagram); blades only")
     export.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     export.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="modes (default 6)")
     export.add_argument("--vtk", action="store_true", help="VTU files, a .pvd collection and a JSON sidecar")
@@ -72,6 +72,8 @@ def require_pyvista(option: str) -> None:
 
 
 def run_export(args: argparse.Namespace) -> int:
+    apply_deck_settings(args)
+    args.rpm = tuple(args.rpm) if isinstance(args.rpm, tuple) else (float(args.rpm),)
     sweep = len(args.rpm) > 1
     if args.gif and sweep:
         raise InputError("animated GIFs are drawn at one rotor speed; give --rpm R", field="--gif")

@@ -96,6 +96,31 @@ def rpm_band(text: str) -> tuple[float, float]:
     return low, high
 
 
+def deck_settings(path: str) -> tuple[float | None, int | None]:
+    """(rotor speed in rpm, number of modes) that INPUT carries: a BModes deck's ``rot_rpm x rpm_mult`` (0 for a
+    tower) and ``modepr``; (None, None) for other inputs or when the file cannot be read (the reader then says
+    why)."""
+    from ..io.detect import detect_format
+    try:
+        if detect_format(path) != "bmodes":
+            return None, None
+        from ..io.bmodes import read_bmodes
+        deck = read_bmodes(path)
+    except InputError:
+        return None, None
+    return deck.rotor_speed_rpm, deck.modepr
+
+
+def apply_deck_settings(args: argparse.Namespace, n_modes: bool = False) -> None:
+    """Fill ``args.rpm`` (and, with ``n_modes``, ``args.n_modes``) left unset on the command line from the input
+    deck's own settings, else 0 rpm and 10 modes."""
+    rpm, modes = deck_settings(args.input)
+    if getattr(args, "rpm", None) is None:
+        args.rpm = rpm if rpm is not None else 0.0
+    if n_modes and getattr(args, "n_modes", None) is None:
+        args.n_modes = modes if modes is not None else 10
+
+
 def read_structure(args: argparse.Namespace) -> object:
     """The blade (:class:`bladefem.sections.Blade`) or tower (:class:`bladefem.sections.tower.Tower`) described by
     INPUT and the options; ``--part`` chooses for inputs that hold both."""

@@ -11,7 +11,7 @@ from pathlib import Path
 from ..errors import InputError
 from .export import add_planform_option, read_drawn_structure
 from . import options
-from .inputs import add_blade_options, is_blade, positive_int, rpm_band
+from .inputs import add_blade_options, apply_deck_settings, is_blade, positive_int, rpm_band
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
@@ -24,9 +24,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     add_blade_options(report)
     add_planform_option(report)
     report.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
-    report.add_argument("--rpm", type=options.rpm, default=0.0, metavar="RPM",
-                        help="blades: operating rotor speed, rpm (frequency table, pictures, coefficients; "
-                             "default 0)")
+    report.add_argument("--rpm", type=options.rpm, metavar="RPM",
+                        help="blades: operating rotor speed, rpm (frequency table, pictures, coefficients; default: "
+                             "a BModes deck's rot_rpm x rpm_mult, else 0)")
     report.add_argument("--sweep", type=options.rpm_sweep, metavar="START:STOP:COUNT",
                         help="Campbell sweep, rpm (default 0 to 1.25 x RPM, or 0 to 15 rpm, 16 speeds)")
     report.add_argument("--operating-rpm", type=rpm_band, metavar="LOW:HIGH",
@@ -58,6 +58,7 @@ def input_files(args: argparse.Namespace, source: str) -> list[str]:
 def run_report(args: argparse.Namespace) -> int:
     from ..report import write_report
 
+    apply_deck_settings(args)
     if args.rpm < 0:
         raise InputError(f"must not be negative, got {args.rpm}", field="--rpm")
     speeds = args.sweep if args.sweep is not None else default_sweep(args.rpm)

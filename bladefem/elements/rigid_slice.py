@@ -1,9 +1,13 @@
 """Inertial and centrifugal terms of a rigid body (a section slice or the tip mass) moving with a beam node.
 
-The body's points ``s`` (relative to the node) move by ``dr1 = t + Theta x s`` to first order and
-``dr2 = 1/2 Theta x (Theta x s)`` to second order, with ``d = (t, Theta)`` the node's kinematic vector. Everything
-needed is the body's mass ``m``, first moment ``S = int rho s`` and second moment ``J = int rho s s^T``. Arrays may
-carry trailing dimensions (elements, quadrature points).
+The body's points ``s`` (relative to the node) move by ``dr1 = t + Theta x s`` to first order, with
+``d = (t, Theta)`` the node's kinematic vector, ``Theta = (phi, -w', v')``. To second order a beam section bends
+(``Theta_b = (0, -w', v')`` takes the span axis along the bent beam) and then twists by ``phi`` about the bent axis,
+so that it stays normal to the axis (Euler-Bernoulli): its rotation vector is ``Theta + 1/2 Theta_b x Theta_t`` and
+``dr2 = 1/2 Theta x (Theta x s) + 1/2 (Theta_b x Theta_t) x s``. The second part does work only against a static
+moment about the node (:func:`bend_twist_coupling`); without it a rigid turn of the whole blade would not have the
+exact second-order energy. Everything needed is the body's mass ``m``, first moment ``S = int rho s`` and second
+moment ``J = int rho s s^T``. Arrays may carry trailing dimensions (elements, quadrature points).
 """
 
 from __future__ import annotations
@@ -41,27 +45,50 @@ def projected_inertia(Q: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArray
 def rotation_second_order(Q: NDArray, r: NDArray, S: NDArray, J: NDArray) -> NDArray:
     """3x3 matrix H with ``int rho (Q r0) . dr2 = 1/2 Theta^T H Theta``, the body at node position ``r``.
 
-    ``r0 = r + s`` is a point's position; ``dr2 = 1/2 Theta x (Theta x s) = 1/2 (Theta (Theta.s) - |Theta|^2 s)``.
-    ``r`` has shape (3, ...). The centrifugal potential's share is ``-Omega^2 / 2 Theta^T H Theta``.
+    ``r0 = r + s`` is a point's position. The body turns with a beam section: first the bend that takes the span
+    axis along the bent beam, ``Theta_b = (0, -w', v')``, then the twist ``phi`` about the bent axis (Euler-Bernoulli:
+    the section stays normal to the axis). To second order this is the rotation vector
+    ``Theta + 1/2 Theta_b x Theta_t``, ``Theta = (phi, -w', v')``, so ``dr2 = 1/2 Theta x (Theta x s) + 1/2 (Theta_b x
+    Theta_t) x s``: the rigid-body term plus the static moment term of :func:`bend_twist_coupling`. ``r`` has shape
+    (3, ...). The centrifugal potential's share is ``-Omega^2 / 2 Theta^T H Theta``.
     """
     QrS = np.einsum("ij,j...,k...->ik...", Q, r, S)
     QJ = np.einsum("ij,jk...->ik...", Q, J)
     outer = QrS + QJ
     symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
     trace = np.einsum("i...,ij,j...->...", r, Q, S) + np.einsum("ij,ji...->...", Q, J)
-    return symmetric - np.einsum("ij,...->ij...", np.eye(3), trace)
+    # static moment about the node, int rho s x (Q r0) = S x Q r + int rho s x Q s
+    moment = (np.einsum("abc,b...,cd,d...->a...", EPS, S, Q, r) + np.einsum("abc,cd,bd...->a...", EPS, Q, J))
+    return symmetric - np.einsum("ij,...->ij...", np.eye(3), trace) + bend_twist_coupling(moment)
 
 
-def uniform_field_second_order(f: NDArray, S: NDArray) -> NDArray:
+def bend_twist_coupling(moment: NDArray) -> NDArray:
+    """3x3 matrix C with ``1/2 Theta^T C Theta = Theta_2 . M``: the work of a static moment ``M`` (shape (3, ...))
+    on the second-order rotation ``Theta_2 = 1/2 Theta_b x Theta_t = 1/2 (0, phi v', phi w')`` of a section that
+    bends and then twists about the bent axis. It couples the twist with the bending slopes."""
+    C = np.zeros((3, 3) + np.shape(moment)[1:])
+    C[0, 2] = C[2, 0] = 0.5 * moment[1]
+    C[0, 1] = C[1, 0] = -0.5 * moment[2]
+    return C
+
+
+def uniform_field_second_order(f: NDArray, S: NDArray, beam_node: bool = True) -> NDArray:
     """3x3 matrix H with ``int rho f . dr2 = 1/2 Theta^T H Theta`` for a uniform force field ``f`` per unit mass.
 
-    ``dr2 = 1/2 (Theta (Theta.s) - |Theta|^2 s)`` gives ``H = sym(f S^T) - (f.S) I``: only the first moment
-    ``S = int rho s`` enters. Gravity's potential ``int rho g x`` (``x`` up) is ``f = g e_x``: a body whose centre
-    of mass sits a height ``c`` above the node has ``H = -g m c`` for tilts, the inverted-pendulum softening.
+    A rigid turn ``dr2 = 1/2 (Theta (Theta.s) - |Theta|^2 s)`` gives ``H = sym(f S^T) - (f.S) I``: only the first
+    moment ``S = int rho s`` enters. Gravity's potential ``int rho g x`` (``x`` up) is ``f = g e_x``: a body whose
+    centre of mass sits a height ``c`` above the node has ``H = -g m c`` for tilts, the inverted-pendulum softening.
+    A body on a beam node (``beam_node``) turns with the section, bend then twist (see
+    :func:`rotation_second_order`), which adds :func:`bend_twist_coupling` of the static moment ``S x f``; a body
+    whose ``Theta`` is its own rotation vector (a platform) does not.
     """
-    outer = np.einsum("i,j...->ij...", np.asarray(f, dtype=float), S)
+    f = np.asarray(f, dtype=float)
+    outer = np.einsum("i,j...->ij...", f, S)
     symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
-    return symmetric - np.einsum("ij,...->ij...", np.eye(3), np.einsum("i,i...->...", f, S))
+    H = symmetric - np.einsum("ij,...->ij...", np.eye(3), np.einsum("i,i...->...", f, S))
+    if beam_node:
+        H = H + bend_twist_coupling(np.einsum("abc,b...,c->a...", EPS, S, f))
+    return H
 
 
 def gyroscopic_inertia(a: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArray:

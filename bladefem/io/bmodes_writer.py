@@ -45,7 +45,7 @@ def bmodes_main_text(bmodes: BModesInput, sections_name: str) -> str:
             _entry(degrees_exact(b.precone), "precone", "built-in precone angle (deg)"),
             _entry(degrees_exact(b.pitch), "bl_thp", "blade pitch setting (deg)"),
             _entry(b.hub_conn, "hub_conn", "hub-to-blade or tower-base boundary condition [1: cantilevered; "
-                                           "2: free-free; 3: only axial and torsion constraints] (-)"),
+                                           "2: free-free; 3: only axial and torsion constraints; 4: pinned-free] (-)"),
             _entry(b.modepr, "modepr", "number of modes to be printed (-)")]
     for key in ("TabDelim", "mid_node_tw"):
         if key in flags:
@@ -77,14 +77,23 @@ def bmodes_main_text(bmodes: BModesInput, sections_name: str) -> str:
 
 
 def _support_lines(b: BModesInput) -> list[str]:
-    later = b.layout == "platform"
-    meaning = "1: floating-platform or monopile with or without tension wires" if later else "1: tension wires"
+    meaning = {"platform": "1: floating-platform or monopile with or without tension wires",
+               "offshore": "1: tension wires; 2: floating platform or monopile"}.get(b.layout, "1: tension wires")
     out = [f"\n--------- Properties of tower support subsystem (read only if beam_type is 2) {RULE}\n",
            _entry(b.tow_support, "tow_support", f"additional tower support [0: none; {meaning}] (-)")]
-    if later:
+    if b.layout in ("platform", "offshore") and b.tow_support > 0:
         out += _platform_lines(b.platform)
-    out += _wire_lines(b.wires)
+    if b.layout != "offshore":
+        out += ["Tension wires data\n"] + _wire_lines(b.wires)
     return out
+
+
+def _point(depth: float, offset: tuple[float, float], key: str, description: str) -> str:
+    """``depth  key`` or, with a horizontal offset, ``depth x y  key`` (pybmodes' extension)."""
+    if not any(offset):
+        return _entry(float(depth), key, description)
+    values = " ".join(format_number(float(v)) for v in (depth, *offset))
+    return f"{values:<24} {key}: {description}, then the horizontal offset x y from the tower axis (m)\n"
 
 
 def _matrix_lines(label: str, matrix: np.ndarray) -> list[str]:
@@ -95,10 +104,10 @@ def _platform_lines(platform: BModesPlatform | None) -> list[str]:
     p = platform or BModesPlatform(0.0, 0.0, 0.0, np.zeros((3, 3)), 0.0, np.zeros((6, 6)), np.zeros((6, 6)),
                                    np.zeros((6, 6)), np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0))
     out = [_entry(float(p.draft), "draft", "depth of tower base from the ground or the MSL (m)"),
-           _entry(float(p.cm_pform), "cm_pform", "distance of platform c.m. below the MSL (m)"),
+           _point(p.cm_pform, p.cm_pform_xy, "cm_pform", "distance of platform c.m. below the MSL (m)"),
            _entry(float(p.mass_pform), "mass_pform", "platform mass (kg)")]
     out += _matrix_lines("Platform mass inertia 3X3 matrix (i_matrix_pform)", p.i_matrix_pform)
-    out.append(_entry(float(p.ref_msl), "ref_msl", "distance of platform reference point below the MSL (m)"))
+    out.append(_point(p.ref_msl, p.ref_msl_xy, "ref_msl", "distance of platform reference point below the MSL (m)"))
     out += _matrix_lines("Platform-reference-point-referred hydrodynamic 6X6 matrix (hydro_M)", p.hydro_M)
     out += _matrix_lines("Platform-reference-point-referred hydrodynamic 6X6 stiffness matrix (hydro_K)", p.hydro_K)
     out += _matrix_lines("Mooring-system 6X6 stiffness matrix (mooring_K)", p.mooring_K)
@@ -114,14 +123,17 @@ def _platform_lines(platform: BModesPlatform | None) -> list[str]:
             "\nDistributed elastic stiffness per unit length along the flexible tower:\n",
             _entry(len(p.distributed_stiffness), "n_secs_k_distr", "number of points with stiffness (-)"),
             row(p.distributed_stiffness_z, "z_distr_k", "locations wrt the flexible tower base (m)"),
-            row(p.distributed_stiffness, "distr_k", "distributed stiffness per unit length (N/m^2)"),
-            "\nTension wires data\n"]
+            row(p.distributed_stiffness, "distr_k", "distributed stiffness per unit length (N/m^2)"), "\n"]
     return out
 
 
 def _wire_lines(wires: BModesWires | None) -> list[str]:
-    if wires is None:
-        return [_entry(0, "n_attachments", "no of wire-attachment locations on tower [0: no tension wires] (-)")]
+    if wires is None:        # the wire lines are still there: BModes reads them whatever n_attachments says
+        return [_entry(0, "n_attachments", "no of wire-attachment locations on tower [0: no tension wires] (-)"),
+                f"{'0':<24} n_wires: no of wires attached at each location (-)\n",
+                f"{'0':<24} node_attach: node numbers of attachment locations (-)\n",
+                f"{'0.':<24} wire_stfness: wire spring constant in each set (N/m)\n",
+                f"{'0.':<24} th_wire: angle of the wires from the horizontal plane (deg)\n"]
 
     def row(values: tuple, key: str, description: str) -> str:
         return f"{' '.join(format_number(v) if isinstance(v, float) else str(v) for v in values):<24} {key}: " \
@@ -131,7 +143,8 @@ def _wire_lines(wires: BModesWires | None) -> list[str]:
             row(wires.n_wires, "n_wires", "no of wires attached at each location (-)"),
             row(wires.node_attach, "node_attach", "node numbers of attachment locations (-)"),
             row(wires.stiffness, "wire_stfness", "wire spring constant in each set (N/m)"),
-            row(tuple(degrees_exact(a) for a in wires.angle), "th_wire", "angle of the wires at each attachment (deg)")]
+            row(tuple(degrees_exact(a) for a in wires.angle), "th_wire",
+                "angle of the wires from the horizontal plane at each attachment (deg)")]
 
 
 def bmodes_sections_text(sections: BModesSections) -> str:

@@ -117,11 +117,14 @@ def _reach(sections: SectionTable, name: str, values: np.ndarray) -> tuple[str, 
 
 
 def _jump(sections: SectionTable, name: str, values: np.ndarray, across: bool = False) -> tuple[str, int] | None:
-    """Neighbouring stations (or, ``across``, two columns at one station) more than :data:`MAX_JUMP` apart."""
+    """Neighbouring stations (or, ``across``, two columns at one station) more than :data:`MAX_JUMP` apart. A
+    property step (a station given twice) is a deliberate jump: BModes decks of monopiles make the tower above the
+    pile axially rigid that way."""
     if not across and (name not in PROPERTIES or not np.all(values > 0)):
         return None
     ratio = values if across else values[1:] / values[:-1]
-    i = _first((ratio > MAX_JUMP) | (ratio < 1 / MAX_JUMP))
+    step = np.zeros(ratio.shape, dtype=bool) if across else np.diff(np.asarray(sections.span)) == 0
+    i = _first(((ratio > MAX_JUMP) | (ratio < 1 / MAX_JUMP)) & ~step)
     if i is None:
         return None
     if across:

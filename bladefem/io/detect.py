@@ -75,7 +75,7 @@ def detect_format(path: str | Path) -> str:
 def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None,
                **options: object) -> Blade | Tower:
     """The blade (default) or tower (``part='tower'``) described by ``path``, in any supported format. A BModes
-    tower on tension wires and a YAML tower case (``kind: tower``) come as the tower model's
+    tower deck and a YAML tower case (``kind: tower``) come as the tower model's
     :class:`bladefem.sections.tower.Tower` (with supports).
 
     Geometry for files that lack it, and overrides, as a :class:`Geometry` or as keyword options with the same
@@ -98,15 +98,12 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry, path)
     if kind == "bmodes":
         from .bmodes import read_bmodes
-        from .bmodes_model import (
-            blade_from_bmodes,
-            tower_from_bmodes,
-            tower_model_from_bmodes,
-        )
+        from .bmodes_model import blade_from_bmodes
+        from .bmodes_tower import tower_from_bmodes
         deck = read_bmodes(path)
         if deck.beam_type == 2:
             _refuse(geometry, BLADE_OPTIONS + TOWER_OPTIONS + ("elastodyn_main",), "a BModes tower deck", path)
-            tower = tower_model_from_bmodes(deck) if deck.wires is not None else tower_from_bmodes(deck)
+            tower = tower_from_bmodes(deck)
             check_section_values(tower.sections)
             return tower
         _refuse(geometry, TOWER_OPTIONS + ("elastodyn_main",), "a blade", path)

@@ -64,6 +64,14 @@ def jacobi_scaling(K: sp.spmatrix, M: sp.spmatrix) -> tuple[sp.csc_matrix, sp.cs
     return scaled(K), scaled(M), sp.diags(factors)
 
 
+def singular_shift(K: sp.spmatrix | NDArray, M: sp.spmatrix | NDArray) -> float:
+    """|sigma| below zero that makes a singular K - sigma M factorable: SINGULAR_SHIFT times the largest diagonal
+    ratio K_ii / M_ii over the DOFs that have inertia (a field without any has no finite eigenvalue)."""
+    k, m = np.asarray(K.diagonal()), np.asarray(M.diagonal())
+    inertial = m > 0
+    return SINGULAR_SHIFT * float(np.max(k[inertial] / m[inertial])) if inertial.any() else SINGULAR_SHIFT
+
+
 def lanczos_pairs(K: sp.csc_matrix, M: sp.csc_matrix, n_modes: int) -> tuple[NDArray, NDArray]:
     """Lowest eigenpairs by shift-invert Lanczos (ARPACK) about sigma = 0, or just below zero when K is singular.
 
@@ -77,7 +85,7 @@ def lanczos_pairs(K: sp.csc_matrix, M: sp.csc_matrix, n_modes: int) -> tuple[NDA
     try:
         factor = spla.splu(K)
     except RuntimeError:                    # exactly singular: a free rigid-body motion
-        sigma = -SINGULAR_SHIFT * float(np.max(K.diagonal() / np.maximum(M.diagonal(), 1e-300)))
+        sigma = -singular_shift(K, M)
         factor = spla.splu((K - sigma * M).tocsc())
     inverse = spla.LinearOperator((n, n), matvec=factor.solve, dtype=float)
     start = np.random.default_rng(0).standard_normal(n)     # fixed start: identical results run to run
@@ -108,8 +116,11 @@ def dense_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray, 
             mu, vectors = la.eigh(M, K - sigma * M, subset_by_index=[n - n_modes, n - 1], check_finite=False)
         except la.LinAlgError:
             if sigma == 0.0:
-                lowest = la.eigh(K, M, eigvals_only=True, subset_by_index=[0, 0], check_finite=False)[0]
-                floor = SINGULAR_SHIFT * float(np.max(np.diag(K) / np.maximum(np.diag(M), 1e-300)))
+                try:
+                    lowest = la.eigh(K, M, eigvals_only=True, subset_by_index=[0, 0], check_finite=False)[0]
+                except la.LinAlgError:      # M singular too (a field without inertia): K - sigma M is then definite
+                    lowest = 0.0
+                floor = singular_shift(K, M)
                 sigma = min(lowest, 0.0) * 2 - floor
             else:
                 sigma *= 10

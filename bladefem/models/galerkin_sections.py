@@ -45,6 +45,18 @@ def column(sections: SectionTable, name: str, x: NDArray) -> NDArray:
     return np.interp(x, sections.span, getattr(sections, name))
 
 
+def inertias_about_the_axis(sections: SectionTable, x: NDArray, m: NDArray) -> tuple[NDArray, NDArray]:
+    """(int rho eta^2, int rho zeta^2) about the reference axis at ``x``, kg m: the edgewise inertia about the centre of
+    mass plus ``m e_g^2``, and the flapwise one. Linear between stations, or, for a table with ``inertia_per_mass``
+    (BModes decks), their ratios to the mass linear and times the interpolated mass."""
+    if not sections.inertia_per_mass:
+        e_g = column(sections, "cm_offset", x)
+        return column(sections, "edge_inertia", x) + m * e_g**2, column(sections, "flap_inertia", x)
+    reference = (sections.edge_inertia + sections.mass * sections.cm_offset**2) / sections.mass
+    return m * np.interp(x, sections.span, reference), m * np.interp(x, sections.span, sections.flap_inertia /
+                                                                      sections.mass)
+
+
 def section_rotation(theta: NDArray) -> NDArray:
     """``R(theta)`` of shape (..., 2, 2): section coordinates ``(eta, zeta)`` to blade coordinates ``(y, z)``."""
     c, s = np.cos(theta), np.sin(theta)
@@ -65,7 +77,7 @@ def section_properties(blade: Blade, x: NDArray) -> SectionProperties:
     m = column(sections, "mass", x)
     e_g = column(sections, "cm_offset", x)
     D = principal_to_blade(R, column(sections, "edge_stiffness", x), column(sections, "flap_stiffness", x))
-    J_yz = principal_to_blade(R, column(sections, "edge_inertia", x) + m * e_g**2, column(sections, "flap_inertia", x))
+    J_yz = principal_to_blade(R, *inertias_about_the_axis(sections, x, m))
     S_yz = R[..., 0] * (m * e_g)[..., None]                 # m R (e_g, 0): the first column of R times m e_g
     S = np.zeros((3,) + m.shape)
     S[1:] = np.moveaxis(S_yz, -1, 0)

@@ -24,6 +24,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 E_X = np.array([1.0, 0.0, 0.0])
+#: Levi-Civita symbol
+LEVI_CIVITA = np.zeros((3, 3, 3))
+LEVI_CIVITA[0, 1, 2] = LEVI_CIVITA[1, 2, 0] = LEVI_CIVITA[2, 0, 1] = 1.0
+LEVI_CIVITA[0, 2, 1] = LEVI_CIVITA[2, 1, 0] = LEVI_CIVITA[1, 0, 2] = -1.0
 
 
 def skew(s: NDArray) -> NDArray:
@@ -92,6 +96,13 @@ def rotation_second_order_form(X: NDArray, S: NDArray, J: NDArray, axis: NDArray
     outer = X[..., None, None] * pe[:, None] * S[..., None, :]
     H = 0.5 * (outer + np.swapaxes(outer, -1, -2)) + 0.5 * (PJ + np.swapaxes(PJ, -1, -2))
     scalar = X * (S @ pe) + np.trace(PJ, axis1=-2, axis2=-1)
+    # the section bends, then twists about the bent axis: second-order rotation 1/2 (0, phi v', phi w'), whose work
+    # against the static moment M = int rho s x (P r0) couples twist and slopes
+    moment = X[..., None] * np.cross(S, pe) + np.einsum("abc,cd,...bd->...a", LEVI_CIVITA, P, _as_last(J))
+    H[..., 0, 2] += 0.5 * moment[..., 1]
+    H[..., 2, 0] += 0.5 * moment[..., 1]
+    H[..., 0, 1] -= 0.5 * moment[..., 2]
+    H[..., 1, 0] -= 0.5 * moment[..., 2]
     tt = -(H - scalar[..., None, None] * np.eye(3))
     zero = np.zeros(tt.shape)
     return _blocks(zero, zero, tt)

@@ -4,7 +4,8 @@ Results reuse :class:`~bladefem.modal.results.ModalResult`; for a tower the mode
 deflection ``w`` and ``edge`` the side-side deflection ``v``, and the kinds are ``fore-aft``, ``side-side``,
 ``torsion``, ``axial`` and, on a floating platform, ``surge``, ``sway``, ``heave``, ``roll``, ``pitch``, ``yaw``
 (the coordinate or field with the largest share of kinetic energy; platform shares are those of the rigid-body
-motion of the whole system, beam shares those of the elastic motion relative to the platform). A mode's
+motion of the whole system, beam shares those of the elastic motion relative to the platform; a mode that mostly
+strains the tower is named after the tower's motion, :func:`mode_kind`). A mode's
 ``residual`` is the normwise backward error of the eigenpair (:func:`backward_errors`).
 """
 
@@ -20,11 +21,11 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..assembly.dofs import DofMap
-from ..assembly.supports import BASE_FIELDS, BASE_SIZE, PLATFORM_KINDS
+from ..assembly.supports import BASE_FIELDS, PLATFORM_KINDS
 from ..assembly.tower import TowerMatrices, assemble_tower
 from ..modal.refinement import refine_until_converged
 from ..modal.results import ModalResult, Mode
-from ..modal.solve import DENSE_LIMIT, eigen_pairs, mode_shape
+from ..modal.solve import DENSE_LIMIT, eigen_pairs, jacobi_scaling, mode_shape
 from ..sections.tower import (
     Tower,
     as_tower,
@@ -32,6 +33,9 @@ from ..sections.tower import (
 
 #: tower kind of each beam field
 TOWER_FIELD_KINDS: dict[str, str] = {"w": "fore-aft", "v": "side-side", "phi": "torsion", "u": "axial"}
+#: a mode whose tower strain energy is more than this share of its potential energy is a tower mode (measured on
+#: the floating reference decks: rigid-platform modes below 0.08, the coupled first bending modes 0.99-1.02)
+TOWER_STRAIN_SHARE = 0.5
 TOWER_KINDS: tuple[str, ...] = ("fore-aft", "side-side", "torsion", "axial", "surge", "sway", "heave", "roll",
                                 "pitch", "yaw")
 #: modes whose frequencies differ by less than this (relative) form a degenerate cluster, rotated into clean
@@ -75,7 +79,7 @@ def inverse_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray
             warnings.simplefilter("error", spla.MatrixRankWarning)
             try:
                 mu, vectors = spla.eigsh(K, k=k, M=M, sigma=0.0, which="LM")
-            except (RuntimeError, spla.MatrixRankWarning, spla.ArpackNoConvergence) as error:
+            except (RuntimeError, spla.MatrixRankWarning, spla.ArpackError) as error:   # incl. no convergence
                 raise la.LinAlgError(str(error)) from None
         mu = 1.0 / mu
     if np.any(mu <= 0):
@@ -168,12 +172,12 @@ def energy_shares(matrices: TowerMatrices, vectors: NDArray) -> list[dict[str, f
     supports = matrices.tower.supports
     shares = {kind: np.zeros(vectors.shape[1]) for kind in TOWER_KINDS}
     if supports.platform is not None:
-        q = vectors[-BASE_SIZE:]
+        q = vectors[matrices.n_elastic:]
         full = matrices.Z[:, :matrices.n_elastic] @ vectors[:matrices.n_elastic]
         _, M_r = matrices.reduced()
-        diagonal = M_r.diagonal()[-BASE_SIZE:]
-        for k, kind in enumerate(PLATFORM_KINDS):
-            shares[kind] += diagonal[k] * q[k] ** 2
+        diagonal = M_r.diagonal()[matrices.n_elastic:]
+        for k, index in enumerate(supports.free_base):
+            shares[PLATFORM_KINDS[index]] += diagonal[k] * q[k] ** 2
     elif supports.foundation is not None:
         diagonal = matrices.M.diagonal()[n:]
         for k, name in enumerate(BASE_FIELDS):
@@ -188,20 +192,35 @@ def energy_shares(matrices: TowerMatrices, vectors: NDArray) -> list[dict[str, f
 
 def critical_load_factor(matrices: TowerMatrices) -> float:
     """Smallest ``lambda > 0`` with ``K + lambda K_g`` singular: the gravity load at buckling over the actual one
-    (inf without gravity or when gravity cannot destabilise the tower)."""
-    K, M = matrices.reduced(0.0)
+    (inf without gravity or when gravity cannot destabilise the tower).
+
+    It is ``1 / mu`` for the largest ``mu`` of ``G x = mu K x``, ``G = -K_g``: one Lanczos eigenvalue with K
+    factored once (sparse), where the largest ``mu`` stands well apart from the rest, which crowd towards zero."""
+    K, _ = matrices.reduced(0.0)
     K_g = matrices.Z.T @ matrices.K_gravity @ matrices.Z
     if K_g.nnz == 0 or not np.any(K_g.data):
         return float("inf")
-    K, G = K.toarray(), -K_g.toarray()
+    G = (-0.5 * (K_g + K_g.T)).tocsc()
     try:
-        mu = la.eigh(0.5 * (G + G.T), K, eigvals_only=True)
-        largest = float(mu.max())
-        return 1.0 / largest if largest > 0 else float("inf")
-    except la.LinAlgError:    # K singular (a free rigid-body motion): the general problem
-        lam = la.eigvals(K, 0.5 * (G + G.T))
+        largest = _largest_load_ratio(K.tocsc(), G)
+    except (RuntimeError, spla.ArpackError, spla.ArpackNoConvergence):     # K singular (a free rigid motion)
+        K, G = K.toarray(), G.toarray()
+        lam = la.eigvals(K, G)
         lam = lam[np.isfinite(lam) & (np.abs(lam.imag) <= 1e-9 * np.abs(lam)) & (lam.real > 0)].real
         return float(lam.min()) if lam.size else float("inf")
+    return 1.0 / largest if largest > 0 else float("inf")
+
+
+def _largest_load_ratio(K: sp.csc_matrix, G: sp.csc_matrix) -> float:
+    """Largest ``mu`` of ``G x = mu K x`` (K positive definite), by Lanczos in K's inner product, Jacobi-scaled
+    (values and slopes, axial and bending DOFs of very different stiffness)."""
+    K, G, _ = jacobi_scaling(K, G)
+    factor = spla.splu(K)
+    n = K.shape[0]
+    inverse = spla.LinearOperator((n, n), matvec=factor.solve, dtype=float)
+    start = np.random.default_rng(0).standard_normal(n)      # fixed start: identical results run to run
+    mu = spla.eigsh(G, k=1, M=K, Minv=inverse, which="LA", v0=start, tol=1e-12, return_eigenvectors=False)
+    return float(mu[0])
 
 
 def gravity_notes(tower: Tower) -> tuple[str, ...]:
@@ -233,17 +252,36 @@ def backward_errors(K: sp.spmatrix, M: sp.spmatrix, values: NDArray, vectors: ND
     return np.linalg.norm(r, axis=0) / scale
 
 
+def strain_shares(matrices: TowerMatrices, K: sp.spmatrix, vectors: NDArray) -> NDArray:
+    """Share of each mode's potential energy (``x^T K x``, reduced K) that is the tower's elastic strain energy;
+    0 for a rigid-body mode."""
+    elastic = matrices.Z[:, :matrices.n_elastic]
+    part = vectors[:matrices.n_elastic]
+    strain = np.einsum("ij,ij->j", part, (elastic.T @ matrices.K_elastic @ elastic) @ part)
+    total = np.abs(np.einsum("ij,ij->j", vectors, K @ vectors))
+    return np.divide(strain, total, out=np.zeros_like(strain), where=total > 0)
+
+
+def mode_kind(fractions: dict[str, float], strain_share: float) -> str:
+    """The kind with the largest kinetic share; a mode that mostly strains the tower (:data:`TOWER_STRAIN_SHARE`)
+    is named after the tower's own motion even where a massive platform holds most of its kinetic energy (the
+    first bending modes of a floating tower, platform pitch and roll coupled in)."""
+    kinds = TOWER_FIELD_KINDS.values() if strain_share > TOWER_STRAIN_SHARE else fractions
+    return max(kinds, key=fractions.get)
+
+
 def modal_result(matrices: TowerMatrices, values: NDArray, vectors: NDArray,
                  notes: tuple[str, ...] = ()) -> ModalResult:
     """A :class:`ModalResult` with tower kinds, relative residuals and mode shapes (shapes include base motion)."""
     K, M = matrices.reduced()
     residuals = backward_errors(K, M, values, vectors)
     fractions = energy_shares(matrices, vectors)
+    strain = strain_shares(matrices, K, vectors)
     view = _BeamView(matrices.dofs, np.arange(matrices.dofs.size))
     full = matrices.expand(vectors)
     modes = []
     for j, value in enumerate(values):
-        kind = max(fractions[j], key=fractions[j].get)
+        kind = mode_kind(fractions[j], strain[j])
         modes.append(Mode(frequency_hz=float(_frequencies(np.array([value]))[0]), kind=kind,
                           energy_fractions=fractions[j], residual=float(residuals[j]),
                           shape=mode_shape(view, full[:matrices.dofs.size, j], kind)))

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..modal.results import ModalResult, Mode
-from ..sections.tower import Tower
+from ..sections.tower import Tower, as_tower
 from .tower import tower_modes
 
 __all__ = ["BENDING", "MARGIN", "Band", "TowerCampbell", "tower_campbell"]
@@ -111,7 +111,8 @@ def tower_campbell(tower: Tower, rpm: Sequence[float], n_modes: int = 6, element
                    operating_rpm: tuple[float, float] | None = None, blades: int = 3,
                    margin: float = MARGIN) -> TowerCampbell:
     """The chart of ``tower`` over rotor speeds ``rpm`` (rpm). ``operating_rpm``: the rotor's (low, high)
-    operating range, rpm (default: the swept range)."""
+    operating range, rpm (default: the swept range). A tower on a moving base (a floating platform) gets its
+    rigid-base modes on top of the ``n_modes``, so that its bending modes are on the chart."""
     speeds = np.asarray(rpm, dtype=float)
     if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise ValueError("rotor speeds must be finite and non-negative")
@@ -120,5 +121,7 @@ def tower_campbell(tower: Tower, rpm: Sequence[float], n_modes: int = 6, element
     low, high = operating_rpm if operating_rpm is not None else (float(speeds.min()), float(speeds.max()))
     if not 0 <= low <= high:
         raise ValueError(f"need 0 <= low <= high for the operating range, got {low}, {high}")
-    return TowerCampbell(rpm=speeds, modes=tower_modes(tower, n_modes, elements), operating_rpm=(low, high),
+    tower = as_tower(tower)
+    count = n_modes + len(tower.supports.free_base)
+    return TowerCampbell(rpm=speeds, modes=tower_modes(tower, count, elements), operating_rpm=(low, high),
                          blades=blades, margin=margin)

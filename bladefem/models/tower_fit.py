@@ -32,8 +32,8 @@ def tower_coefficients(tower: object, *, nodes: int = 20, n_modes: int = 12, ele
         result = modes(tower, 0.0, n_modes, elements)
         sections, top, gravity = tower.sections, tower.tip_mass, 0.0
     else:
-        model = as_tower(tower)
-        result = with_blade_kinds(tower_modes(model, n_modes, elements))
+        model = as_tower(tower)         # the rigid-base modes of a moving base come on top of the n_modes
+        result = with_blade_kinds(tower_modes(model, n_modes + len(model.supports.free_base), elements))
         sections, top, gravity = model.sections, model.top_mass, model.gravity
         if model.supports.wires or model.supports.moving_base or model.supports.soil is not None:
             notes += ("ElastoDyn's tower integrals have no wires, foundation, platform or soil springs: its "

@@ -17,8 +17,10 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from .table import SectionTable
 
-Root = Literal["cantilever", "hinged"]
-ROOTS: tuple[str, ...] = ("cantilever", "hinged")
+Root = Literal["cantilever", "hinged", "axial-torsion", "free"]
+#: cantilever: all held; hinged: the four translations and twist held, the bending slopes free (pinned);
+#: axial-torsion: only axial displacement and twist held; free: nothing held (BModes hub_conn 1, 4, 3, 2)
+ROOTS: tuple[str, ...] = ("cantilever", "hinged", "axial-torsion", "free")
 
 
 @dataclass(frozen=True)
@@ -67,7 +69,8 @@ class Blade:
     precone : precone angle, rad (positive tilts the blade downwind, out of the rotor plane)
     pitch : blade pitch angle, rad (positive to feather); it adds to the structural twist
     tip_mass : optional rigid body at the tip
-    root : ``"cantilever"`` (clamped) or ``"hinged"`` (pinned in flap and edge, torsion and axial held)
+    root : ``"cantilever"`` (clamped), ``"hinged"`` (pinned in flap and edge, torsion and axial held),
+        ``"axial-torsion"`` (only axial displacement and twist held) or ``"free"``
     name : a label for reports
     notes : statements about the modelling assumptions made while reading the input (printed by the CLI)
     """

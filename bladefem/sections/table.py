@@ -1,5 +1,8 @@
 """Section properties along a beam's span, linearly interpolated between stations.
 
+Two stations at the same span position mark a step: the properties jump there (the first of the pair holds the
+values below the step, the second those above it), e.g. at a monopile's pile-to-tower flange.
+
 All quantities are SI: span positions in m measured along the reference (pitch) axis from the root of the flexible
 part, mass per length in kg/m, bending and torsional stiffness in N m^2, axial stiffness in N, structural twist in
 rad, mass moments of inertia per length in kg m, chordwise offsets in m.
@@ -37,7 +40,8 @@ class SectionTable:
 
     Attributes
     ----------
-    span : station positions along the reference axis from the root, m (strictly increasing, first 0)
+    span : station positions along the reference axis from the root, m (increasing, first 0; an interior position
+        given twice is a step in the properties)
     mass : mass per unit length, kg/m
     flap_stiffness : EI about the section's chordwise principal axis (flapwise bending), N m^2
     edge_stiffness : EI about the thickness principal axis (edgewise bending), N m^2
@@ -55,6 +59,10 @@ class SectionTable:
     chord : chord length, m (geometry only: for drawing the planform; None if unknown)
     pitch_axis : chordwise position of the reference (pitch) axis as a fraction of the chord from the leading
         edge (geometry only; None if unknown)
+    inertia_per_mass : False: ``flap_inertia`` and ``edge_inertia`` vary linearly between stations, like every other
+        column; True: the squared radii of gyration about the reference axis vary linearly, ``flap_inertia / mass``
+        and ``(edge_inertia + mass cm_offset^2) / mass``, and the inertias follow from them and the interpolated
+        mass and offset (BModes' convention)
     """
 
     span: NDArray[np.float64]
@@ -71,6 +79,7 @@ class SectionTable:
     tension_centre_offset: NDArray[np.float64] | None = None
     chord: NDArray[np.float64] | None = None
     pitch_axis: NDArray[np.float64] | None = None
+    inertia_per_mass: bool = False
     source: str = field(default="", compare=False)
     #: 1-based line number of each station in ``source`` (for error messages), if known
     lines: tuple[int, ...] | None = field(default=None, compare=False)
@@ -97,6 +106,11 @@ class SectionTable:
     def stations(self) -> int:
         return len(self.span)
 
+    @property
+    def nodes(self) -> NDArray[np.float64]:
+        """The distinct station positions, m (a step's two stations are one position)."""
+        return np.unique(self.span)
+
     def _error(self, message: str, index: int | None, name: str) -> InputError:
         line = self.lines[index] if (self.lines is not None and index is not None) else None
         if line is None and index is not None and not self.source:
@@ -116,11 +130,17 @@ class SectionTable:
                 raise self._error(f"value is not a finite number ({value[bad[0]]})", int(bad[0]), f.name)
         if abs(self.span[0]) > 1e-12 * max(1.0, abs(self.span[-1])):
             raise self._error(f"first station must be at the root (0), got {self.span[0]}", 0, "span")
-        steps = np.flatnonzero(np.diff(self.span) <= 0)
+        gaps = np.diff(self.span)
+        bad = gaps < 0
+        bad[0] |= gaps[0] == 0                                  # no step at the root
+        bad[-1] |= gaps[-1] == 0                                # nor at the tip
+        bad[1:] |= (gaps[1:] == 0) & (gaps[:-1] == 0)           # a position at most twice
+        steps = np.flatnonzero(bad)
         if steps.size:
             i = int(steps[0]) + 1
-            raise self._error(f"stations must increase strictly ({self.span[i - 1]} then {self.span[i]})", i, "span")
-        close = np.flatnonzero(np.diff(self.span) < MIN_STATION_GAP * self.span[-1])
+            raise self._error(f"stations must increase ({self.span[i - 1]} then {self.span[i]}; an interior position "
+                              "may be given twice for a step, the root and the tip once)", i, "span")
+        close = np.flatnonzero((gaps > 0) & (gaps < MIN_STATION_GAP * self.span[-1]))
         if close.size:
             i = int(close[0]) + 1
             raise self._error(f"stations {self.span[i - 1]} and {self.span[i]} are closer than {MIN_STATION_GAP:g} "
@@ -143,7 +163,14 @@ class SectionTable:
                 raise self._error(f"must not be negative, got {getattr(self, name)[bad[0]]}", int(bad[0]), name)
 
     def at(self, x: NDArray[np.float64], name: str) -> NDArray[np.float64]:
-        """Linearly interpolate column ``name`` at span positions ``x`` (m), any shape."""
+        """Column ``name`` at span positions ``x`` (m), any shape: linear between stations (the inertias per
+        :attr:`inertia_per_mass`); at a step, the value above it."""
+        if self.inertia_per_mass and name in ("flap_inertia", "edge_inertia"):
+            mass = np.interp(x, self.span, self.mass)
+            if name == "flap_inertia":
+                return mass * np.interp(x, self.span, self.flap_inertia / self.mass)
+            about_reference = self.edge_inertia / self.mass + self.cm_offset**2
+            return mass * (np.interp(x, self.span, about_reference) - np.interp(x, self.span, self.cm_offset) ** 2)
         return np.interp(x, self.span, getattr(self, name))
 
     def scaled(self, mass: float = 1.0, stiffness: float = 1.0, flap_stiffness: float = 1.0,

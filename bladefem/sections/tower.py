@@ -26,6 +26,8 @@ from .table import SectionTable
 
 #: standard gravity, m/s^2 (the value in the NREL 5MW ElastoDyn files)
 STANDARD_GRAVITY = 9.80665
+#: names of the six base coordinates in the tower frame's order (t_x, t_y, t_z, theta_x, theta_y, theta_z)
+BASE_COORDINATES: tuple[str, ...] = ("heave", "sway", "surge", "yaw", "pitch", "roll")
 #: tower-frame components (x, y, z) of the OpenFAST axes X (downwind), Y (lateral), Z (up)
 OPENFAST_AXES = np.array([[0.0, 0.0, 1.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]]).T
 
@@ -153,6 +155,10 @@ class Platform:
         hydrostatic matrix holds the buoyancy (waterplane and centre-of-buoyancy) terms only: the weight of the
         platform, tower and top mass enters through gravity.
     base_height : height of the tower base above the platform reference point, m
+    restoring_includes_weight : True when hydrostatic + mooring already hold the whole restoring of the rigid
+        system, the weight terms included (BModes decks: BModes has no gravity, so its platform matrices must);
+        gravity then acts only on the tower's deformation relative to the platform (see
+        :func:`bladefem.assembly.supports.weight_in_restoring`)
     """
 
     mass: float
@@ -162,6 +168,7 @@ class Platform:
     hydrostatic: NDArray[np.float64] | None = None
     mooring: NDArray[np.float64] | None = None
     base_height: float = 0.0
+    restoring_includes_weight: bool = False
 
     def __post_init__(self) -> None:
         inertia = np.asarray(self.inertia, dtype=float)
@@ -182,9 +189,10 @@ class Platform:
 
 @dataclass(frozen=True)
 class SoilSprings:
-    """Distributed springs along the embedded length of a pile, per unit length, linear between points.
+    """Distributed springs along the embedded length of a pile, per unit length, linear between points and zero
+    outside them.
 
-    height : positions above the bottom of the beam, m (first 0, increasing; the last is the embedded length)
+    height : positions above the bottom of the beam, m (increasing, usually from 0; the last is the embedded length)
     lateral : lateral (p-y) stiffness acting on v and w, N/m per m
     axial : axial (t-z) stiffness on u, N/m per m, or None
     torsional : torsional stiffness on phi, N m/rad per m, or None
@@ -205,36 +213,88 @@ class SoilSprings:
                 object.__setattr__(self, name, value)
                 if np.any(~np.isfinite(value)) or np.any(value < 0):
                     raise InputError("soil stiffness must be finite and not negative", field=f"soil.{name}")
-        if height.ndim != 1 or len(height) < 2 or abs(height[0]) > 0 or np.any(np.diff(height) <= 0):
-            raise InputError("soil heights must start at 0 and increase (at least two points)", field="soil.height")
+        if (height.ndim != 1 or len(height) < 2 or not np.all(np.isfinite(height)) or height[0] < 0
+                or np.any(np.diff(height) <= 0)):
+            raise InputError("soil heights must not be negative and must increase (at least two points)",
+                             field="soil.height")
 
     @property
     def embedded_length(self) -> float:
         return float(self.height[-1])
 
     def at(self, x: NDArray, name: str) -> NDArray:
-        """Stiffness ``name`` at positions ``x``: linear inside the embedded length, zero above it."""
-        value = getattr(self, name)
-        if value is None:
-            return np.zeros_like(x)
-        inside = x <= self.embedded_length * (1 + 1e-12)
-        return np.where(inside, np.interp(x, self.height, value), 0.0)
+        """Stiffness ``name`` at positions ``x``: linear between the given heights, zero outside them."""
+        return along(self.height, getattr(self, name), x)
+
+
+def along(height: NDArray, value: NDArray | None, x: NDArray) -> NDArray:
+    """A distribution given at ``height`` (m) at positions ``x``: linear between the heights, zero outside."""
+    if value is None:
+        return np.zeros_like(x)
+    tolerance = 1e-12 * max(abs(height[-1]), 1.0)
+    inside = (x >= height[0] - tolerance) & (x <= height[-1] + tolerance)
+    return np.where(inside, np.interp(x, height, value), 0.0)
+
+
+@dataclass(frozen=True)
+class LateralAddedMass:
+    """Distributed added mass per unit length on the lateral translations v and w (e.g. the hydrodynamic added
+    mass of a submerged tower or pile), linear between points and zero outside them. It adds inertia, not weight.
+
+    height : positions above the bottom of the beam, m (increasing, at least two)
+    mass : added mass per length at each height, kg/m (not negative)
+    """
+
+    height: NDArray[np.float64]
+    mass: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        height = np.asarray(self.height, dtype=float)
+        mass = np.broadcast_to(np.asarray(self.mass, dtype=float), height.shape).copy()
+        object.__setattr__(self, "height", height)
+        object.__setattr__(self, "mass", mass)
+        if (height.ndim != 1 or len(height) < 2 or not np.all(np.isfinite(height)) or height[0] < 0
+                or np.any(np.diff(height) <= 0)):
+            raise InputError("added-mass heights must not be negative and must increase (at least two points)",
+                             field="added_mass.height")
+        if not np.all(np.isfinite(mass)) or np.any(mass < 0):
+            raise InputError("added mass per length must be finite and not negative", field="added_mass.mass")
+
+    def at(self, x: NDArray) -> NDArray:
+        """Added mass per length at positions ``x``, kg/m."""
+        return along(self.height, self.mass, x)
 
 
 @dataclass(frozen=True)
 class Supports:
     """How the tower is held. Nothing given: clamped base. ``foundation`` and ``platform`` exclude each other;
-    wires and soil springs combine with any base."""
+    wires, soil springs and distributed added mass combine with any base. ``base_held``: base coordinates of a
+    foundation or platform held fixed (e.g. ``("heave", "yaw")`` for a base free only to translate and rock
+    laterally, ``("heave", "sway", "surge", "yaw")`` for a pinned base)."""
 
     wires: tuple[Wires, ...] = ()
     foundation: Foundation | None = None
     platform: Platform | None = None
     soil: SoilSprings | None = None
+    added_mass: LateralAddedMass | None = None
+    base_held: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wires", tuple(self.wires))
+        object.__setattr__(self, "base_held", tuple(self.base_held))
         if self.foundation is not None and self.platform is not None:
             raise InputError("give a foundation or a floating platform, not both", field="supports")
+        unknown = [name for name in self.base_held if name not in BASE_COORDINATES]
+        if unknown or (self.base_held and not self.moving_base):
+            raise InputError(f"base_held names base coordinates ({', '.join(BASE_COORDINATES)}) of a foundation or "
+                             f"platform, got {', '.join(self.base_held)}", field="supports.base_held")
+
+    @property
+    def free_base(self) -> tuple[int, ...]:
+        """Indices of the base coordinates that move (none for a clamped base)."""
+        if not self.moving_base:
+            return ()
+        return tuple(i for i, name in enumerate(BASE_COORDINATES) if name not in self.base_held)
 
     @property
     def moving_base(self) -> bool:
@@ -242,10 +302,12 @@ class Supports:
         return self.foundation is not None or self.platform is not None
 
     def mesh_points(self) -> NDArray[np.float64]:
-        """Heights that must be mesh nodes: wire attachments and soil-spring points."""
+        """Heights that must be mesh nodes: wire attachments, soil-spring and added-mass points."""
         points = [w.height for w in self.wires]
         if self.soil is not None:
             points += list(self.soil.height)
+        if self.added_mass is not None:
+            points += list(self.added_mass.height)
         return np.array(points, dtype=float)
 
 
