@@ -1,12 +1,16 @@
-"""An inspection report of a blade: model summary and provenance, frequency table, mode pictures, Campbell diagram
-and ElastoDyn mode-shape coefficients, written as Markdown and HTML with PNG images beside them.
+"""An inspection report of a blade or a tower: provenance (software version, date, input files and their SHA-256),
+model summary, frequency table, mode pictures, Campbell diagram (blade) or rotor-speed chart (tower) and ElastoDyn
+mode-shape coefficients, written as Markdown and HTML with PNG images beside them.
 
 The report is a list of blocks (heading, paragraph, table, image) rendered twice, so the two formats always say the
-same thing. Images need matplotlib (Campbell) and pyvista (modes, optional: left out with a note without it).
+same thing. Images need matplotlib (diagrams) and pyvista (modes, optional: left out with a note without it).
+Tower content: :mod:`bladefem.report_tower`.
 """
 
 from __future__ import annotations
 
+import datetime
+import hashlib
 import html
 import math
 import sys
@@ -16,7 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from .assembly import BladeMatrices
-from .io.results import write_atomic
+from .files import write_atomic
 from .modal import (
     CampbellResult,
     ModalResult,
@@ -25,8 +29,11 @@ from .modal import (
     solve_modes,
 )
 from .plots.campbell import crossings, family_labels, save_campbell_plot
-from .plots.modes3d import mode_labels
+from .plots.labels import mode_labels
 from .sections import Blade
+
+__all__ = ["Block", "Heading", "Image", "Paragraph", "Report", "Table", "html_document", "markdown",
+           "progress_bar", "provenance_blocks", "sweep", "write_report"]
 
 Progress = Callable[[Iterable[Any]], Iterable[Any]]
 
@@ -157,6 +164,37 @@ def case_provenance(source: str) -> str | None:
     return str(data["source"]) if isinstance(data, dict) and data.get("source") else None
 
 
+def file_hash(path: str | Path) -> str:
+    """SHA-256 of a file's bytes, hex."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as stream:
+        for chunk in iter(lambda: stream.read(1 << 16), b""):
+            digest.update(chunk)
+    return digest.hexdigest()
+
+
+def provenance_blocks(inputs: Sequence[str | Path], now: datetime.datetime | None = None) -> list[Block]:
+    """Who wrote the report and from what: bladefem's version, the date (UTC) and every input file with its
+    SHA-256, so that a report can be traced to the exact files it was computed from."""
+    from . import __version__
+
+    moment = (now or datetime.datetime.now(datetime.timezone.utc)).strftime("%Y-%m-%d %H:%M:%S UTC")
+    rows = [(str(path), file_hash(path)) for path in inputs if Path(path).is_file()]
+    blocks: list[Block] = [Paragraph(f"Written by bladefem {__version__} on {moment}.")]
+    if rows:
+        blocks.append(Table(("input file", "SHA-256"), rows, "ll"))
+    else:
+        blocks.append(Paragraph("Input: built in code (no input file)."))
+    return blocks
+
+
+def report_inputs(sections_source: str, inputs: Sequence[str | Path] | None) -> list[str | Path]:
+    """The files to list: those given, else the section table's source if it is a file."""
+    if inputs:
+        return list(inputs)
+    return [sections_source] if sections_source and Path(sections_source).is_file() else []
+
+
 def summary_blocks(blade: Blade, matrices: BladeMatrices) -> list[Block]:
     sections = blade.sections
     geometry = [("flexible length", g(blade.length), "m"), ("hub radius", g(blade.hub_radius), "m"),
@@ -166,9 +204,9 @@ def summary_blocks(blade: Blade, matrices: BladeMatrices) -> list[Block]:
     origin = case_provenance(sections.source)
     provenance = (f"Input: {sections.source or 'built in code'}"
                   + (f" (section data from {origin})" if origin else "")
-                  + ". Model: Euler-Bernoulli beam finite elements "
-                  f"(docs/THEORY.md), {matrices.free.size} free degrees of freedom; frequencies without Coriolis "
-                  "coupling, linearised about the undeflected blade.")
+                  + ". Model: Euler-Bernoulli beam finite elements (Hermite cubic bending, coupled flap and edge "
+                  f"through twist and pitch), {matrices.free.size} free degrees of freedom; frequencies without "
+                  "Coriolis coupling, linearised about the undeflected blade.")
     blocks: list[Block] = [Heading("Model"), Paragraph(provenance),
                            Table(("quantity", "value", "unit"), geometry + mass_rows(blade), "lrl")]
     if blade.notes:
@@ -242,33 +280,59 @@ class Report:
     images: tuple[Path, ...] = field(default=())
 
 
-def write_report(blade: Blade, directory: str | Path, rpm: float, sweep_rpm: Sequence[float], n_modes: int = 6,
-                 elements: int | None = None, pictures: bool = True, quiet: bool = True) -> Report:
-    """Compute and write ``report.md`` and ``report.html`` (with ``campbell.png`` and ``modes.png``) for ``blade``
-    at the operating speed ``rpm`` (rpm) with a Campbell sweep over ``sweep_rpm`` (rpm)."""
+def write_report(structure: Any, directory: str | Path, rpm: float, sweep_rpm: Sequence[float], n_modes: int = 6,
+                 elements: int | None = None, pictures: bool = True, quiet: bool = True,
+                 inputs: Sequence[str | Path] | None = None, operating_rpm: tuple[float, float] | None = None,
+                 blades: int = 3) -> Report:
+    """Compute and write ``report.md`` and ``report.html`` (with ``campbell.png`` and ``modes.png``) for a blade at
+    the operating speed ``rpm`` (rpm) with a Campbell sweep over ``sweep_rpm`` (rpm), or for a tower (a
+    :class:`~bladefem.sections.tower.Tower`) with its rotor-speed chart over ``sweep_rpm`` and the operating range
+    ``operating_rpm`` (rpm; default the swept range) of a rotor of ``blades`` blades. ``inputs``: the input files
+    listed with their SHA-256 (default: the section table's source file)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
+    if not isinstance(structure, Blade):
+        from .report_tower import tower_blocks
+        blocks, images = tower_blocks(structure, directory, sweep_rpm, n_modes, elements, pictures, operating_rpm,
+                                      blades)
+        blocks[1:1] = provenance_blocks(report_inputs(structure.sections.source, inputs))
+        return _write(directory, f"{structure.name}: modal report", blocks, images)
+    blade = structure
     matrices = blade_matrices(blade, elements, n_modes, max(rpm, *sweep_rpm))
     result = solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
     campbell = sweep(matrices, sweep_rpm, n_modes, blade.notes + matrices.notes, progress_bar("Campbell sweep", quiet))
     operating = rpm if rpm > 0 else None
     images = [directory / "campbell.png"]
     save_campbell_plot(campbell, images[0], title=blade.name, operating_rpm=operating)
-    blocks: list[Block] = [Heading(f"{blade.name}: modal report", 1), *summary_blocks(blade, matrices),
-                           *frequency_blocks(result)]
-    if pictures and can_render():
-        from .plots.modes3d import FRACTION, save_mode_strip
-        images.append(directory / "modes.png")
-        save_mode_strip(blade, result, images[-1], n_modes)
-        blocks.append(Image("modes.png", f"First {n_modes} modes at {rpm:g} rpm: deformed (blue) over undeformed "
-                                         f"(grey); largest displacement drawn at {FRACTION:.0%} of the length."))
-    elif pictures:
-        blocks.append(Paragraph("Mode pictures need pyvista (pip install 'bladefem[render]')."))
+    blocks: list[Block] = [Heading(f"{blade.name}: modal report", 1),
+                           *provenance_blocks(report_inputs(blade.sections.source, inputs)),
+                           *summary_blocks(blade, matrices), *frequency_blocks(result)]
+    blocks += picture_blocks(blade, result, directory, n_modes, pictures, images,
+                             f" at {rpm:g} rpm")
     blocks += [Heading("Campbell diagram"),
                Image("campbell.png", f"Mode families tracked by MAC over {sweep_rpm[0]:g}-{sweep_rpm[-1]:g} rpm "
                                      "with the 1P, 3P, 6P and 9P excitation lines; circles mark crossings."),
                *crossing_blocks(campbell, operating), *elastodyn_blocks(blade, rpm, elements)]
+    return _write(directory, f"{blade.name}: modal report", blocks, images)
+
+
+def picture_blocks(structure: Any, result: ModalResult, directory: Path, n_modes: int, pictures: bool,
+                   images: list[Path], where: str = "") -> list[Block]:
+    """The strip of mode pictures (``modes.png``), or a note when pyvista is missing."""
+    if not pictures:
+        return []
+    if not can_render():
+        return [Paragraph("Mode pictures need pyvista (pip install 'bladefem[render]').")]
+    from .plots.modes3d import FRACTION, caption, drawing, save_mode_strip
+    images.append(directory / "modes.png")
+    save_mode_strip(structure, result, images[-1], n_modes)
+    return [Image("modes.png", f"First {min(n_modes, len(result.modes))} modes{where}: deformed (coloured by "
+                               f"displacement magnitude) over undeformed (grey); largest displacement drawn at "
+                               f"{FRACTION:.0%} of the length; {caption(drawing(structure))}.")]
+
+
+def _write(directory: Path, title: str, blocks: list[Block], images: list[Path]) -> Report:
     paths = Report(directory / "report.md", directory / "report.html", tuple(images))
     write_atomic(paths.markdown, markdown(blocks))
-    write_atomic(paths.html, html_document(f"{blade.name}: modal report", blocks))
+    write_atomic(paths.html, html_document(title, blocks))
     return paths

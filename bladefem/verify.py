@@ -19,10 +19,13 @@ from .modal.results import ModalResult
 from .models.galerkin import galerkin_modes, galerkin_system, solve
 from .sections import Blade, SectionTable, TipMass
 
+__all__ = ["NREL5MW_MAIN", "VerifyRow", "format_table", "nrel5mw_rows", "uniform_rows", "verification_rows"]
+
 Solver = Callable[..., ModalResult]
 
-#: Default NREL 5MW input (ElastoDyn main file of the land-based turbine, with AdjBlMs, HubRad and PreCone).
-NREL5MW_MAIN = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
+#: Default NREL 5MW input (ElastoDyn main file of the land-based turbine, with AdjBlMs, HubRad and PreCone),
+#: installed with the package (bladefem/data), so that the self-check runs from any installation.
+NREL5MW_MAIN = Path(__file__).resolve().parent / "data" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
 #: Uniform cases: FE (mesh converged to 1e-6) and a 14-term Galerkin agree to ~1e-7; the references are given to
 #: 6-7 digits (rounding up to 1.4e-6). The issue's acceptance: Galerkin-FE 1e-5, Galerkin-table 1e-4.
 UNIFORM_BOUND = 1e-5

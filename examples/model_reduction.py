@@ -1,5 +1,5 @@
-"""Model reduction and loss of dynamics (seed paper 000, section 4): the full 16-DOF NREL 5MW structural model
-against the reduced model of the literature (first tower fore-aft and side-side modes, first flap mode of each
+"""Model reduction and loss of dynamics (section 4 of the Kane's-method turbine paper, the README's reference [3]):
+the full 16-DOF NREL 5MW structural model against the reduced model of the literature (first tower fore-aft and side-side modes, first flap mode of each
 blade, constant rotor speed) — the same Kane code with DOFs locked.
 
 Run from the repository root::

@@ -1,7 +1,8 @@
 """The rotating uniform cantilever against the published table (Wright et al. 1982; Hodges and Rutkowski 1981).
 
 Prints omega * sqrt(m L^4 / EI) of the first three flap modes for lambda = Omega sqrt(m L^4 / EI) = 0..12 next to
-the table (shared/reference/README.md, item 4), and the in-plane modes from omega_lag^2 = omega_flap^2 - Omega^2.
+the table (Wright, Smith, Thresher and Wang 1982, J. Appl. Mech. 49:197; Hodges and Rutkowski 1981, AIAA J.
+19(11):1459), and the in-plane modes from omega_lag^2 = omega_flap^2 - Omega^2.
 Run: ``python examples/rotating_uniform_beam.py``.
 """
 

@@ -131,7 +131,7 @@ def test_seed_comparison_numbers_are_the_papers_and_the_converged_models():
         assert float(row[11]) == pytest.approx(paper[0], rel=3e-3)
         assert float(row[12].rstrip("%")) == pytest.approx(100 * (float(row[11]) / paper[0] - 1), abs=0.011)
     assert table1["1st torsion"][3] == "5.7446"
-    table2 = markdown_table(text, "| rpm | mode | seed Table 2")
+    table2 = markdown_table(text, "| rpm | mode | paper Table 2")
     assert len(table2) == 24
     for row in table2:
         speed, mode = int(row[0]), row[1]

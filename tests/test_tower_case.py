@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from bladefem.cli.tower import is_tower_input, tower_modes_command, tower_parser
+from bladefem.cli import main
+from bladefem.cli.tower import is_tower_input
 from bladefem.errors import InputError
 from bladefem.io.elastodyn_main import read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower
@@ -122,8 +123,7 @@ def test_foundation_and_platform_together_are_refused(tmp_path):
 
 
 def test_cli_json_for_a_tower(capsys):
-    args = tower_parser().parse_args([str(CASES / "uniform_tower.yaml"), "--n-modes", "3", "--json"])
-    assert tower_modes_command(args) == 0
+    assert main(["modes", str(CASES / "uniform_tower.yaml"), "--n-modes", "3", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["structure"] == "tower"
     assert [mode["kind"] for mode in data["modes"]] == ["fore-aft", "side-side", "axial"]
@@ -132,10 +132,9 @@ def test_cli_json_for_a_tower(capsys):
 
 def test_cli_elastodyn_tower_file_with_coefficients(capsys):
     folder = CASES / "nrel5mw"
-    args = tower_parser().parse_args([str(folder / "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"),
-                                      "--elastodyn-main", str(folder / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"),
-                                      "--point-top-mass", "--elastodyn-coefficients", "--json", "--n-modes", "2"])
-    assert tower_modes_command(args) == 0
+    assert main(["modes", str(folder / "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"),
+                 "--elastodyn-main", str(folder / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"),
+                 "--point-top-mass", "--elastodyn-coefficients", "--json", "--n-modes", "2"]) == 0
     data = json.loads(capsys.readouterr().out)
     fits = data["elastodyn_coefficients"]
     assert sorted(fits) == ["fa1", "fa2", "ss1", "ss2"]
@@ -143,10 +142,10 @@ def test_cli_elastodyn_tower_file_with_coefficients(capsys):
         assert sum(fit["coefficients"]) == pytest.approx(1.0, abs=1e-12)    # ElastoDyn's tip normalisation
 
 
-def test_cli_needs_a_height_for_a_bare_elastodyn_tower_file():
+def test_cli_needs_a_height_for_a_bare_elastodyn_tower_file(capsys):
     path = CASES / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"
-    with pytest.raises(InputError, match="--tower-height"):
-        tower_modes_command(tower_parser().parse_args([str(path)]))
+    assert main(["modes", str(path)]) == 2
+    assert "--tower-height" in capsys.readouterr().err
 
 
 def test_tower_inputs_are_recognised():

@@ -68,7 +68,7 @@ def test_nrel5mw_bound_catches_a_two_per_mille_error():
 
 
 def run_cli(monkeypatch, rows: list[VerifyRow], capsys) -> tuple[int, str]:
-    monkeypatch.setattr(cli_verify, "verification_rows", lambda nrel5mw: rows)
+    monkeypatch.setattr("bladefem.verify.verification_rows", lambda nrel5mw: rows)
     parser = argparse.ArgumentParser()
     cli_verify.add_parser(parser.add_subparsers())
     args = parser.parse_args(["verify"])

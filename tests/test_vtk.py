@@ -56,16 +56,16 @@ def test_meshio_read_back_gives_the_solver_numbers(coned):
         np.testing.assert_array_equal(mesh.field_data["rotor_speed_rpm"], [10.0])
         assert [KINDS[int(i)] for i in mesh.field_data["kind_index"]] == result.kinds
     beta = blade.precone
-    for k, mode in enumerate(result.modes, 1):
+    for record, mode in zip(speed["modes"], result.modes):
         shape = mode.shape
-        d = axis.point_data[f"mode{k:02d}_displacement"]
+        d = axis.point_data[f"{record['array']}_displacement"]
         # blade frame (u, v, w) turned by the precone about y (closed form of the rotor-frame convention)
         np.testing.assert_array_equal(d[:, 1], shape.edge)
         np.testing.assert_allclose(d[:, 0], shape.axial * math.cos(beta) - shape.flap * math.sin(beta),
                                    rtol=0, atol=1e-15)
         np.testing.assert_allclose(d[:, 2], shape.axial * math.sin(beta) + shape.flap * math.cos(beta),
                                    rtol=0, atol=1e-15)
-        np.testing.assert_array_equal(axis.point_data[f"mode{k:02d}_twist_rad"], shape.twist)
+        np.testing.assert_array_equal(axis.point_data[f"{record['array']}_twist_rad"], shape.twist)
 
 
 def test_blade_sits_on_the_preconed_axis(coned):
@@ -88,11 +88,12 @@ def test_pyvista_reads_the_same_arrays_and_the_collection(coned):
     assert blocks.n_blocks == 2
     axis, surface = blocks[0], blocks[1]
     np.testing.assert_array_equal(surface.field_data["frequency_hz"], result.frequencies_hz)
-    for k, mode in enumerate(result.modes, 1):
+    names = [m["array"] for m in json.loads(export.sidecar.read_text())["speeds"][0]["modes"]]
+    for name, mode in zip(names, result.modes):
         flap_z = mode.shape.flap * math.cos(blade.precone) + mode.shape.axial * math.sin(blade.precone)
-        np.testing.assert_allclose(axis.point_data[f"mode{k:02d}_displacement"][:, 2], flap_z, rtol=0, atol=1e-15)
+        np.testing.assert_allclose(axis.point_data[f"{name}_displacement"][:, 2], flap_z, rtol=0, atol=1e-15)
     expected = mode_displacement(blade, result.modes[0].shape, result.modes[0].shape.x).surface
-    np.testing.assert_array_equal(surface.point_data["mode01_displacement"],
+    np.testing.assert_array_equal(surface.point_data[f"{names[0]}_displacement"],
                                   expected.transpose(1, 0, 2).reshape(-1, 3))
     assert surface.cell_data["chord_m"] == pytest.approx(2.0)
 
@@ -171,8 +172,41 @@ def test_campbell_sweep_is_one_collection_indexed_by_rotor_speed(tmp_path):
         axis = reader.read()[0]
         for f, family in enumerate(result.families, 1):
             shape = result.results[k].modes[family.indices[k]].shape
-            np.testing.assert_array_equal(axis.point_data[f"mode{f:02d}_displacement"][:, 2], shape.flap)
+            name = f"mode{f:02d}_{family.kind}"            # one name per family through the collection
+            np.testing.assert_array_equal(axis.point_data[f"{name}_displacement"][:, 2], shape.flap)
         np.testing.assert_array_equal(axis.field_data["frequency_hz"], frequencies)
         np.testing.assert_array_equal(axis.field_data["rotor_speed_rpm"], [rpm[k]])
     assert data["campbell"]["rpm"] == rpm
     assert not any(name.startswith(".") for name in os.listdir(tmp_path))  # no temporary files left behind
+
+
+def test_array_names_carry_mode_kind_and_frequency_and_files_state_the_normalisation(coned):
+    blade, result, export = coned
+    data = read_vtk(export.sidecar)
+    speed = data["speeds"][0]
+    names = [m["array"] for m in speed["modes"]]
+    assert names == [f"mode{k:02d}_{m.kind}_{m.frequency_hz:.4g}Hz" for k, m in enumerate(result.modes, 1)]
+    assert names[0].startswith("mode01_flap_") and names[0].endswith("Hz")
+    assert set(f"{n}_displacement" for n in names) <= set(speed["meshes"]["axis"].point_data)
+    for path in (*export.meshes, export.collection):
+        head = path.read_text(errors="replace")[:4000]
+        assert "largest displacement component" in head and "per unit modal amplitude" in head, path.name
+    first = export.meshes[0].read_text(errors="replace")[:4000]
+    assert f"{names[0]}: flap, {result.modes[0].frequency_hz:.6g} Hz" in first
+    assert data["normalisation"].startswith("displacements in m per unit modal amplitude")
+
+
+def test_a_tower_is_written_in_its_frame_with_tower_kinds(tmp_path):
+    from bladefem.io.tower_case import read_tower_case
+    from bladefem.models.tower import TOWER_KINDS, tower_modes
+    tower = read_tower_case(str(CASES / "uniform_tower.yaml"))           # a str path works too
+    result = tower_modes(tower, 3, elements=16)
+    export = write_vtk(tower, result, tmp_path)
+    data = read_vtk(export.sidecar)
+    assert data["structure"] == "tower" and data["kinds"] == list(TOWER_KINDS)
+    axis = data["speeds"][0]["meshes"]["axis"]
+    np.testing.assert_allclose(axis.points[:, 0], result.modes[0].shape.x)     # x up the tower axis
+    assert [TOWER_KINDS[int(i)] for i in axis.field_data["kind_index"]] == result.kinds
+    first = data["speeds"][0]["modes"][0]["array"]
+    assert first.startswith("mode01_fore_aft_")
+    np.testing.assert_array_equal(axis.point_data[f"{first}_displacement"][:, 2], result.modes[0].shape.flap)

@@ -1,4 +1,5 @@
-"""Assemble the blade's matrices K0, K2 (per Omega^2) and M once: K(Omega) = K0 + Omega^2 K2."""
+"""Assemble the blade's matrices K0, K2 (per Omega^2) and M once: K(Omega) = K0 + Omega^2 K2; and, when the
+quadratic eigenproblem asks for it, the gyroscopic matrix G (per Omega)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from skfem import Basis
 
 from ..elements import (
     beam_element,
+    gyroscopic_inertia,
     projected_inertia,
     rotation_second_order,
 )
@@ -43,6 +45,7 @@ class BladeMatrices:
     notes : statements about the mesh (e.g. refinement stopped before convergence)
     eigenpairs : rotor speed (rpm) -> lowest eigenpairs (omega^2, M-normalised vectors) already solved on these
         matrices, kept for re-use
+    G (property) : gyroscopic (Coriolis) matrix per Omega, for the quadratic eigenproblem
     """
 
     K0: sp.csr_matrix
@@ -78,6 +81,19 @@ class BladeMatrices:
     def elastic_operator(self) -> NDArray:
         """K0's form at the quadrature points (:func:`~bladefem.assembly.forms.pointwise_operator`)."""
         return pointwise_operator(self.quadrature, self.parameters, elastic_terms(self.dofs.fields))
+
+    @cached_property
+    def G(self) -> sp.csr_matrix:
+        """Gyroscopic (Coriolis) matrix per Omega over all DOFs, skew-symmetric, kg (:func:`terms.coriolis` and the
+        tip body), assembled on first use: only the quadratic eigenproblem needs it."""
+        G = assemble_terms(self.quadrature, self.parameters, (terms.coriolis,)) + tip_body_gyroscopic(self.blade,
+                                                                                                    self.dofs)
+        return (0.5 * (G - G.T)).tocsr()          # skew to the last bit (quadrature sums differ in round-off)
+
+    @cached_property
+    def free_gyroscopic(self) -> sp.csc_matrix:
+        """G restricted to the free DOFs."""
+        return self.G[self.free][:, self.free].tocsc()
 
     @cached_property
     def free_field_dofs(self) -> dict[str, NDArray[np.int64]]:
@@ -124,6 +140,16 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
     K2 = -projected_inertia(P, np.float64(tip.mass), S, J)
     K2[3:, 3:] -= rotation_second_order(P, np.array([blade.tip_radius, 0.0, 0.0]), S, J)
     return (T.T @ sp.csr_matrix(inertia) @ T).tocsr(), (T.T @ sp.csr_matrix(K2) @ T).tocsr()
+
+
+def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
+    """Gyroscopic matrix (per Omega) of the tip mass on the tip node."""
+    tip = blade.tip_mass
+    if tip is None:
+        return sp.csr_matrix((dofs.size, dofs.size))
+    T = dofs.kinematic_selector(len(dofs.nodes) - 1)
+    G = gyroscopic_inertia(blade.shaft_axis, np.float64(tip.mass), tip.mass * tip.offset, tip.second_moment)
+    return (T.T @ sp.csr_matrix(G) @ T).tocsr()
 
 
 def blade_graded_nodes(blade: Blade, elements: int) -> NDArray:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..elements import projected_inertia, rotation_second_order
+from ..elements import gyroscopic_inertia, projected_inertia, rotation_second_order
 from ..sections import (
     Blade,
     bending_stiffness,
@@ -70,6 +70,7 @@ class SectionParameters:
     spin: NDArray                    # (6, 6, ...) spin-softening matrix per Omega^2
     rotation: NDArray                # (3, 3, ...) rotation-second-order matrix per Omega^2
     tension: NDArray                 # N(x) per Omega^2, N s^2
+    gyroscopic: NDArray | None = None  # (6, 6, ...) skew Coriolis matrix per Omega, kg/m .. kg m (rotating beams)
 
 
 def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
@@ -88,4 +89,14 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
         spin=projected_inertia(P, moments.m, moments.S, moments.J),
         rotation=rotation_second_order(P, node, moments.S, moments.J),
         tension=centrifugal_tension(blade, x),
+        gyroscopic=gyroscopic_inertia(blade.shaft_axis, moments.m, moments.S, moments.J),
     )
+
+
+@dataclass(frozen=True)
+class AeroParameters:
+    """Aerodynamic damping and stiffness of the sections per length on the kinematic vector, (6, 6, ...) at the
+    quadrature points (:mod:`bladefem.models.blade_aero`)."""
+
+    damping: NDArray
+    stiffness: NDArray

@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..elements import SectionMotion
-from .parameters import SectionParameters
+from .parameters import AeroParameters, SectionParameters
 
 
 def quadratic(a: NDArray, G: NDArray, b: NDArray) -> NDArray:
@@ -55,3 +55,21 @@ def rotation_second_order(trial: SectionMotion, test: SectionMotion, p: SectionP
     """Centrifugal work on the second-order displacement of rotated section points (per Omega^2): the propeller
     moment in torsion and the centre-of-mass-offset coupling of twist with the bending slopes."""
     return -quadratic(test.rotation, p.rotation, trial.rotation)
+
+
+def coriolis(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Gyroscopic (Coriolis) coupling per Omega, skew: ``2 int rho dr1(test) . (a x dr1(trial))``. It couples
+    edge with axial motion (cos beta) and, under precone, edge with flap (sin beta)."""
+    return quadratic(test.kinematic, p.gyroscopic, trial.kinematic)
+
+
+def aerodynamic_damping(trial: SectionMotion, test: SectionMotion, p: AeroParameters) -> NDArray:
+    """Quasi-steady aerodynamic damping of the sections, -d(load)/d(velocity) with the induction frozen (not
+    symmetric)."""
+    return quadratic(test.kinematic, p.damping, trial.kinematic)
+
+
+def aerodynamic_stiffness(trial: SectionMotion, test: SectionMotion, p: AeroParameters) -> NDArray:
+    """Quasi-steady aerodynamic stiffness of the sections, -d(load)/d(displacement): elastic twist changing the
+    angle of attack, displaced points turning through other air (not symmetric)."""
+    return quadratic(test.kinematic, p.stiffness, trial.kinematic)

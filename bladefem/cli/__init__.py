@@ -1,17 +1,36 @@
 """The ``bladefem`` command line: ``modes``, ``campbell`` and the other subcommands.
 
 User mistakes (bad files, bad option values) print one line naming file, line and field and exit with code 2.
+Start-up stays fast: only the module of the subcommand being run is imported (``bladefem --help`` imports none),
+and each module imports its numerical libraries inside the function that runs it.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from collections.abc import Sequence
+from types import ModuleType
 from typing import NoReturn
 
 from ..errors import InputError
-from . import batch, blade, check, elastodyn, export, report, turbine, verify
+
+__all__ = ["COMMANDS", "Parser", "build_parser", "main"]
+
+#: subcommand -> (module in bladefem.cli that adds it, one-line help shown by ``bladefem --help``)
+COMMANDS: dict[str, tuple[str, str]] = {
+    "modes": ("blade", "natural frequencies and mode shapes of a blade or tower"),
+    "campbell": ("blade", "Campbell diagram (blade) or soft-stiff chart (tower) over rotor speed"),
+    "verify": ("verify", "self-check: FE, Galerkin and closed-form references (exit 1 on a broken bound)"),
+    "elastodyn": ("elastodyn", "ElastoDyn mode-shape coefficients (fit, quality, check, in-place update)"),
+    "export": ("export", "write mode shapes for inspection: VTK (ParaView), PNG pictures, animated GIFs"),
+    "report": ("report", "an inspection report (Markdown and HTML with images)"),
+    "turbine": ("turbine", "16-DOF Kane turbine model (ElastoDyn structure) fed by bladefem modes"),
+    "check": ("check", "design checks for CI: frequency windows, resonance margins, soft-stiff band, baselines"),
+    "batch": ("batch", "run a plan of cases (grid, Monte Carlo, files) on Dask; results in Parquet"),
+    "batch-summary": ("batch", "statistics and sensitivities of batch results"),
+}
 
 
 class Parser(argparse.ArgumentParser):
@@ -22,12 +41,24 @@ class Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
-def build_parser() -> Parser:
+def command_module(command: str) -> ModuleType:
+    """The ``bladefem.cli`` module that adds and runs ``command``."""
+    return importlib.import_module(f".{COMMANDS[command][0]}", __name__)
+
+
+def build_parser(command: str | None = None) -> Parser:
+    """The parser with every subcommand complete (``command`` None), or with only ``command`` complete and the
+    others as names with their help (what :func:`main` uses, so that only one module is imported)."""
     parser = Parser(prog="bladefem", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"bladefem {_version()}")
-    subparsers = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
-    for module in SUBCOMMANDS:
-        module.add_parser(subparsers)
+    subparsers = parser.add_subparsers(dest="command", required=True, parser_class=Parser, metavar="COMMAND")
+    wanted = list(COMMANDS) if command is None else [command] if command in COMMANDS else []
+    for name in wanted:
+        if name not in subparsers.choices:       # a module may add several commands
+            command_module(name).add_parser(subparsers)
+    for name, (_, help_text) in COMMANDS.items():
+        if name not in subparsers.choices:
+            subparsers.add_parser(name, help=help_text, add_help=False)
     return parser
 
 
@@ -36,13 +67,17 @@ def _version() -> str:
     return __version__
 
 
-SUBCOMMANDS = [blade, verify, elastodyn, export, report, turbine, check, batch]
+def subcommand(argv: Sequence[str]) -> str:
+    """The subcommand named in ``argv`` ('' if none): its first argument that is not an option."""
+    return next((word for word in argv if not word.startswith("-")), "")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``bladefem`` console script; returns the exit code."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    command = subcommand(argv)
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser(command).parse_args(argv)
     except SystemExit as exit:         # --help, --version, or a usage error already printed on one line
         return int(exit.code or 0)
     try:
@@ -56,4 +91,3 @@ def main(argv: Sequence[str] | None = None) -> int:
         where = f"{error.filename}: " if error.filename else ""
         print(f"bladefem: error: {where}{error.strerror or error}", file=sys.stderr)
         return 2
-

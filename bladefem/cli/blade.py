@@ -1,4 +1,4 @@
-"""``bladefem modes`` and ``bladefem campbell``."""
+"""``bladefem modes`` and ``bladefem campbell``, for blades and towers."""
 
 from __future__ import annotations
 
@@ -6,48 +6,62 @@ import argparse
 import sys
 
 from ..errors import InputError
-from ..io.results import campbell_to_dict, dumps, modal_to_dict
-from ..modal import blade_matrices, campbell_sweep, solve_modes
-from ..modal.results import ModalResult
-from ..report import progress_bar
-from ..sections import Blade
-from ..sections.tower import as_tower
+from .damping import (
+    add_aero_options,
+    add_coriolis_option,
+    coriolis_campbell,
+    quadratic_modes,
+    reject_for_towers,
+    wants_quadratic,
+)
 from .inputs import (
     add_blade_options,
     finite_float,
+    is_blade,
     positive_int,
-    read_blade,
     read_structure,
+    rpm_band,
     rpm_range,
 )
-from .tables import campbell_table, modes_table
-from .tower import add_tower_options, is_tower_input, tower_modes_command
 
 METHODS = ("fe", "galerkin")
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
-    modes = subparsers.add_parser("modes", help="natural frequencies and mode shapes at one rotor speed",
-                                  description="Natural frequencies (Hz) and mode shapes at one rotor speed.")
+    modes = subparsers.add_parser(
+        "modes", help="natural frequencies and mode shapes of a blade or tower",
+        description="Natural frequencies (Hz) and mode shapes of a blade at one rotor speed, or of a tower.")
     add_blade_options(modes)
-    add_tower_options(modes)
-    modes.add_argument("--rpm", type=finite_float, default=0.0, help="rotor speed, rpm (default 0)")
+    modes.add_argument("--rpm", type=finite_float, default=0.0, help="rotor speed, rpm (blades; default 0)")
     modes.add_argument("--n-modes", type=positive_int, default=10, metavar="N", help="number of modes (default 10)")
     modes.add_argument("--method", choices=METHODS, default="fe",
-                       help="fe: finite elements (default); galerkin: the analytical assumed-modes model")
-    modes.add_argument("--terms", metavar="NW,NV,NPHI", default="5,5,3",
-                       help="Galerkin terms for flap, lag and torsion (default 5,5,3)")
+                       help="fe: finite elements (default); galerkin: the analytical assumed-modes model (blades)")
+    modes.add_argument("--terms", metavar="NW,NV,NPHI",
+                       help="Galerkin terms for flap, lag and torsion (default: grown until the frequencies settle "
+                            "to the finite elements' tolerance; 5,5,3 is the truncation of the model's paper)")
+    modes.add_argument("--elastodyn-coefficients", action="store_true",
+                       help="towers: also fit ElastoDyn tower mode-shape coefficients (TwFAM1Sh .. TwSSM2Sh)")
+    add_coriolis_option(modes)
+    add_aero_options(modes)
     modes.add_argument("--json", action="store_true", help="print JSON instead of a table")
     modes.set_defaults(run=run_modes)
 
-    campbell = subparsers.add_parser("campbell", help="Campbell diagram: modes over a sweep of rotor speeds",
-                                     description="Mode families over rotor speed, tracked by MAC.")
+    campbell = subparsers.add_parser(
+        "campbell", help="Campbell diagram (blade) or soft-stiff chart (tower) over rotor speed",
+        description="Blade: mode families over rotor speed, tracked by MAC, with the nP lines. Tower: the tower's "
+                    "frequencies against the rotor's 1P and blade-passing bands over the operating range, and the "
+                    "soft-soft / soft-stiff / stiff-stiff classification.")
     add_blade_options(campbell)
     campbell.add_argument("--rpm", type=rpm_range, required=True, metavar="START:STOP:COUNT",
                           help="rotor speeds, rpm (e.g. 0:15:16)")
     campbell.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="families (default 6)")
-    campbell.add_argument("--operating-rpm", type=finite_float, metavar="RPM", help="operating speed to mark")
-    campbell.add_argument("--plot", metavar="FILE.png", help="write the Campbell diagram to this image")
+    campbell.add_argument("--operating-rpm", type=rpm_band, metavar="RPM|LOW:HIGH",
+                          help="operating speed to mark, or operating range (towers: the range of the 1P and "
+                               "blade-passing bands; default the swept range)")
+    campbell.add_argument("--blades", type=positive_int, default=3, metavar="N",
+                          help="towers: number of blades, the blade-passing harmonic (default 3)")
+    campbell.add_argument("--plot", metavar="FILE.png", help="write the diagram to this image (PNG, PDF, SVG)")
+    add_coriolis_option(campbell)
     campbell.add_argument("--json", action="store_true", help="print JSON instead of a table")
     campbell.add_argument("--quiet", action="store_true", help="no progress bar")
     campbell.set_defaults(run=run_campbell)
@@ -58,41 +72,88 @@ def _check_rpm(rpm: float) -> None:
         raise InputError(f"must not be negative, got {rpm}", field="--rpm")
 
 
-def compute_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
+def compute_modes(blade, args: argparse.Namespace):
+    """The blade's modes by the method asked (Galerkin: converged terms unless --terms is given)."""
+    if wants_quadratic(args):
+        return quadratic_modes(blade, args)
     if args.method == "galerkin":
+        if args.terms is None:
+            from ..models.galerkin_converged import converged_galerkin_modes
+            return converged_galerkin_modes(blade, rpm=args.rpm, n_modes=args.n_modes)
         from ..models.galerkin import galerkin_modes, parse_terms
         return galerkin_modes(blade, rpm=args.rpm, n_modes=args.n_modes, terms=parse_terms(args.terms))
+    from ..modal import blade_matrices, solve_modes
     matrices = blade_matrices(blade, args.elements, args.n_modes, args.rpm)
     return solve_modes(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes)
 
 
 def run_modes(args: argparse.Namespace) -> int:
-    if is_tower_input(args.input):
-        return tower_modes_command(args)
-    blade = read_structure(args)
-    if not isinstance(blade, Blade):      # a BModes or windIO tower deck
-        return tower_modes_command(args, as_tower(blade))
     _check_rpm(args.rpm)
-    result = compute_modes(blade, args)
+    model = read_structure(args)
+    if not is_blade(model):
+        reject_for_towers(args)
+        from .tower import tower_modes_command
+        return tower_modes_command(args, model)
+    if args.terms is not None and args.method != "galerkin":
+        raise InputError("--terms sets the Galerkin model's terms; add --method galerkin", field="--terms")
+    result = compute_modes(model, args)
     if args.json:
-        print(dumps({"input": args.input, **modal_to_dict(result, args.method)}))
+        from ..io.results import dumps, modal_to_dict
+        print(dumps({"input": args.input, "structure": "blade", **modal_to_dict(result, args.method)}))
     else:
-        print(modes_table(blade, result, args.method))
+        from .tables import modes_table
+        print(modes_table(model, result, args.method))
     return 0
 
 
 def run_campbell(args: argparse.Namespace) -> int:
-    blade = read_blade(args)
-    matrices = blade_matrices(blade, args.elements, args.n_modes, float(args.rpm.max()))
-    result = campbell_sweep(matrices, args.rpm, args.n_modes, blade.notes + matrices.notes,
-                            progress_bar("Campbell sweep", args.quiet or args.json))
+    model = read_structure(args)
+    if not is_blade(model):
+        reject_for_towers(args)
+        return tower_campbell_command(args, model)
+    import numpy as np
+
+    from ..modal import blade_matrices, campbell_sweep
+    from ..report import progress_bar
+
+    rpm = np.asarray(args.rpm)
+    progress = progress_bar("Campbell sweep", args.quiet or args.json)
+    if args.coriolis:
+        result = coriolis_campbell(model, args, progress)
+    else:
+        matrices = blade_matrices(model, args.elements, args.n_modes, float(rpm.max()))
+        result = campbell_sweep(matrices, rpm, args.n_modes, model.notes + matrices.notes, progress)
+    operating = args.operating_rpm
+    if operating is not None and operating[0] == operating[1]:
+        operating = operating[0]
     if args.plot:
         from ..plots.campbell import save_campbell_plot
-        save_campbell_plot(result, args.plot, title=blade.name, operating_rpm=args.operating_rpm)
+        save_campbell_plot(result, args.plot, title=model.name, operating_rpm=operating)
     if args.json:
-        print(dumps({"input": args.input, **campbell_to_dict(result)}))
+        from ..io.results import campbell_to_dict, dumps
+        print(dumps({"input": args.input, "structure": "blade", **campbell_to_dict(result)}))
     else:
-        print(campbell_table(blade, result))
+        from .tables import campbell_table
+        print(campbell_table(model, result))
         if args.plot:
             print(f"Campbell diagram written to {args.plot}", file=sys.stderr)
+    return 0
+
+
+def tower_campbell_command(args: argparse.Namespace, tower) -> int:
+    """``bladefem campbell TOWER``: the soft-stiff chart as a table (or JSON) and optionally a figure."""
+    from ..models.tower_campbell import tower_campbell
+
+    chart = tower_campbell(tower, args.rpm, args.n_modes, args.elements, args.operating_rpm, args.blades)
+    if args.plot:
+        from ..plots.tower_campbell import save_tower_campbell_plot
+        save_tower_campbell_plot(chart, args.plot)
+    if args.json:
+        from ..io.results import dumps, tower_campbell_to_dict
+        print(dumps({"input": args.input, "structure": "tower", **tower_campbell_to_dict(chart)}))
+    else:
+        from .tables import tower_campbell_table
+        print(tower_campbell_table(tower, chart))
+        if args.plot:
+            print(f"tower chart written to {args.plot}", file=sys.stderr)
     return 0

@@ -1,5 +1,12 @@
 """``bladefem elastodyn``: ElastoDyn mode-shape coefficients from the finite-element modes, with their quality, the
-frequencies ElastoDyn would derive from them, and an in-place update of an ElastoDyn blade or tower file."""
+frequencies ElastoDyn would derive from them, a verdict on the coefficients already in an ElastoDyn file
+(``--check``), and an in-place update of an ElastoDyn blade or tower file (``--write``) that refuses a fit worse
+than the file's unless ``--force``.
+
+"Worse" and "off" are judged by the frequency ElastoDyn derives from a polynomial (its own generalized mass and
+stiffness) against the finite-element frequency of the same mode: the quantity a polynomial must get right for
+ElastoDyn to vibrate at the right frequency.
+"""
 
 from __future__ import annotations
 
@@ -8,32 +15,19 @@ import difflib
 import math
 import sys
 from pathlib import Path
+from typing import Any
 
 from ..errors import InputError
-from ..files import write_atomic
-from ..io._modeshape_blocks import block_lines, decimal_texts
-from ..io.detect import Geometry, detect_format, read_model
-from ..io.elastodyn_blade import (
-    BLADE_BLOCKS,
-    blade_with_mode_shapes,
-    read_elastodyn_blade,
-)
-from ..io.elastodyn_main import read_elastodyn_main
-from ..io.elastodyn_tower import (
-    TOWER_BLOCKS,
-    read_elastodyn_tower,
-    tower_with_mode_shapes,
-)
-from ..modal.elastodyn_fit import (
-    MIN_TIP_RATIO,
-    ElastoDynCoefficients,
-    blade_coefficients,
-)
-from ..models.tower_fit import tower_coefficients
-from ..sections import Blade
 
 DEFAULT_BLADE_NODES = 17
 DEFAULT_TOWER_NODES = 20
+#: :data:`bladefem.modal.elastodyn_fit.MIN_TIP_RATIO`, repeated so that parsing imports no numpy (a test checks)
+MIN_TIP_RATIO = 0.3
+#: --check's default: largest accepted |ElastoDyn frequency / FE frequency - 1|, percent
+CHECK_TOLERANCE_PERCENT = 1.0
+#: a fresh fit counts as worse than the file's when its frequency error exceeds the file's by more than this
+#: (relative): 0.01 %, the resolution of the diff_% column that the report prints
+WORSE_SLACK = 1e-4
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
@@ -48,9 +42,18 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--rpm", type=float, metavar="R",
                         help="rotor speed for blade modes, rpm (default: RotSpeed of an ElastoDyn main file, or the "
                              "BModes deck's rotor speed)")
-    parser.add_argument("--write", metavar="FILE.dat",
+    action = parser.add_mutually_exclusive_group()
+    action.add_argument("--write", metavar="FILE.dat",
                         help="update the coefficient lines of this ElastoDyn blade or tower file in place")
+    action.add_argument("--check", action="store_true",
+                        help="verdict on the coefficients in INPUT's ElastoDyn blade or tower file: exit 1 when a "
+                             "mode's ElastoDyn frequency is off from the FE frequency by more than --tolerance")
+    parser.add_argument("--tolerance", type=float, default=CHECK_TOLERANCE_PERCENT, metavar="PERCENT",
+                        help="with --check: accepted frequency difference, percent "
+                             f"(default {CHECK_TOLERANCE_PERCENT:g})")
     parser.add_argument("--dry-run", action="store_true", help="with --write: show a unified diff, write nothing")
+    parser.add_argument("--force", action="store_true",
+                        help="with --write: write the fresh fit even where it is worse than the file's coefficients")
     parser.add_argument("--part", choices=("blade", "tower"),
                         help="blade or tower (default: from --write or INPUT; blade for files with both)")
     parser.add_argument("--nodes", type=int, metavar="N",
@@ -70,7 +73,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _check(args: argparse.Namespace) -> None:
-    for name in ("rpm", "tip_radius", "hub_radius", "tower_height", "top_mass", "min_tip_ratio"):
+    for name in ("rpm", "tip_radius", "hub_radius", "tower_height", "top_mass", "min_tip_ratio", "tolerance"):
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
@@ -80,10 +83,14 @@ def _check(args: argparse.Namespace) -> None:
             raise InputError(f"must be a positive integer, got {value}", field="--" + name.replace("_", "-"))
     if args.dry_run and not args.write:
         raise InputError("--dry-run needs --write FILE.dat", field="--dry-run")
+    if args.force and not args.write:
+        raise InputError("--force needs --write FILE.dat", field="--force")
 
 
 def _part(args: argparse.Namespace) -> str | None:
     """'blade' or 'tower' from --part or the --write target; None to let INPUT decide."""
+    from ..io.detect import detect_format
+
     if args.part:
         return args.part
     if args.write:
@@ -101,6 +108,10 @@ def _main_file(args: argparse.Namespace, kind: str) -> str | None:
 
 def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | None, str | None]:
     """Coefficients already in the file to be written, or in the ElastoDyn file given as INPUT."""
+    from ..io.elastodyn_blade import read_elastodyn_blade
+    from ..io.elastodyn_main import read_elastodyn_main
+    from ..io.elastodyn_tower import read_elastodyn_tower
+
     source = args.write
     if source is None:
         main = _main_file(args, kind)
@@ -116,6 +127,10 @@ def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | Non
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..io.detect import Geometry, detect_format, read_model
+    from ..io.elastodyn_main import read_elastodyn_main
+    from ..sections import Blade
+
     _check(args)
     kind = detect_format(args.input)
     wanted = _part(args)
@@ -128,21 +143,73 @@ def run(args: argparse.Namespace) -> int:
     main_path = _main_file(args, kind)
     main = read_elastodyn_main(main_path) if main_path else None
     shipped, shipped_from = _shipped(args, kind, part)
+    if args.check and shipped is None:
+        raise InputError("--check compares the coefficients of an ElastoDyn file: give an ElastoDyn main, blade or "
+                         "tower file as INPUT, or --elastodyn-main FILE", file=args.input, field="--check")
     try:
         result = _coefficients(args, kind, model, main, shipped)
     except LookupError as error:
         raise InputError(f"{error}", file=args.input, field="--n-modes") from None
     print(report(model.name, result, shipped_from))
+    if args.check:
+        return check_verdict(result, shipped_from, args.tolerance)
     if args.write:
+        worse = worse_modes(result)
+        if worse and args.dry_run:
+            print(f"# warning: the fresh fit is worse than the file's coefficients ({'; '.join(worse)}); --write "
+                  "refuses it without --force")
+        elif worse and not args.force:
+            raise InputError(f"the fresh fit is worse than the file's coefficients ({'; '.join(worse)}); nothing "
+                             "written (--force writes it anyway)", file=args.write, field="--write")
         _update(args.write, result, args.dry_run)
     return 0
 
 
-def _coefficients(args: argparse.Namespace, kind: str, model, main, shipped) -> ElastoDynCoefficients:
+def frequency_error(fit: Any) -> float:
+    """|ElastoDyn frequency / FE frequency - 1| of one mode's polynomial."""
+    return abs(fit.elastodyn_frequency_hz / fit.fe_frequency_hz - 1)
+
+
+def worse_modes(result: Any) -> list[str]:
+    """The modes whose fresh polynomial gives a larger ElastoDyn frequency error than the file's, described."""
+    if not result.shipped:
+        return []
+    found = []
+    for name, fresh in result.fits.items():
+        old = result.shipped.get(name)
+        if old is not None and frequency_error(fresh) > frequency_error(old) + WORSE_SLACK:
+            found.append(f"{name}: ElastoDyn frequency {_signed(fresh)} from FE against {_signed(old)}")
+    return found
+
+
+def _signed(fit: Any) -> str:
+    return f"{100 * (fit.elastodyn_frequency_hz / fit.fe_frequency_hz - 1):+.2f} %"
+
+
+def check_verdict(result: Any, source: str | None, tolerance_percent: float) -> int:
+    """Print one verdict line per mode of the file and a summary; 0 when every mode is within the tolerance, 1
+    otherwise."""
+    lines = [f"# check of {source} (tolerance {tolerance_percent:g} % on the ElastoDyn frequency):"]
+    failed = []
+    for name, fit in (result.shipped or {}).items():
+        ok = 100 * frequency_error(fit) <= tolerance_percent
+        failed += [] if ok else [name]
+        lines.append(f"#   {name:<6} {'ok' if ok else 'OFF':<4} ElastoDyn {fit.elastodyn_frequency_hz:.5f} Hz, "
+                     f"FE {fit.fe_frequency_hz:.5f} Hz ({_signed(fit)})")
+    lines.append(f"# verdict: {'FAIL: ' + ', '.join(failed) + ' off' if failed else 'PASS'}")
+    print("\n".join(lines))
+    return 1 if failed else 0
+
+
+def _coefficients(args: argparse.Namespace, kind: str, model, main, shipped):
+    from ..sections import Blade
+
     if not isinstance(model, Blade):
+        from ..models.tower_fit import tower_coefficients
         nodes = args.nodes or (main.tower_nodes if main else DEFAULT_TOWER_NODES)
         return tower_coefficients(model, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
                                   shipped=shipped, min_tip_ratio=args.min_tip_ratio)
+    from ..modal.elastodyn_fit import blade_coefficients
     rpm = _rpm(args, kind, main)
     nodes = args.nodes or (main.blade_nodes if main else DEFAULT_BLADE_NODES)
     return blade_coefficients(model, rpm, nodes=nodes, n_modes=args.n_modes, elements=args.elements,
@@ -160,8 +227,12 @@ def _rpm(args: argparse.Namespace, kind: str, main) -> float:
     raise InputError("give the rotor speed with --rpm R (rpm)", file=args.input, field="--rpm")
 
 
-def report(name: str, result: ElastoDynCoefficients, shipped_from: str | None = None) -> str:
+def report(name: str, result: Any, shipped_from: str | None = None) -> str:
     """The quality table, the warnings and the coefficient blocks as ElastoDyn lines."""
+    from ..io._modeshape_blocks import block_lines, decimal_texts
+    from ..io.elastodyn_blade import BLADE_BLOCKS
+    from ..io.elastodyn_tower import TOWER_BLOCKS
+
     speed = "tower (non-rotating)" if result.tower else f"rotor speed {result.rpm:g} rpm"
     lines = [f"# {name}: FE modes, {speed}; ElastoDyn frequencies from its own integrals over {result.nodes} nodes"]
     lines += [f"# note: {note}" for note in result.notes]
@@ -190,7 +261,11 @@ def _table(title: str, fits: dict) -> list[str]:
     return lines
 
 
-def _update(path: str, result: ElastoDynCoefficients, dry_run: bool) -> None:
+def _update(path: str, result: Any, dry_run: bool) -> None:
+    from ..files import write_atomic
+    from ..io.elastodyn_blade import blade_with_mode_shapes
+    from ..io.elastodyn_tower import tower_with_mode_shapes
+
     updater = tower_with_mode_shapes if result.tower else blade_with_mode_shapes
     old, new = updater(path, result.coefficients)
     if dry_run:

@@ -1,34 +1,58 @@
-"""Options shared by the subcommands that read a blade: input file, geometry, rotor speeds, mesh."""
+"""Options shared by the subcommands that read a blade or a tower: input file, geometry, rotor speeds, mesh.
+
+Only the standard library is imported here (argument parsing stays fast); the readers are imported when a
+subcommand runs.
+"""
 
 from __future__ import annotations
 
 import argparse
 import math
 
-import numpy as np
-
 from ..errors import InputError
-from ..io.detect import Geometry, read_model
-from ..sections import ROOTS, Blade
+
+#: root conditions of a blade (:data:`bladefem.sections.ROOTS`, repeated so that parsing imports no numpy)
+ROOTS: tuple[str, ...] = ("cantilever", "hinged")
+PARTS: tuple[str, ...] = ("blade", "tower")
 
 
 def add_blade_options(parser: argparse.ArgumentParser) -> None:
-    """INPUT plus the geometry options used for ElastoDyn blade files (and as overrides for case files)."""
+    """INPUT, ``--part``, the blade geometry options (for ElastoDyn blade files, and overrides), the tower options
+    and ``--elements``."""
     parser.add_argument("input", metavar="INPUT",
-                        help="bladefem case or windIO file (.yaml), BModes deck (.bmi), ElastoDyn main or blade file")
-    geometry = parser.add_argument_group("geometry (ElastoDyn blade files; override case-file values)")
+                        help="bladefem case (blade or tower) or windIO file (.yaml), BModes deck (.bmi), ElastoDyn "
+                             "main, blade or tower file")
+    parser.add_argument("--part", choices=PARTS,
+                        help="blade or tower of an input that holds both (ElastoDyn main, windIO; default blade)")
+    geometry = parser.add_argument_group("blade geometry (ElastoDyn blade files; override case-file values)")
     geometry.add_argument("--tip-radius", type=float, metavar="M", help="rotor tip radius TipRad, m")
     geometry.add_argument("--hub-radius", type=float, metavar="M", help="hub radius HubRad, m")
     geometry.add_argument("--precone-deg", "--precone", dest="precone_deg", type=float, metavar="DEG",
                           help="precone angle, degrees")
     geometry.add_argument("--pitch-deg", "--pitch", dest="pitch_deg", type=float, metavar="DEG",
                           help="blade pitch angle, degrees (positive to feather)")
-    geometry.add_argument("--tip-mass", type=float, metavar="KG", help="tip (brake) point mass, kg")
+    geometry.add_argument("--tip-mass", type=float, metavar="KG",
+                          help="tip (brake) point mass, kg; for an ElastoDyn tower file, the tower-top point mass")
     geometry.add_argument("--elastodyn-main", metavar="FILE",
-                          help="ElastoDyn main file to read TipRad, HubRad, PreCone(1), TipMass(1) from")
+                          help="ElastoDyn main file to read TipRad, HubRad, PreCone(1), TipMass(1) (blade) or "
+                               "TowerHt and the rotor-nacelle body (tower) from")
     geometry.add_argument("--root", choices=ROOTS, help="root condition (default: from the case, else cantilever)")
+    add_tower_options(parser)
     parser.add_argument("--elements", type=positive_int, metavar="N",
                         help="target number of elements along the span (default: refined until converged)")
+
+
+def add_tower_options(parser: argparse.ArgumentParser) -> None:
+    """Options for towers (YAML ``kind: tower``, ElastoDyn tower files, BModes and windIO towers)."""
+    group = parser.add_argument_group("towers")
+    group.add_argument("--tower-height", type=float, metavar="M",
+                       help="flexible tower length for an ElastoDyn tower file without --elastodyn-main, m")
+    group.add_argument("--no-gravity", action="store_true", help="leave out gravity (axial load, pendulum effect)")
+    group.add_argument("--point-top-mass", action="store_true",
+                       help="with an ElastoDyn main file: the rotor-nacelle mass as a point mass, as ElastoDyn uses "
+                            "it (default: a rigid body with offset and inertia)")
+    group.add_argument("--rotor-azimuth-deg", type=float, default=0.0, metavar="DEG",
+                       help="azimuth of blade 1 for the rigid rotor-nacelle body, degrees (default 0)")
 
 
 def positive_int(text: str) -> int:
@@ -51,8 +75,8 @@ def finite_float(text: str) -> float:
     return value
 
 
-def rpm_range(text: str) -> np.ndarray:
-    """START:STOP:COUNT (rpm) -> evenly spaced rotor speeds."""
+def rpm_range(text: str) -> tuple[float, ...]:
+    """START:STOP:COUNT (rpm) -> evenly spaced rotor speeds, rpm."""
     parts = text.split(":")
     try:
         if len(parts) != 3:
@@ -62,26 +86,52 @@ def rpm_range(text: str) -> np.ndarray:
         raise argparse.ArgumentTypeError(f"expected START:STOP:COUNT in rpm (e.g. 0:15:16), got '{text}'") from None
     if not (math.isfinite(start) and math.isfinite(stop)) or count < 1 or start < 0 or stop < start:
         raise argparse.ArgumentTypeError(f"need 0 <= START <= STOP and COUNT >= 1, got '{text}'")
-    return np.linspace(start, stop, count)
+    if count == 1:
+        return (start,)
+    return tuple(start + (stop - start) * k / (count - 1) for k in range(count))
+
+
+def rpm_band(text: str) -> tuple[float, float]:
+    """R or LOW:HIGH (rpm) -> (low, high): an operating speed or an operating range."""
+    parts = text.split(":")
+    try:
+        if len(parts) not in (1, 2):
+            raise ValueError
+        low, high = float(parts[0]), float(parts[-1])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a rotor speed R or a range LOW:HIGH in rpm, got '{text}'") from None
+    if not (math.isfinite(low) and math.isfinite(high)) or low < 0 or high < low:
+        raise argparse.ArgumentTypeError(f"need 0 <= LOW <= HIGH, got '{text}'")
+    return low, high
 
 
 def read_structure(args: argparse.Namespace) -> object:
-    """The blade (or, for BModes and windIO tower inputs, the tower) described by INPUT and the geometry options."""
-    if args.tip_mass is not None and args.tip_mass < 0:
-        raise InputError(f"must not be negative, got {args.tip_mass}", field="--tip-mass")
-    geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, tip_mass=args.tip_mass,
-                        elastodyn_main=args.elastodyn_main,
-                        precone=None if args.precone_deg is None else math.radians(args.precone_deg),
-                        pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
-    model = read_model(args.input, None, geometry)
-    if isinstance(model, Blade) and args.root is not None:
-        return model.with_(root=args.root)
-    return model
+    """The blade (:class:`bladefem.sections.Blade`) or tower (:class:`bladefem.sections.tower.Tower`) described by
+    INPUT and the options; ``--part`` chooses for inputs that hold both."""
+    from ..io.detect import Geometry, read_model
+    from ..sections import Blade
+    from ..sections.tower import as_tower
+    from .tower import is_tower_input, read_tower
+
+    if args.tip_mass is not None and not (math.isfinite(args.tip_mass) and args.tip_mass >= 0):
+        raise InputError(f"must be a non-negative number, got {args.tip_mass}", field="--tip-mass")
+    part = getattr(args, "part", None)
+    if part == "tower" or (part is None and is_tower_input(args.input)):
+        model = read_tower(args)
+    else:
+        geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, tip_mass=args.tip_mass,
+                            elastodyn_main=args.elastodyn_main,
+                            precone=None if args.precone_deg is None else math.radians(args.precone_deg),
+                            pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
+        model = read_model(args.input, part, geometry)
+    if isinstance(model, Blade):
+        return model.with_(root=args.root) if args.root is not None else model
+    if part == "blade":
+        raise InputError("this input describes a tower, not a blade", file=str(args.input), field="--part")
+    tower = as_tower(model)
+    return tower.with_(gravity=0.0) if getattr(args, "no_gravity", False) else tower
 
 
-def read_blade(args: argparse.Namespace) -> Blade:
-    """The blade described by INPUT (any supported format) and the geometry options."""
-    model = read_structure(args)
-    if not isinstance(model, Blade):
-        raise InputError("this input describes a tower; 'bladefem modes' takes towers", file=str(args.input))
-    return model
+def is_blade(model: object) -> bool:
+    from ..sections import Blade
+    return isinstance(model, Blade)

@@ -15,11 +15,13 @@ import json
 import math
 import sys
 from pathlib import Path
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from .inputs import rpm_range
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: --initial names in ElastoDyn's terms -> (field of InitialConditions, factor to SI)
 ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflection", 1.0),
@@ -170,6 +172,8 @@ def build_model(args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from ..io.turbine_elastodyn import deck_conditions
     from ..models.turbine import select_dofs
     from ..models.turbine.initial import free_from_switches, initial_state
@@ -201,7 +205,8 @@ def run(args: argparse.Namespace) -> int:
 
 def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace) -> int:
     from ..files import write_atomic
-    from ..models.turbine.campbell import campbell, campbell_text, plot_campbell
+    from ..models.turbine.campbell import campbell, campbell_text
+    from ..plots.turbine_campbell import save_turbine_campbell_plot
     from ..report import progress_bar
 
     progress = progress_bar("Campbell sweep", args.quiet or len(sweep) == 1)
@@ -219,7 +224,7 @@ def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float
     else:
         sys.stdout.write(text)
     if args.plot:
-        plot_campbell(result, args.plot)
+        save_turbine_campbell_plot(result, args.plot)
     return 0
 
 

@@ -10,7 +10,13 @@ from .beam import (
            interpolated_motion,
            pair_motions,
 )
-from .rigid_slice import projected_inertia, rotation_second_order, skew
+from .rigid_slice import (
+           gyroscopic_inertia,
+           projected_inertia,
+           rotation_second_order,
+           skew,
+)
 
 __all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element",
-           "interpolated_motion", "pair_motions", "projected_inertia", "rotation_second_order", "skew"]
+           "gyroscopic_inertia", "interpolated_motion", "pair_motions", "projected_inertia", "rotation_second_order",
+           "skew"]

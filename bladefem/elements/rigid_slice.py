@@ -62,3 +62,20 @@ def uniform_field_second_order(f: NDArray, S: NDArray) -> NDArray:
     outer = np.einsum("i,j...->ij...", np.asarray(f, dtype=float), S)
     symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
     return symmetric - np.einsum("ij,...->ij...", np.eye(3), np.einsum("i,i...->...", f, S))
+
+
+def gyroscopic_inertia(a: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArray:
+    """6x6 skew matrix G with ``2 int rho dr1(e) . (a x dr1(d)) = e^T G d`` for the body moving by ``d`` and ``e``.
+
+    The kinetic energy in a frame turning at ``Omega a`` holds the cross term ``Omega int rho d(dr1)/dt . (a x
+    dr1)``; its Lagrange equations give the gyroscopic (Coriolis) force ``Omega G dd/dt``. With
+    ``dr1 = t - [s]x Theta``: ``G = 2 [[m A, -A [S]x], [[S]x A, int rho [s]x^T A [s]x]]``, ``A = [a]x``.
+    """
+    A = skew(np.asarray(a, dtype=float))
+    S_cross = skew(S)
+    G = np.zeros((6, 6) + np.shape(m))
+    G[:3, :3] = np.einsum("ij,...->ij...", A, m)
+    G[:3, 3:] = -np.einsum("ij,jk...->ik...", A, S_cross)
+    G[3:, :3] = np.einsum("ij...,jk->ik...", S_cross, A)
+    G[3:, 3:] = np.einsum("acdf,cf...->ad...", np.einsum("bac,edf,be->acdf", EPS, EPS, A), J)
+    return 2.0 * G

@@ -48,6 +48,12 @@ def detect_format(path: str | Path) -> str:
         raise InputError(f"cannot read file ({error.strerror or error})", file=str(path)) from None
     words = {word.rstrip(":") for line in head for word in line.split()[:4]}
     if path.suffix.lower() in YAML_SUFFIXES:
+        if any(line.startswith("requirements:") for line in head):
+            raise InputError("a bladefem check spec (requirements on models), not a model: run 'bladefem check "
+                             f"{path}'", file=str(path), line=1)
+        if any(line.startswith("analysis:") for line in head):
+            raise InputError("a bladefem batch plan, not a model: run 'bladefem batch "
+                             f"{path} -o RESULTS'", file=str(path), line=1)
         return "windio" if any(line.startswith("components:") for line in head) else "case"
     if path.suffix.lower() == ".bmi" or {"beam_type", "sec_props_file"} <= words:
         return "bmodes"
@@ -66,7 +72,8 @@ def detect_format(path: str | Path) -> str:
 def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None,
                **options: object) -> Blade | Tower:
     """The blade (default) or tower (``part='tower'``) described by ``path``, in any supported format. A BModes
-    tower on tension wires comes as the tower model's :class:`bladefem.sections.tower.Tower` (with supports).
+    tower on tension wires and a YAML tower case (``kind: tower``) come as the tower model's
+    :class:`bladefem.sections.tower.Tower` (with supports).
 
     Geometry for files that lack it, and overrides, as a :class:`Geometry` or as keyword options with the same
     names (``tip_radius=63.0, elastodyn_main="main.dat"``; SI units, angles in rad)."""
@@ -101,6 +108,9 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         if part == "tower" or turbine.blade is None:
             return tower_from_windio(turbine, geometry.top_mass)
         return _overrides(blade_from_windio(turbine), geometry)
+    from .tower_case import is_tower_case, read_tower_case
+    if is_tower_case(path):
+        return read_tower_case(path)
     from .case import read_case
     return _overrides(read_case(path), geometry)
 

@@ -205,4 +205,4 @@ def read_tower_case(path: str | Path) -> Tower:
     top, supports = _top_mass(case), _supports(case)
     return _located(case, ("supports",), lambda: Tower(
         sections=sections, base_height=case.number(("base_height_m",), 0.0), top_mass=top, supports=supports,
-        gravity=gravity, name=str(data.get("name", path.stem)), notes=tuple(notes)))
+        gravity=gravity, name=str(data.get("name", Path(path).stem)), notes=tuple(notes)))

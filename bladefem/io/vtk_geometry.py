@@ -113,3 +113,20 @@ def mode_displacement(blade: Blade, shape: ModeShape, x: NDArray) -> ModeDisplac
     axis = blade_to_rotor(axis_displacement(shape, x), blade.precone)
     surface = surface_displacement(blade, shape, x) if has_planform(blade) else None
     return ModeDisplacement(axis=axis, surface=surface, twist=shape.at(x)["twist"])
+
+
+def tip_body_position(blade: Blade) -> NDArray:
+    """Rotor-frame position (m, shape (3,)) of the tip mass's centre: the tip of the reference axis plus the
+    body's offset (blade frame)."""
+    offset = blade.tip_mass.offset if blade.tip_mass is not None else np.zeros(3)
+    tip = np.array([blade.hub_radius + blade.length, 0.0, 0.0])
+    return blade_to_rotor(tip + offset, blade.precone)
+
+
+def tip_body_displacement(blade: Blade, shape: ModeShape) -> NDArray:
+    """Rotor-frame displacement (shape (3,)) of the tip mass's centre, moving rigidly with the tip section:
+    ``(u, v, w) + Theta x offset``."""
+    offset = blade.tip_mass.offset if blade.tip_mass is not None else np.zeros(3)
+    tip = np.array([blade.length])
+    moved = axis_displacement(shape, tip)[0] + np.cross(section_rotation(shape, tip)[0], offset)
+    return blade_to_rotor(moved, blade.precone)

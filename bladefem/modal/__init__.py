@@ -56,6 +56,12 @@ def converged_matrices(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL,
     return replace(choice.matrices, notes=choice.matrices.notes + (choice.note,))
 
 
+def _require_blade(model: object, name: str) -> None:
+    if not isinstance(model, Blade):
+        raise TypeError(f"bladefem.modal.{name} solves blades, got a {type(model).__name__}; bladefem.{name} takes "
+                        "blades and towers")
+
+
 def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10, rpm: float = 0.0) -> BladeMatrices:
     """Matrices on a mesh of about ``elements`` elements, or on a mesh converged at ``rpm`` (None)."""
     return converged_matrices(blade, n_modes, rpm=rpm) if elements is None else assemble_blade(blade, elements)
@@ -65,14 +71,18 @@ def modes(blade: Blade, rpm: float = 0.0, n_modes: int = 10, elements: int | Non
     """Natural frequencies and mode shapes of ``blade`` at rotor speed ``rpm`` (rpm).
 
     ``elements``: target number of elements over the span (stations are always nodes), or None for the mesh
-    chosen automatically so that the frequencies are within 1e-6 of the converged ones.
+    chosen automatically so that the frequencies are within 1e-6 of the converged ones. For blades and towers
+    alike: :func:`bladefem.modes`.
     """
+    _require_blade(blade, "modes")
     matrices = blade_matrices(blade, elements, n_modes, rpm)
     return solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
 
 
 def campbell(blade: Blade, rpm: Sequence[float], n_modes: int = 6, elements: int | None = None) -> CampbellResult:
-    """Modes over rotor speeds ``rpm`` (rpm), families tracked by MAC; the matrices are assembled once."""
+    """Modes over rotor speeds ``rpm`` (rpm), families tracked by MAC; the matrices are assembled once. For blades
+    and towers alike: :func:`bladefem.campbell`."""
+    _require_blade(blade, "campbell")
     matrices = blade_matrices(blade, elements, n_modes, float(np.max(rpm)))
     return campbell_sweep(matrices, rpm, n_modes, blade.notes + matrices.notes)
 

@@ -27,15 +27,17 @@ INVERSE_STEPS = 2
 
 
 def mac_matrix(previous: NDArray, current: NDArray, M: sp.spmatrix) -> NDArray:
-    """Modal assurance criterion (x_i^T M y_j)^2 / ((x_i^T M x_i)(y_j^T M y_j)) between two sets of vectors."""
+    """Modal assurance criterion |x_i^H M y_j|^2 / ((x_i^H M x_i)(y_j^H M y_j)) between two sets of (real or
+    complex) vectors."""
     return mac_from_products(previous, M @ previous, current, M @ current)
 
 
 def mac_from_products(previous: NDArray, M_previous: NDArray, current: NDArray, M_current: NDArray) -> NDArray:
     """:func:`mac_matrix` from the vectors and their products with M."""
-    cross = previous.T @ M_current
-    norms = np.einsum("ij,ij->j", previous, M_previous)[:, None] * np.einsum("ij,ij->j", current, M_current)
-    return cross**2 / norms
+    cross = previous.conj().T @ M_current
+    norms = (np.real(np.einsum("ij,ij->j", previous.conj(), M_previous))[:, None]
+             * np.real(np.einsum("ij,ij->j", current.conj(), M_current)))
+    return np.abs(cross)**2 / norms
 
 
 def best_assignment(mac: NDArray) -> tuple[NDArray, NDArray]:

@@ -68,8 +68,13 @@ class Mode:
     frequency_hz : natural frequency, Hz
     kind : 'flap', 'edge', 'torsion' or 'axial', the field with the largest share of kinetic energy
     energy_fractions : kinetic-energy share of each field (sums to 1)
-    residual : ||K x - omega^2 M x|| / ||K x||, the relative eigen-residual
-    shape : the mode shape at the mesh nodes
+    residual : ||K x - omega^2 M x|| / ||K x||, the relative eigen-residual (quadratic problem:
+        ||(lambda^2 M + lambda C + K) x|| / ||K x||)
+    shape : the mode shape at the mesh nodes (quadratic problem: the real part of the complex shape turned so that
+        its largest component is real)
+    damping_ratio : -Re(lambda) / |lambda| of the quadratic eigenproblem (with Coriolis or damping), else None;
+        frequency_hz is then the undamped natural frequency |lambda| / 2 pi
+    damped_frequency_hz : Im(lambda) / 2 pi of the quadratic eigenproblem, else None
     """
 
     frequency_hz: float
@@ -77,6 +82,8 @@ class Mode:
     energy_fractions: dict[str, float]
     residual: float
     shape: ModeShape
+    damping_ratio: float | None = None
+    damped_frequency_hz: float | None = None
 
 
 @dataclass(frozen=True)
@@ -122,12 +129,14 @@ class ModeFamily:
     frequencies_hz : frequency at each speed, Hz
     indices : position of the family's mode in each speed's sorted mode list
     mac : MAC between the family's mode at each speed and at the previous speed (1 at the first speed)
+    damping_ratios : damping ratio at each speed (quadratic eigenproblem only, else None)
     """
 
     kind: str
     frequencies_hz: NDArray[np.float64]
     indices: NDArray[np.int64]
     mac: NDArray[np.float64]
+    damping_ratios: NDArray[np.float64] | None = None
 
 
 @dataclass(frozen=True)

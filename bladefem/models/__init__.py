@@ -1,1 +1,4 @@
 """Independent structural models that share only the section-property input with the finite elements."""
+
+__all__: list[str] = []
+

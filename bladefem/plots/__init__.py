@@ -1,1 +1,4 @@
 """Figures: Campbell diagrams (matplotlib) and mode pictures."""
+
+__all__: list[str] = []
+

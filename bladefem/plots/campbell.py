@@ -2,19 +2,32 @@
 
 from __future__ import annotations
 
-import io
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..modal import CampbellResult
-from .modes3d import ordinal
+from .labels import kind_labels
+from .style import (
+    KIND_STYLES,
+    colormap,
+    excitation_lines,
+    finish_axes,
+    new_figure,
+    save_figure,
+    spread,
+)
+
+if TYPE_CHECKING:
+    from ..modal import CampbellResult
+
+__all__ = ["EXCITATIONS", "Crossing", "campbell_figure", "crossings", "excitation_crossings", "family_labels",
+           "save_campbell_plot", "spread"]
 
 EXCITATIONS: tuple[int, ...] = (1, 3, 6, 9)
-KIND_STYLES = {"flap": "-", "edge": "--", "torsion": "-.", "axial": ":"}
 
 
 @dataclass(frozen=True)
@@ -54,63 +67,28 @@ def crossings(result: CampbellResult, harmonics: Sequence[int] = EXCITATIONS) ->
 
 def family_labels(result: CampbellResult) -> list[str]:
     """'1st flap', '1st edge', '2nd flap', ... in the order of the families."""
-    counts: dict[str, int] = {}
-    labels = []
-    for family in result.families:
-        counts[family.kind] = counts.get(family.kind, 0) + 1
-        labels.append(f"{ordinal(counts[family.kind])} {family.kind}")
-    return labels
+    return kind_labels(family.kind for family in result.families)
 
 
-def spread(positions: Sequence[float], gap: float) -> NDArray:
-    """Positions moved apart so that neighbours are at least ``gap`` apart: overlapping neighbours are merged into
-    evenly spaced clusters centred on the mean of their original positions (order kept, lone positions unmoved)."""
-    order = np.argsort(positions)
-    values = np.asarray(positions, dtype=float)[order]
-    clusters: list[list[float]] = []
-    for value in values:
-        clusters.append([value])
-        while len(clusters) > 1:
-            low, high = clusters[-2], clusters[-1]
-            if np.mean(high) - (len(high) - 1) * gap / 2 - (np.mean(low) + (len(low) - 1) * gap / 2) >= gap:
-                break
-            clusters[-2:] = [low + high]
-    placed = np.concatenate([np.mean(c) + gap * (np.arange(len(c)) - (len(c) - 1) / 2) for c in clusters])
-    out = np.empty_like(placed)
-    out[order] = placed
-    return out
+def mark_operating(ax, operating_rpm: float | tuple[float, float] | None) -> None:
+    """The operating speed as a dotted line, or an operating range as a shaded band (both in the legend)."""
+    if operating_rpm is None:
+        return
+    low, high = (operating_rpm, operating_rpm) if np.isscalar(operating_rpm) else operating_rpm
+    if low == high:
+        ax.axvline(low, color="firebrick", linewidth=1.0, linestyle=":", zorder=2,
+                   label=f"operating speed ({low:g} rpm)")
+    else:
+        ax.axvspan(low, high, color="firebrick", alpha=0.08, linewidth=0, zorder=0,
+                   label=f"operating range ({low:g}-{high:g} rpm)")
 
 
-def excitation_lines(ax, harmonics: Sequence[int], right: float, top: float) -> None:
-    """The nP lines, labelled just outside the right edge of the axes (or above the top where a line leaves
-    there), the right-edge labels spread so that they never overlap."""
-    speeds = np.array([0.0, right])
-    at_edge = []
-    for n in harmonics:
-        ax.plot(speeds, n * speeds / 60.0, color="0.5", linewidth=0.8, zorder=1)
-        end = n * right / 60.0
-        if end <= top:
-            at_edge.append((n, end))
-        else:
-            ax.annotate(f"{n}P", (top * 60.0 / n, top), textcoords="offset points", xytext=(0, 2), ha="center",
-                        va="bottom", fontsize=8, color="0.3", annotation_clip=False)
-    labels = spread([y for _, y in at_edge], 0.045 * top)
-    for (n, y), y_label in zip(at_edge, labels):
-        ax.annotate(f"{n}P", (right, y_label), xytext=(5, 0), textcoords="offset points", ha="left",
-                    va="center", fontsize=8, color="0.3", annotation_clip=False)
-
-
-def campbell_figure(result: CampbellResult, title: str = "", operating_rpm: float | None = None,
+def campbell_figure(result: CampbellResult, title: str = "", operating_rpm: float | tuple[float, float] | None = None,
                     harmonics: Sequence[int] = EXCITATIONS, max_frequency_hz: float | None = None):
     """A matplotlib Figure of the Campbell diagram: families (MAC-tracked) against rotor speed, nP lines,
-    crossings circled, the operating speed as a dotted line (in the legend)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.ticker import AutoMinorLocator
-
-    fig, ax = plt.subplots(figsize=(6.5, 4.2), dpi=200, layout="constrained")
-    colours = plt.get_cmap("tab10")
+    crossings circled, the operating speed (rpm) as a dotted line or an operating range (low, high) shaded."""
+    fig, ax = new_figure()
+    colours = colormap("tab10")
     top = max_frequency_hz or max(float(np.max(f.frequencies_hz)) for f in result.families) * 1.08
     right = float(result.rpm.max()) or 1.0
     for i, (family, label) in enumerate(zip(result.families, family_labels(result))):
@@ -124,33 +102,15 @@ def campbell_figure(result: CampbellResult, title: str = "", operating_rpm: floa
         ax.plot([c.rpm for c in marks], [c.frequency_hz for c in marks], "o", markerfacecolor="none",
                 markeredgecolor="black", markersize=6.5, markeredgewidth=0.9, linestyle="none",
                 label="crossing with nP", zorder=4)
-    if operating_rpm is not None:
-        ax.axvline(operating_rpm, color="firebrick", linewidth=1.0, linestyle=":", zorder=2,
-                   label=f"operating speed ({operating_rpm:g} rpm)")
+    mark_operating(ax, operating_rpm)
     ax.set_xlim(0.0, right)
     ax.set_ylim(0.0, top)
-    ax.set_xlabel("Rotor speed (rpm)")
-    ax.set_ylabel("Natural frequency (Hz)")
-    ax.xaxis.set_minor_locator(AutoMinorLocator())
-    ax.yaxis.set_minor_locator(AutoMinorLocator())
-    ax.tick_params(which="both", direction="in", top=True, right=True)
-    if title:
-        ax.set_title(title, fontsize=10)
-    ax.grid(True, linewidth=0.4, alpha=0.5)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.07, 1.0), frameon=False, borderaxespad=0.0)
+    finish_axes(ax, title)
     return fig
 
 
 def save_campbell_plot(result: CampbellResult, path: str | Path, title: str = "",
-                       operating_rpm: float | None = None, harmonics: Sequence[int] = EXCITATIONS,
-                       max_frequency_hz: float | None = None) -> None:
+                       operating_rpm: float | tuple[float, float] | None = None,
+                       harmonics: Sequence[int] = EXCITATIONS, max_frequency_hz: float | None = None) -> None:
     """Write the Campbell diagram (PNG, PDF or SVG by extension) atomically."""
-    from ..io.results import write_atomic
-
-    fig = campbell_figure(result, title, operating_rpm, harmonics, max_frequency_hz)
-    buffer = io.BytesIO()
-    suffix = Path(path).suffix.lower().lstrip(".") or "png"
-    fig.savefig(buffer, format=suffix)
-    import matplotlib.pyplot as plt
-    plt.close(fig)
-    write_atomic(path, buffer.getvalue())
+    save_figure(campbell_figure(result, title, operating_rpm, harmonics, max_frequency_hz), path)

@@ -3,14 +3,12 @@ the rotor turns, parked at one azimuth at 0 rpm) over rotor speed, followed by t
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ...files import atomic_path
 from .kane import TurbineModel
 from .linearize import LinearModel, linearize
 
@@ -73,33 +71,3 @@ def campbell_text(result: TurbineCampbell) -> str:
     rows = [f"{speed:.6g}," + ",".join("" if np.isnan(value) else f"{value:.6g}" for value in column)
             for speed, column in zip(result.rpm, result.frequencies_hz.T)]
     return "\n".join([header] + rows) + "\n"
-
-
-def plot_campbell(result: TurbineCampbell, path: str | os.PathLike, harmonics: Sequence[int] = (1, 3, 6, 9)) -> None:
-    """Frequencies against rotor speed with the per-revolution lines ``k P``, written atomically."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axis = plt.subplots(figsize=(8, 6))
-    colors = plt.get_cmap("tab20").colors
-    for i, (name, frequencies) in enumerate(zip(result.names, result.frequencies_hz)):
-        axis.plot(result.rpm, frequencies, marker="o", ms=3, lw=1, label=name, color=colors[i % len(colors)],
-                  linestyle="-" if i < len(colors) else "--")
-    top = np.nanmax(result.frequencies_hz) * 1.05 if result.frequencies_hz.size else 1.0
-    for k in harmonics:
-        axis.plot(result.rpm, k * result.rpm / 60.0, "k--", lw=0.6)
-        if result.rpm[-1] > 0:
-            axis.annotate(f"{k}P", (result.rpm[-1], min(k * result.rpm[-1] / 60.0, top)), fontsize=7)
-    axis.set_ylim(0, top)
-    axis.set_xlabel("rotor speed [rpm]")
-    axis.set_ylabel("frequency [Hz]")
-    axis.set_title("full-system Campbell diagram (multi-blade coordinates)")
-    axis.grid(alpha=0.3)
-    axis.legend(fontsize=6, ncol=2)
-    figure.tight_layout()
-    try:
-        with atomic_path(path) as temporary:
-            figure.savefig(temporary, dpi=120)
-    finally:
-        plt.close(figure)

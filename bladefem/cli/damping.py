@@ -1,0 +1,85 @@
+"""``--coriolis`` and ``--aero`` for ``bladefem modes`` (and ``--coriolis`` for ``bladefem campbell``): the blade's
+quadratic eigenproblem with the gyroscopic (Coriolis) matrix and the quasi-steady aerodynamic damping and stiffness,
+reporting frequency and damping ratio per mode."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING
+
+from ..errors import InputError
+from .inputs import finite_float, positive_int
+
+if TYPE_CHECKING:                       # the CLI imports heavy modules only in the command that needs them
+    from ..modal.results import CampbellResult, ModalResult
+    from ..sections import Blade
+
+
+def add_coriolis_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--coriolis", action="store_true",
+                        help="keep the Coriolis (gyroscopic) coupling: quadratic eigenproblem, frequency and damping "
+                             "ratio per mode (fe method, blades)")
+
+
+def add_aero_options(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("aerodynamic damping (quasi-steady, induction frozen at the operating point)")
+    group.add_argument("--aero", metavar="AERODYN_PRIMARY",
+                       help="AeroDyn primary file: its first blade file and airfoils give the sections' aerodynamic "
+                            "damping and stiffness at --wind-speed, --rpm and --pitch-deg")
+    group.add_argument("--wind-speed", type=finite_float, metavar="M_S", help="wind speed along the shaft, m/s")
+    group.add_argument("--blades", type=positive_int, default=3, metavar="N",
+                       help="number of blades for the BEM induction (default 3)")
+
+
+def reject_for_towers(args: argparse.Namespace) -> None:
+    """Towers do not rotate: --coriolis and --aero are mistakes there."""
+    for option in ("coriolis", "aero", "wind_speed"):
+        if getattr(args, option, None) not in (None, False):
+            raise InputError("applies to rotating blades only, not to towers", field=f"--{option.replace('_', '-')}")
+
+
+def wants_quadratic(args: argparse.Namespace) -> bool:
+    """--coriolis, --aero or --wind-speed asks for the quadratic eigenproblem (a lone --wind-speed is then refused)."""
+    return bool(getattr(args, "coriolis", False) or getattr(args, "aero", None)
+                or getattr(args, "wind_speed", None) is not None)
+
+
+def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
+    """Modes of the quadratic eigenproblem at ``args.rpm`` on the mesh asked for (or converged at that speed), with
+    Coriolis coupling (--coriolis) and aerodynamic damping and stiffness (--aero)."""
+    option = "--coriolis" if args.coriolis else "--aero" if args.aero else "--wind-speed"
+    if args.method != "fe":
+        raise InputError("Coriolis coupling and aerodynamic damping are in the finite-element model only; use "
+                         "--method fe", field=option)
+    if (args.aero is None) != (args.wind_speed is None):
+        raise InputError("--aero and --wind-speed go together", field="--wind-speed" if args.aero else "--aero")
+    if args.wind_speed is not None and args.wind_speed < 0:
+        raise InputError(f"must not be negative, got {args.wind_speed}", field="--wind-speed")
+    from ..modal import blade_matrices
+    from ..modal.quadratic import solve_quadratic_modes
+    matrices = blade_matrices(blade, args.elements, args.n_modes, args.rpm)
+    notes = blade.notes + matrices.notes
+    damping = stiffness = None
+    if args.aero is not None:
+        from ..io.aerodyn_rotor import aerodyn_rotor
+        from ..models.blade_aero import aero_matrices, operating_point
+        rotor = aerodyn_rotor(args.aero, blade, args.blades)
+        point = operating_point(rotor, args.wind_speed, args.rpm * math.pi / 30.0, blade.pitch)
+        damping, stiffness = aero_matrices(matrices, point)
+        notes += ((f"quasi-steady aerodynamic damping and stiffness from {args.aero} at {args.wind_speed:g} m/s, "
+                   f"pitch {math.degrees(blade.pitch):g} deg, {args.blades} blades (BEM induction frozen)"),)
+    return solve_quadratic_modes(matrices, args.rpm, args.n_modes, notes, damping, stiffness, args.coriolis)
+
+
+def coriolis_campbell(blade: Blade, args: argparse.Namespace,
+                      progress: Callable[[Iterable[float]], Iterable[float]]) -> CampbellResult:
+    """Campbell sweep of the quadratic eigenproblem over ``args.rpm``, families tracked by MAC on complex shapes."""
+    import numpy as np
+
+    from ..modal import blade_matrices
+    from ..modal.quadratic_campbell import quadratic_campbell_sweep
+    rpm = np.asarray(args.rpm)
+    matrices = blade_matrices(blade, args.elements, args.n_modes, float(rpm.max()))
+    return quadratic_campbell_sweep(matrices, rpm, args.n_modes, blade.notes + matrices.notes, progress)

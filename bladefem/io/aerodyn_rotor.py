@@ -1,0 +1,48 @@
+"""The rotor for a blade's aerodynamics from an AeroDyn primary file alone (its first blade file and its airfoils),
+with the hub radius and precone of the structural blade: the input of ``bladefem modes --aero``."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from ..aero.rotor import Rotor
+from ..errors import InputError
+from ..sections import Blade
+from ._labels import Labels
+from .aerodyn import SPAN_RTOL, read_aerodyn_blade
+from .aerodyn_primary import default_air_density, read_aerodyn_primary
+from .airfoil_polars import read_airfoil
+
+
+def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int = 3) -> Rotor:
+    """A rigid rotor of ``n_blades`` blades with the planform of the primary file's ADBlFile(1), its polars (first
+    table of each airfoil file) and BEM switches, and the blade's hub radius and precone (no shaft tilt). Settings
+    asking for physics bladefem does not model, a missing blade file, an airfoil number beyond NumAFfiles or an
+    AeroDyn blade longer than the structural one are :class:`InputError` naming file, line and field."""
+    primary = read_aerodyn_primary(primary_path)
+    refused = primary.unmodelled()
+    if refused:
+        first = refused[0]
+        raise InputError(first.message, file=first.file, line=first.line, field=first.label)
+    labels = Labels.read(primary.path)
+    if not primary.blade_files or not Path(primary.blade_files[0]).is_file():
+        missing = primary.blade_files[0] if primary.blade_files else "no ADBlFile(1) entry"
+        raise InputError(f"blade file not found: {missing}", file=primary.path,
+                         line=labels.line("ADBlFile(1)") if labels.has("ADBlFile(1)") else None, field="ADBlFile(1)")
+    planform = read_aerodyn_blade(primary.blade_files[0])
+    polars = tuple(read_airfoil(file, primary.columns)[0] for file in primary.airfoil_files)
+    bad = np.flatnonzero(planform.airfoil > len(polars))
+    if bad.size:
+        raise InputError(f"airfoil {planform.airfoil[bad[0]]} does not exist (NumAFfiles is {len(polars)})",
+                         file=planform.source, line=planform.lines[bad[0]], field="BlAFID")
+    if planform.span[-1] > blade.length * (1 + SPAN_RTOL):
+        raise InputError(f"the AeroDyn blade reaches {planform.span[-1]:g} m from the root but the structural "
+                         f"blade is {blade.length:g} m long", file=planform.source, line=planform.lines[-1],
+                         field="BlSpn")
+    return Rotor(n_blades=n_blades, hub_radius=blade.hub_radius, span=planform.span, chord=planform.chord,
+                 twist=planform.twist, airfoil=planform.airfoil - 1, polars=polars, curve=planform.curve,
+                 sweep=planform.sweep, precone=blade.precone, air_density=default_air_density(primary.air_density),
+                 options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})",))
