@@ -3,6 +3,7 @@
     bladefem turbine MAIN --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
     bladefem turbine MAIN --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
     bladefem turbine MAIN --simulate SECONDS [--dof ...] [--initial NAME=VALUE ...] [--output out.csv]
+    bladefem turbine DECK.fst --linearize|--campbell --wind-speed ...   aeroelastic modes (see cli/aeroelastic.py)
 
 The deck is honoured: its DOF switches set the free coordinates and its initial conditions the initial state
 (``--dof`` and ``--initial`` override them).
@@ -18,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
+from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic
 from .inputs import rpm_range
 
 if TYPE_CHECKING:
@@ -42,8 +44,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("main", metavar="ELASTODYN_MAIN", help="ElastoDyn main input file")
     action = parser.add_mutually_exclusive_group(required=True)
     action.add_argument("--linearize", action="store_true", help="the full-system modes at --rpm")
-    action.add_argument("--campbell", type=rpm_range, metavar="START:STOP:COUNT",
-                        help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm")
+    action.add_argument("--campbell", type=rpm_range, nargs="?", const=(), metavar="START:STOP:COUNT",
+                        help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm (with "
+                             "--wind-speed: over the wind speeds, no rotor speeds given)")
     action.add_argument("--simulate", type=float, metavar="SECONDS", help="integrate in time for SECONDS")
     parser.add_argument("--rpm", type=float, default=None,
                         help="rotor speed, rpm (default: RotSpeed of the main file); also the speed of the FE "
@@ -91,6 +94,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_aeroelastic_options(parser)
     parser.set_defaults(run=run)
 
 
@@ -179,6 +183,9 @@ def run(args: argparse.Namespace) -> int:
     from ..models.turbine.initial import free_from_switches, initial_state
 
     check_options(args)
+    check_aeroelastic_options(args)
+    if args.wind_speed is not None:
+        return run_aeroelastic(args)
     switches, conditions = deck_conditions(args.main)
     params, model = build_model(args)
     free = select_dofs(model.dofs, args.dof or [], base=free_from_switches(model.dofs, switches))
