@@ -83,8 +83,9 @@ def check_aeroelastic_options(args: argparse.Namespace) -> None:
                 raise InputError("the schedule gives the rotor speed and pitch", field="--" + name)
     if args.pitch_deg is not None and not math.isfinite(args.pitch_deg):
         raise InputError(f"must be a number, got {args.pitch_deg}", field="--pitch-deg")
-    if args.azimuth_deg is not None:
-        raise InputError("the aeroelastic model is averaged over the azimuth", field="--azimuth-deg")
+    if args.azimuth_deg is not None and (args.rpm != 0.0 or not math.isfinite(args.azimuth_deg)):
+        raise InputError("a turning rotor's model is averaged over the azimuth: --azimuth-deg places a parked one "
+                         "(--rpm 0)", field="--azimuth-deg")
 
 
 def read_deck(path: str):
@@ -120,7 +121,7 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     if not free.any():
         raise InputError("no free degree of freedom", field="--dof")
     generator = Generator.from_servodyn(deck.servodyn) if deck.servodyn is not None else None
-    requests = operating_requests(args, deck, conditions.rotor_speed, free, dofs, generator, notes)
+    requests = operating_requests(args, deck, conditions, free, dofs, generator, notes)
     turbine = AeroelasticTurbine(structure=structure, rotor=deck.rotor(), inflow=deck.inflow, free=free,
                                  generator=generator)
     turbine.model(requests[0].pitch)                 # the first build reports the structure's notes
@@ -158,9 +159,9 @@ def structure_builder(deck, args: argparse.Namespace, notes: list[str]):
     return build
 
 
-def operating_requests(args: argparse.Namespace, deck, deck_speed: float, free, dofs, generator, notes: list[str]):
-    """An :class:`OperatingRequest` per wind speed (module description); locks the generator azimuth in ``free``
-    when the rotor speed is imposed."""
+def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, generator, notes: list[str]):
+    """An :class:`OperatingRequest` per wind speed (module description; ``conditions`` the deck's initial ones);
+    locks the generator azimuth in ``free`` when the rotor speed is imposed."""
     from ..io.schedule import read_schedule
     from ..models.turbine.aeroelastic_campbell import OperatingRequest
 
@@ -183,13 +184,15 @@ def operating_requests(args: argparse.Namespace, deck, deck_speed: float, free, 
             raise InputError("the generator is free but the deck has no torque law (ServoDyn VSContrl 1): give "
                              "--rpm, a --schedule, or lock it (--dof GenDOF=off)", file=deck.path, field="--rpm")
         else:
-            speed = deck_speed
-            notes.append(f"rotor speed {deck_speed * 30 / math.pi:g} rpm (RotSpeed, generator locked)")
+            speed = conditions.rotor_speed
+            notes.append(f"rotor speed {speed * 30 / math.pi:g} rpm (RotSpeed, generator locked)")
         points = [(u, speed, pitch) for u in args.wind_speed]
     if any(speed is not None for _, speed, _ in points) and free[gen]:
         free[gen] = False
         notes.append("rotor speed imposed: the generator azimuth is locked")
-    return [OperatingRequest(wind_speed=u, rotor_speed=speed, pitch=pitch) for u, speed, pitch in points]
+    azimuth = conditions.azimuth if args.azimuth_deg is None else math.radians(args.azimuth_deg)
+    return [OperatingRequest(wind_speed=u, rotor_speed=speed, pitch=pitch, azimuth=azimuth) for u, speed, pitch in
+            points]
 
 
 def sweep_command(turbine, requests, args: argparse.Namespace) -> int:
@@ -221,13 +224,16 @@ def aeroelastic_table(linear, free_count: int) -> str:
     """The modes of one aeroelastic linearization as a text table, with its operating point."""
     point, d = linear.point, linear.deflections
     speed = "trimmed by the torque law" if point.trimmed else "imposed"
-    where = (f"multi-blade coordinates averaged over {3 * len(point.azimuths)} azimuths a revolution"
-             if linear.averaged
-             else "blade coordinates at azimuth 0")
+    if linear.averaged:
+        where = f"multi-blade coordinates averaged over {3 * len(point.azimuths)} azimuths a revolution"
+    elif point.rotor_speed == 0.0:
+        where = f"parked at azimuth {math.degrees(point.azimuths[0]):g} deg"
+    else:
+        where = "blade coordinates at azimuth 0"
     induction = "frozen wake" if linear.induction == "frozen" else "quasi-steady induction"
     lines = [f"# aeroelastic modes at {point.wind_speed:g} m/s, {point.rpm:.4g} rpm ({speed}), pitch "
              f"{point.pitch_deg:.4g} deg; {induction}; {free_count} free DOFs; {where}",
-             f"# operating point (azimuth-averaged equilibrium): thrust {point.thrust / 1e3:.1f} kN, aerodynamic "
+             f"# operating point ({'static' if point.rotor_speed == 0.0 else 'azimuth-averaged'} equilibrium): thrust {point.thrust / 1e3:.1f} kN, aerodynamic "
              f"torque {point.torque / 1e3:.1f} kN m, power {point.power / 1e6:.3f} MW; blade tip {d['OoPDefl']:.3f} m "
              f"out of plane, {d['IPDefl']:.3f} m in plane; tower top {d['TTDspFA']:.3f} m fore-aft, "
              f"{d['TTDspSS']:.3f} m side-side"]

@@ -13,7 +13,9 @@ quasi-steady induction (the BEM re-solved for every perturbation). The mass matr
 point, the convention of :func:`~bladefem.models.turbine.linearize.linearize` (exact at an equilibrium; here the
 azimuth-averaged one). With three alike blades all free alike the state matrices go to multi-blade coordinates and
 are averaged over the azimuths (one blade passage, where the transformed matrix repeats), otherwise the rotor is
-linearized in blade coordinates at azimuth 0.
+linearized in blade coordinates at azimuth 0. A parked rotor is linearized at the azimuth it stands at, its blades
+named in multi-blade coordinates there (a constant change of basis), as
+:func:`~bladefem.models.turbine.linearize.linearize` does.
 """
 
 from __future__ import annotations
@@ -118,11 +120,11 @@ def linearize_at(structure: TurbineModel, aero: TurbineAero | None, point: Opera
     block = np.ix_(ix, ix)
     names = [structure.dofs[i] for i in ix]
     spinning = point.rotor_speed != 0.0
-    q0, u0 = point.state(structure, 0.0)
-    transform = mbc_transform(FreeSystem(structure, free, q0, u0), 0.0) if mbc else None
-    if transform is None or not point.symmetric:
+    q0, u0 = point.state(structure, point.azimuths[0])
+    transform = mbc_transform(FreeSystem(structure, free, q0, u0), point.azimuths[0]) if mbc else None
+    if transform is None or (spinning and not point.symmetric):
         A, M = state_matrix_at(structure, aero, generator, free, q0, u0, induction, sections)
-        stiffness, mass, averaged = np.diag(structure.K[block]), np.diag(M), False
+        stiffness, mass = np.diag(structure.K[block]), np.diag(M)
     else:
         azimuths = point.azimuths if spinning else point.azimuths[:1]
         m = len(ix)
@@ -138,12 +140,7 @@ def linearize_at(structure: TurbineModel, aero: TurbineAero | None, point: Opera
                 A += np.linalg.solve(Tx, A_psi @ Tx)
             stiffness += np.diag(T.T @ structure.K[block] @ T) / len(azimuths)
             mass += np.diag(T.T @ M @ T) / len(azimuths)
-        averaged = spinning
+    averaged = spinning and transform is not None and point.symmetric
     modes, rigid = modes_of(A, names, stiffness, mass, spinning=spinning)
     return AeroelasticModel(point=point, induction=induction, A=A, coordinates=names, averaged=averaged,
                             modes=modes, rigid=rigid, deflections=point.deflections(structure))
-
-
-def damping_percent(model: AeroelasticModel) -> dict[str, float]:
-    """Damping ratio of each named mode in per cent of critical."""
-    return {mode.name: 100.0 * mode.damping_ratio for mode in model.modes}

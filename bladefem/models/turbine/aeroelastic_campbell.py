@@ -21,11 +21,12 @@ from .operating_point import steady_state
 @dataclass(frozen=True)
 class OperatingRequest:
     """A point to linearize at: wind speed (m/s), rotor speed (rad/s; None: trimmed by the torque law), pitch
-    (rad)."""
+    (rad), and the azimuth (rad) a parked rotor stands at."""
 
     wind_speed: float
     rotor_speed: float | None
     pitch: float
+    azimuth: float = 0.0
 
 
 @dataclass
@@ -62,7 +63,8 @@ def linearize_point(turbine: AeroelasticTurbine, request: OperatingRequest, indu
     """The operating point of ``request`` and the aeroelastic linear model there."""
     model = turbine.model(request.pitch)
     aero = turbine.aero(model, request.wind_speed, request.pitch)
-    point = steady_state(model, aero, turbine.free, request.rotor_speed, turbine.generator, per_passage, q0)
+    point = steady_state(model, aero, turbine.free, request.rotor_speed, turbine.generator, per_passage, q0,
+                         request.azimuth)
     return linearize_at(model, aero, point, turbine.free, turbine.generator if point.trimmed else None, induction)
 
 
@@ -95,7 +97,7 @@ def aeroelastic_campbell(turbine: AeroelasticTurbine, requests: Sequence[Operati
     for request in (progress or iter)(list(requests)):
         result = linearize_point(turbine, request, induction, per_passage, q0)
         results.append(result)
-        q0 = result.point.q
+        q0 = result.point.q if result.point.symmetric else None
     names: list[str] = []
     for result in results:
         names += [mode.name for mode in result.modes if mode.name not in names]

@@ -189,13 +189,15 @@ def static_stiffness(structure: TurbineModel, q: NDArray, rotor_speed: float, az
 
 
 def steady_state(structure: TurbineModel, aero: TurbineAero | None, free: NDArray, rotor_speed: float | None,
-                 generator: Generator | None = None, per_passage: int = 4, q0: NDArray | None = None
-                 ) -> OperatingPoint:
+                 generator: Generator | None = None, per_passage: int = 4, q0: NDArray | None = None,
+                 azimuth: float = 0.0) -> OperatingPoint:
     """The azimuth-averaged equilibrium (module description) of ``structure`` (a model without loads of its own)
     with the aerodynamics ``aero`` (None: none) and the free coordinates ``free``.
 
     rotor_speed : rad/s, imposed; None trims it with ``generator``'s torque law (the generator azimuth must be
         free). per_passage : azimuths per blade passage; q0 : a starting guess (e.g. a neighbouring point's).
+    azimuth : rad, where a parked rotor (``rotor_speed`` 0) stands: its equilibrium is the static one there, every
+        blade on its own.
     """
     free = np.asarray(free, dtype=bool)
     gen = structure.dofs.index("generator_azimuth")
@@ -204,6 +206,8 @@ def steady_state(structure: TurbineModel, aero: TurbineAero | None, free: NDArra
         raise InputError("the rotor speed is found from the generator torque law, which needs the generator free "
                          "and ServoDyn's VSContrl 1: give the rotor speed instead", field="--rpm")
     azimuths, symmetric = average_azimuths(structure, free, per_passage)
+    if rotor_speed == 0.0:
+        azimuths, symmetric = np.array([float(azimuth)]), False
     P = static_unknowns(structure, free, symmetric)
     q = np.zeros(structure.n) if q0 is None else np.array(q0, dtype=float)
     x = P.T @ q / P.sum(axis=0) if P.size else np.zeros(0)
@@ -235,7 +239,8 @@ def steady_state(structure: TurbineModel, aero: TurbineAero | None, free: NDArra
     mean = mean_forcing(structure, aero, law, q, speed, azimuths)
     ratio = structure.params.gearbox_ratio
     return OperatingPoint(wind_speed=aero.inflow.speed if aero is not None else 0.0, rotor_speed=speed,
-                          pitch=aero.pitch if aero is not None else structure.params.pitch, q=rotated(structure, q, 0.0),
+                          pitch=aero.pitch if aero is not None else structure.params.pitch,
+                          q=rotated(structure, q, 0.0),
                           azimuths=azimuths, symmetric=symmetric, thrust=mean.thrust, torque=mean.torque,
                           power=mean.power, generator_torque=generator.torque(ratio * speed) if trim else 0.0,
                           trimmed=trim, iterations=iteration)
