@@ -83,11 +83,13 @@ def test_the_torque_law_sets_the_rotor_speed(capsys):
     ((MAIN, "--linearize", "--wind-speed", 11.4), "--wind-speed"),
     ((DECK, "--linearize", "--wind-speed", "5:10:3"), "--wind-speed"),
     ((DECK, "--linearize", "--wind-speed", 11.4, "--schedule", SCHEDULE, "--rpm", 12), "--rpm"),
-    ((DECK, "--linearize", "--pitch-deg", 3), "--pitch-deg"),
-    ((DECK, "--campbell"), "--campbell"),
+    ((MAIN, "--linearize", "--schedule", SCHEDULE), "--schedule"),
+    ((DECK, "--linearize", "--no-aero", "--induction", "frozen"), "--induction"),
+    ((DECK, "--campbell"), "--wind-speed"),
+    ((MAIN, "--campbell"), "--campbell"),
     ((DECK, "--campbell", "0:12:3", "--wind-speed", 8), "--campbell"),
     ((DECK, "--linearize", "--wind-speed", 30, "--schedule", SCHEDULE), "--wind-speed"),
-    ((DECK, "--simulate", 1, "--wind-speed", 8), "--wind-speed"),
+    ((DECK, "--simulate", 1, "--wind-speed", "5,8"), "--wind-speed"),
     ((DECK, "--linearize", "--wind-speed", 11.4, "--azimuth-deg", 30), "--azimuth-deg"),
 ])
 def test_mistakes_are_one_line_errors(capsys, argv, field):

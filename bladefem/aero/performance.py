@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ._jit import kernel
 from .bem import NODE_OUTPUTS, solve_nodes
 from .kinematics import NodeKinematics, rigid_rotor
 from .polars import pack_polars
@@ -150,7 +151,8 @@ def line_load_resultant(position: NDArray, force: NDArray, moment: NDArray, z: N
     return total_force, total_moment
 
 
-def induction_weight(tsr: float) -> float:
+@kernel
+def induction_weight(tsr):
     """AeroDyn's switch-off of the induction at low tip-speed ratio: 0 below 1, 1 above 2, a cosine blend
     between."""
     tsr = abs(tsr)

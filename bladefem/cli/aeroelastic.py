@@ -1,8 +1,10 @@
-"""``bladefem turbine DECK.fst --linearize|--campbell --wind-speed ...``: aeroelastic modes of the turbine with
+"""``bladefem turbine DECK.fst --linearize|--campbell [--wind-speed ...]``: aeroelastic modes of the turbine with
 the quasi-steady BEM of the OpenFAST deck, about the operating point at each wind speed.
 
-    bladefem turbine DECK.fst --linearize --wind-speed 11.4 [--rpm 12.1] [--pitch-deg 0] [--json]
+    bladefem turbine DECK.fst --linearize [--wind-speed 11.4] [--rpm 12.1] [--pitch-deg 0] [--json]
     bladefem turbine DECK.fst --campbell --wind-speed 3:25:12 [--schedule FILE] [--plot campbell.png] [--json]
+
+The wind speed of ``--linearize`` defaults to InflowWind's ``HWindSpeed``; ``--shear-exp`` replaces ``PLExp``.
 
 Rotor speed and pitch: ``--schedule`` (wind speed, rpm, pitch table), else ``--rpm`` imposed or, with the
 generator free, the deck's torque law (ServoDyn ``VSContrl`` 1), else the deck's ``RotSpeed``; the pitch is
@@ -16,23 +18,21 @@ import argparse
 import json
 import math
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from ..errors import InputError
 
 INDUCTIONS = ("frozen", "quasi-steady")
 #: options that only the aeroelastic analysis reads
-AEROELASTIC_ONLY = ("pitch_deg", "schedule", "induction")
+AEROELASTIC_ONLY = ("schedule", "induction")
 
 
 def add_aeroelastic_options(parser: argparse.ArgumentParser) -> None:
-    """The options of the aeroelastic analysis (an OpenFAST deck with AeroDyn)."""
-    group = parser.add_argument_group("aeroelastic modes (an OpenFAST .fst deck with AeroDyn and InflowWind)")
-    group.add_argument("--wind-speed", type=wind_speeds, default=None, metavar="U|START:STOP:COUNT|U1,U2,...",
-                       help="steady wind speed(s) at the hub height, m/s: linearize about the operating point there "
-                            "with the deck's quasi-steady BEM (--campbell sweeps them)")
-    group.add_argument("--pitch-deg", type=float, default=None, metavar="DEG",
-                       help="blade pitch, deg (default: the deck's BlPitch)")
+    """The options of the aeroelastic analysis (an OpenFAST deck with AeroDyn); ``--wind-speed`` and ``--pitch-deg``
+    are the turbine command's."""
+    group = parser.add_argument_group("aeroelastic modes (--linearize, --campbell of an OpenFAST .fst deck with "
+                                      "AeroDyn and InflowWind)")
     group.add_argument("--schedule", metavar="FILE",
                        help="rotor speed and pitch against wind speed (lines: wind speed m/s, rpm, pitch deg), "
                             "interpolated linearly; e.g. cases/nrel5mw/table_7_1_schedule.csv")
@@ -59,30 +59,43 @@ def wind_speeds(text: str) -> tuple[float, ...]:
     return values
 
 
+def wants_aeroelastic(args: argparse.Namespace) -> bool:
+    """True for --linearize or --campbell with aerodynamics: --wind-speed given (:func:`read_deck` refuses a deck
+    without them), or a .fst whose AeroDyn is on, unless --no-aero."""
+    from ..io.openfast_fst import read_openfast_deck
+    from ..io.turbine_deck import is_openfast_deck
+
+    if args.simulate is not None or args.no_aero:
+        return False
+    if args.wind_speed is not None:
+        return True
+    return Path(args.main).is_file() and is_openfast_deck(args.main) and (
+        read_openfast_deck(args.main).aerodyn is not None)
+
+
 def check_aeroelastic_options(args: argparse.Namespace) -> None:
     """Refuse options the chosen action would ignore, and bad combinations."""
-    if args.wind_speed is None:
+    if not wants_aeroelastic(args):
         for name in AEROELASTIC_ONLY:
             if getattr(args, name) is not None:
-                raise InputError("applies to the aeroelastic analysis only: give --wind-speed",
+                raise InputError("applies to the aeroelastic --linearize and --campbell of a .fst with aerodynamics",
                                  field="--" + name.replace("_", "-"))
         if args.campbell == ():
-            raise InputError("give the rotor speeds START:STOP:COUNT, or the wind speeds with --wind-speed",
-                             field="--campbell")
+            raise InputError("give the rotor speeds START:STOP:COUNT (with aerodynamics: the wind speeds with "
+                             "--wind-speed)", field="--campbell")
         return
-    if args.simulate is not None:
-        raise InputError("applies to --linearize and --campbell only", field="--wind-speed")
     if args.campbell:
-        raise InputError("with --wind-speed the Campbell diagram runs over the wind speeds: give --campbell without "
-                         "rotor speeds", field="--campbell")
-    if args.linearize and len(args.wind_speed) > 1:
+        raise InputError("with aerodynamics the Campbell diagram runs over the wind speeds: give --campbell without "
+                         "rotor speeds and --wind-speed START:STOP:COUNT (or --no-aero for the structure's over "
+                         "rotor speeds)", field="--campbell")
+    if args.campbell == () and args.wind_speed is None:
+        raise InputError("give the wind speeds of the Campbell diagram (START:STOP:COUNT)", field="--wind-speed")
+    if args.linearize and args.wind_speed is not None and len(args.wind_speed) > 1:
         raise InputError("--linearize takes one wind speed: use --campbell for several", field="--wind-speed")
     if args.schedule is not None:
         for name, value in (("rpm", args.rpm), ("pitch-deg", args.pitch_deg)):
             if value is not None:
                 raise InputError("the schedule gives the rotor speed and pitch", field="--" + name)
-    if args.pitch_deg is not None and not math.isfinite(args.pitch_deg):
-        raise InputError(f"must be a number, got {args.pitch_deg}", field="--pitch-deg")
     if args.azimuth_deg is not None and (args.rpm != 0.0 or not math.isfinite(args.azimuth_deg)):
         raise InputError("a turning rotor's model is averaged over the azimuth: --azimuth-deg places a parked one "
                          "(--rpm 0)", field="--azimuth-deg")
@@ -112,6 +125,8 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     from ..models.turbine.system import select_dofs
 
     deck = read_deck(args.main)
+    if args.wind_speed is None:
+        args.wind_speed = (deck.inflow.speed,)
     switches, conditions = deck_conditions(deck.elastodyn.path)
     notes: list[str] = []
     structure_notes: list[str] = []
@@ -122,7 +137,8 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
         raise InputError("no free degree of freedom", field="--dof")
     generator = Generator.from_servodyn(deck.servodyn) if deck.servodyn is not None else None
     requests = operating_requests(args, deck, conditions, free, dofs, generator, notes)
-    turbine = AeroelasticTurbine(structure=structure, rotor=deck.rotor(), inflow=deck.inflow, free=free,
+    inflow = deck.inflow if args.shear_exp is None else replace(deck.inflow, shear_exponent=args.shear_exp)
+    turbine = AeroelasticTurbine(structure=structure, rotor=deck.rotor(), inflow=inflow, free=free,
                                  generator=generator)
     turbine.model(requests[0].pitch)                 # the first build reports the structure's notes
     stream = sys.stderr if args.json else sys.stdout

@@ -1,12 +1,14 @@
-"""``bladefem turbine``: the 16-DOF Kane turbine model of an ElastoDyn main file.
+"""``bladefem turbine``: the 16-DOF Kane turbine model of an OpenFAST deck (.fst) or an ElastoDyn main file.
 
-    bladefem turbine MAIN --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
-    bladefem turbine MAIN --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
-    bladefem turbine MAIN --simulate SECONDS [--dof ...] [--initial NAME=VALUE ...] [--output out.csv]
-    bladefem turbine DECK.fst --linearize|--campbell --wind-speed ...   aeroelastic modes (see cli/aeroelastic.py)
+    bladefem turbine DECK --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
+    bladefem turbine DECK --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
+    bladefem turbine DECK --simulate SECONDS [--wind-speed U] [--rpm R] [--dof ...] [--output out.csv]
+    bladefem turbine DECK.fst --linearize|--campbell [--wind-speed ...]   aeroelastic modes (see cli/aeroelastic.py)
 
 The deck is honoured: its DOF switches set the free coordinates and its initial conditions the initial state
-(``--dof`` and ``--initial`` override them).
+(``--dof`` and ``--initial`` override them); a .fst brings aerodynamics (AeroDyn, InflowWind), the generator torque
+law and the yaw spring (ServoDyn): its --linearize and --campbell are aeroelastic, about the operating point at the
+wind speed(s) (``--no-aero`` for the structure alone).
 """
 
 from __future__ import annotations
@@ -19,7 +21,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
-from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic
+from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic, wants_aeroelastic
+from .aeroelastic import wind_speeds as wind_speeds_type
 from .inputs import rpm_range
 
 if TYPE_CHECKING:
@@ -33,24 +36,35 @@ ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflecti
 #: coordinates that are angles, given in degrees as NAME_deg
 ANGLES = ("yaw", "generator_azimuth", "drivetrain")
 SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial")
+AERO_ONLY = ("wind_speed", "shear_exp")
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
-        "turbine", help="16-DOF Kane turbine model (ElastoDyn structure) fed by bladefem modes",
-        description="Linearize or simulate the 16-DOF structural turbine model (tower FA/SS 1-2, yaw, generator "
-                    "azimuth, drivetrain, blade flap 1, edge 1, flap 2) of an ElastoDyn main file; no "
-                    "aerodynamics. The deck's DOF switches and initial conditions are used unless overridden.")
-    parser.add_argument("main", metavar="ELASTODYN_MAIN", help="ElastoDyn main input file")
+        "turbine", help="16-DOF Kane turbine model (ElastoDyn structure, AeroDyn BEM) fed by bladefem modes",
+        description="Simulate or linearize the 16-DOF turbine model (tower FA/SS 1-2, yaw, generator azimuth, "
+                    "drivetrain, blade flap 1, edge 1, flap 2) of an OpenFAST deck (.fst: with quasi-steady BEM "
+                    "aerodynamics, the generator torque law and the yaw spring) or of an ElastoDyn main file "
+                    "(structure only). The deck's DOF switches and initial conditions are used unless overridden.")
+    parser.add_argument("main", metavar="DECK", help="OpenFAST main file (.fst) or ElastoDyn main input file")
     action = parser.add_mutually_exclusive_group(required=True)
     action.add_argument("--linearize", action="store_true", help="the full-system modes at --rpm")
     action.add_argument("--campbell", type=rpm_range, nargs="?", const=(), metavar="START:STOP:COUNT",
                         help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm (with "
-                             "--wind-speed: over the wind speeds, no rotor speeds given)")
+                             "aerodynamics: over the wind speeds of --wind-speed, no rotor speeds given)")
     action.add_argument("--simulate", type=float, metavar="SECONDS", help="integrate in time for SECONDS")
     parser.add_argument("--rpm", type=float, default=None,
                         help="rotor speed, rpm (default: RotSpeed of the main file); also the speed of the FE "
-                             "blade shapes")
+                             "blade shapes. With --simulate the generator is locked at this speed (add --dof "
+                             "GenDOF=on to start at it with the generator free)")
+    parser.add_argument("--wind-speed", type=wind_speeds_type, default=None, metavar="U|START:STOP:COUNT|U1,U2,...",
+                        help="steady wind speed at the reference height, m/s (default: InflowWind's HWindSpeed); "
+                             "--linearize: the operating point's, --campbell: a sweep over several")
+    parser.add_argument("--shear-exp", type=float, default=None, metavar="EXPONENT",
+                        help="power-law wind shear exponent (default: InflowWind's PLExp)")
+    parser.add_argument("--pitch-deg", type=float, default=None, metavar="DEG",
+                        help="collective blade pitch, deg (default: ElastoDyn's BlPitch)")
+    parser.add_argument("--no-aero", action="store_true", help="leave the aerodynamic loads of a .fst out")
     parser.add_argument("--azimuth-deg", type=float, default=None, metavar="DEG",
                         help="rotor azimuth of a parked (0 rpm) linearization, deg, blade 1 up at 0 (default: "
                              "Azimuth - AzimB1Up of the main file)")
@@ -80,16 +94,16 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--no-gravity", action="store_true", help="switch gravity off")
     parser.add_argument("--no-damping", action="store_true", help="switch structural, drivetrain, yaw damping off")
     parser.add_argument("--yaw-stiffness", type=float, default=None, metavar="N_M_PER_RAD",
-                        help="nacelle-yaw spring (ServoDyn YawSpr; default NREL 5MW 9.02832e9)")
+                        help="nacelle-yaw spring (default: ServoDyn's YawSpr, else the NREL 5MW's 9.02832e9)")
     parser.add_argument("--yaw-damping", type=float, default=None, metavar="N_M_S_PER_RAD",
-                        help="nacelle-yaw damper (ServoDyn YawDamp; default NREL 5MW 1.916e7)")
+                        help="nacelle-yaw damper (default: ServoDyn's YawDamp, else the NREL 5MW's 1.916e7)")
     parser.add_argument("--json", action="store_true", help="--linearize or --campbell results as JSON")
     parser.add_argument("--dt", type=float, default=None, help="output interval of --simulate, s (default 0.05)")
     parser.add_argument("--rtol", type=float, default=None, help="relative tolerance of --simulate (default 1e-6)")
     parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default=None,
-                        help="time integrator: auto (compiled 8th-order Dormand-Prince with numba, else scipy "
-                             "DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or DOP853, or fixed-step "
-                             "RK4 (--step)")
+                        help="time integrator: auto (with numba the compiled Dormand-Prince 8(5,3), or 5(4) with "
+                             "aerodynamics; else scipy DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or "
+                             "DOP853, or fixed-step RK4 (--step)")
     parser.add_argument("--step", type=float, default=None, help="step of --method RK4, s (default 0.01)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
@@ -116,12 +130,22 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value > 0):
             raise InputError(f"must be a positive number, got {value}", field="--" + name)
+    if args.no_aero:
+        for name in AERO_ONLY:
+            if getattr(args, name) is not None:
+                raise InputError("has no effect with --no-aero", field="--" + name.replace("_", "-"))
+    if args.simulate and args.wind_speed is not None:
+        if len(args.wind_speed) > 1:
+            raise InputError("--simulate takes one wind speed", field="--wind-speed")
+        args.wind_speed = args.wind_speed[0]
     for name in ("rpm", "yaw_stiffness", "yaw_damping"):
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
-    if args.azimuth_deg is not None and not math.isfinite(args.azimuth_deg):
-        raise InputError(f"must be a number, got {args.azimuth_deg}", field="--azimuth-deg")
+    for name in ("azimuth_deg", "shear_exp", "pitch_deg"):
+        value = getattr(args, name)
+        if value is not None and not math.isfinite(value):
+            raise InputError(f"must be a number, got {value}", field="--" + name.replace("_", "-"))
 
 
 def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, float], dict[str, float]]:
@@ -154,48 +178,54 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
 
 
 def build_model(args: argparse.Namespace):
-    from ..io.turbine_elastodyn import (
-        NREL5MW_YAW_DAMPING,
-        NREL5MW_YAW_STIFFNESS,
-        turbine_from_elastodyn,
-    )
+    """The deck's turbine (:class:`~bladefem.io.turbine_deck.TurbineDeck`) and its model, with the options."""
+    from ..io.turbine_deck import read_turbine_deck
     from ..models.turbine import TurbineModel
 
     shapes = args.shapes or ("polynomial" if args.elastodyn_compatible else "fe")
-    params = turbine_from_elastodyn(
-        args.main, shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
-        yaw_stiffness=NREL5MW_YAW_STIFFNESS if args.yaw_stiffness is None else args.yaw_stiffness,
-        yaw_damping=NREL5MW_YAW_DAMPING if args.yaw_damping is None else args.yaw_damping,
+    deck = read_turbine_deck(
+        args.main, aero=not args.no_aero, wind_speed=args.wind_speed, shear_exponent=args.shear_exp,
+        pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg), yaw_stiffness=args.yaw_stiffness,
+        yaw_damping=args.yaw_damping, blade_shapes=shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
         elastodyn_compatible=args.elastodyn_compatible, damping=args.damping,
         gauss_points=1 if args.elastodyn_compatible else 2)
+    params = deck.params
     if args.no_gravity:
         params = params.with_(gravity=0.0)
     if args.no_damping:
         params = params.without_damping()
-    return params, TurbineModel(params)
+    return deck, params, TurbineModel(params, aero=deck.aero, generator=deck.generator)
 
 
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..io.turbine_elastodyn import deck_conditions
     from ..models.turbine import select_dofs
     from ..models.turbine.initial import free_from_switches, initial_state
 
     check_options(args)
     check_aeroelastic_options(args)
-    if args.wind_speed is not None:
+    if wants_aeroelastic(args):
         return run_aeroelastic(args)
-    switches, conditions = deck_conditions(args.main)
-    params, model = build_model(args)
+    deck, params, model = build_model(args)
+    switches, conditions = deck.switches, deck.conditions
+    if args.rpm is not None:
+        conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
+        if args.simulate:
+            switches = {**switches, "GenDOF": False}           # the generator held at --rpm
     free = select_dofs(model.dofs, args.dof or [], base=free_from_switches(model.dofs, switches))
     if not free.any():
         raise InputError("no free degree of freedom", field="--dof")
-    if args.rpm is not None:
-        conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
     notes = sys.stderr if args.json else sys.stdout            # JSON on stdout stays pure
     for note in params.notes:
         print(f"# {note}", file=notes)
+    if model.aero is not None:
+        inflow = model.aero.inflow
+        print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, wind "
+              f"{inflow.speed:g} m/s at {inflow.reference_height:g} m, shear exponent {inflow.shear_exponent:g}, "
+              f"pitch {math.degrees(model.aero.pitch):g} deg", file=notes)
+    if model.generator is not None and model.generator.torque_law:
+        print("# generator: ServoDyn's simple variable-speed torque law (VSContrl 1)", file=notes)
     rpm = conditions.rotor_speed * 30 / math.pi
     if args.linearize or args.campbell is not None:
         azimuth = conditions.azimuth if args.azimuth_deg is None else math.radians(args.azimuth_deg)

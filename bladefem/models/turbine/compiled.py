@@ -115,27 +115,33 @@ class Integration:
 
 
 class CompiledEquations:
-    """The compiled kernels bound to one model's data: ``equations(q, u) -> (M, f)``, ``derivative(t, x, q0, u0,
-    index)`` for :class:`FreeSystem`, :meth:`integrate` and :meth:`root_moments`."""
+    """The compiled kernels bound to one model's data: ``equations(q, u) -> (M, f)`` (structure, aerodynamic loads,
+    generator torque), ``derivative(t, x, q0, u0, index)`` for :class:`FreeSystem`, :meth:`integrate` and
+    :meth:`outputs`. ``data`` and ``work`` are the structural kernel's (:func:`.compiled_kernels.equations`),
+    ``aero`` and ``state`` the aerodynamic ones (:mod:`.compiled_loads`), ``law`` the generator's."""
 
-    def __init__(self, data: tuple, hub_radius: float) -> None:
-        self.data, self.hub_radius = data, hub_radius
+    def __init__(self, data: tuple, hub_radius: float, aero: tuple, law: NDArray) -> None:
+        from .compiled_loads import aero_state
+        self.data, self.hub_radius, self.aero, self.law = data, hub_radius, aero, law
         n, blade_across, blades = data[0], data[5], data[10].shape[0]
         k, nodes = blade_across.shape[:2]
         self.work = (np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)),
                      np.zeros((blades, nodes, 3, k)), np.zeros((blades, 6 + k, n)), np.zeros((blades, 3, 3)),
-                     np.zeros(3))
+                     np.zeros(3), np.zeros((3, n)), np.zeros((4, 3)))
+        self.state = aero_state(blades, aero[2].shape[0], k)
+        self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
 
     def __call__(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
-        from .compiled_kernels import equations
+        from .compiled_loads import equations
         with first_call("equations", "turbine equations"):
-            return equations(np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.data,
-                             self.work)
+            return equations(np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float),
+                             self.loaded, self.all_work)
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
-        from .compiled_kernels import derivative
+        from .compiled_loads import derivative
         with first_call("derivative", "turbine equations"):
-            return derivative(float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.data, self.work)
+            return derivative(float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded,
+                              self.all_work)
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
                   index: NDArray, order: int = 8, limit: NDArray | None = None,
@@ -160,7 +166,7 @@ class CompiledEquations:
             with first_call(f"integrator {order}", "turbine integrator"):
                 t, x, f, h, next_out, count, status, bad = kernel(t, x, f, h, float(end), times, out, next_out,
                                                                   float(rtol), float(atol), limit, tableau, q0, u0,
-                                                                  index, self.data, self.work)
+                                                                  index, self.loaded, self.all_work)
             evaluations += count
             if status:
                 return Integration(out, evaluations, int(status), float(t), int(bad))
@@ -168,15 +174,21 @@ class CompiledEquations:
                 progress(t)
         return Integration(out, evaluations)
 
+    def outputs(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
+                blade: int = 0) -> NDArray:
+        """The load channels (T, len(compiled_outputs.COLUMNS)), SI, of ``blade``'s root and the rotor at every
+        output row."""
+        from .compiled_outputs import load_outputs
+        with first_call("outputs", "turbine outputs"):
+            return load_outputs(np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(states, dtype=float),
+                                np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
+                                np.ascontiguousarray(index, dtype=np.int64), self.loaded, self.all_work,
+                                float(self.hub_radius), blade)
+
     def root_moments(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
                      blade: int = 0) -> NDArray:
         """Out-of-plane and in-plane root bending moments (T, 2), N m, of ``blade`` at every output row."""
-        from .compiled_outputs import root_moments
-        with first_call("outputs", "turbine outputs"):
-            return root_moments(np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(states, dtype=float),
-                                np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
-                                np.ascontiguousarray(index, dtype=np.int64), self.data, float(self.hub_radius),
-                                blade)
+        return self.outputs(times, states, q0, u0, index, blade)[:, :2]
 
 
 def compiled_equations(model) -> CompiledEquations | None:
@@ -184,4 +196,7 @@ def compiled_equations(model) -> CompiledEquations | None:
     BLADEFEM_NO_NUMBA set."""
     if numba is None or os.environ.get("BLADEFEM_NO_NUMBA"):
         return None
-    return CompiledEquations(model_data(model), model.params.hub_radius)
+    from .compiled_loads import aero_data
+    from .control import Generator
+    law = (model.generator or Generator()).vector()
+    return CompiledEquations(model_data(model), model.params.hub_radius, aero_data(model), law)

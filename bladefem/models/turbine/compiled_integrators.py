@@ -19,7 +19,8 @@ except ImportError:                                    # pragma: no cover - numb
     njit = None
 
 if njit is not None:
-    from .compiled_kernels import derivative, store_row
+    from .compiled_kernels import store_row
+    from .compiled_loads import derivative
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 

@@ -186,11 +186,12 @@ if njit is not None:                                   # module-level kernels: n
     def work_arrays(data):
         """Per blade node: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3), R D (B, P, 3,
         k); per blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); the apex position (3,);
-        all earth components."""
+        the hub centre of mass's partial velocities (3, n); rows of (4, 3): the hub's bias acceleration, its
+        offset from the apex, the rotor's bias angular acceleration and the shaft axis; all earth components."""
         n, b_across, b_rotations = data[0], data[5], data[10]
         B, k, P = b_rotations.shape[0], b_across.shape[0], b_across.shape[1]
         return (np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3, k)),
-                np.zeros((B, 6 + k, n)), np.zeros((B, 3, 3)), np.zeros(3))
+                np.zeros((B, 6 + k, n)), np.zeros((B, 3, 3)), np.zeros(3), np.zeros((3, n)), np.zeros((4, 3)))
 
     @njit(cache=True)
     def equations(q, u, data, work):
@@ -200,7 +201,7 @@ if njit is not None:                                   # module-level kernels: n
         (n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns, b_rotations,
          fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
          K, C, base_height) = data
-        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w = work
+        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w, hub_J_w, hub_w = work
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
@@ -235,6 +236,9 @@ if njit is not None:                                   # module-level kernels: n
             for c in range(3):
                 RS[r, c] = RN[r, 0] * tilt[0, c] + RN[r, 1] * tilt[1, c] + RN[r, 2] * tilt[2, c]
         RL, wL, WL, alL = rotate(RS, wN, WN, alN, 0, azimuth, q, u)
+        for r in range(3):
+            hub_w[2, r] = alL[r]
+            hub_w[3, r] = RL[r, 0]
         RG, wG, WG, alG = rotate(RS, wN, WN, alN, 0, generator, q, u)
         # rigid points in the nacelle frame: nacelle centre of mass, apex, hub centre of mass
         apex_J = np.zeros((3, n))
@@ -264,6 +268,11 @@ if njit is not None:                                   # module-level kernels: n
                 for r in range(3):
                     apex_a[r] = a[r]
                     apex_w[r] = top_r[r] + rho[r]
+            elif i == 2:
+                store_block(hub_J_w, 0, 0, J)
+                for r in range(3):
+                    hub_w[0, r] = a[r]
+                    hub_w[1, r] = top_r[r] + rho[r] - apex_w[r]
         # blade nodes: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade]
         kb = b_across.shape[0]
         D = np.zeros((3, kb))
@@ -383,16 +392,3 @@ if njit is not None:                                   # module-level kernels: n
             q[index[i]] = x[i]
             u[index[i]] = x[size + i]
         return q, u
-
-    @njit(cache=True)
-    def derivative(t, x, q0, u0, index, data, work):
-        """dx/dt of the free coordinates x = (q_f, u_f)."""
-        q, u = full_state(t, x, q0, u0, index)
-        M, f = equations(q, u, data, work)
-        size = index.shape[0]
-        out = np.empty(2 * size)
-        du = free_accelerations(M, f, index)
-        for i in range(size):
-            out[i] = x[size + i]
-            out[size + i] = du[i]
-        return out

@@ -128,8 +128,6 @@ class TurbineModel:
     def fast_equations(self):
         """The fastest available ``(q, u) -> (M, f)``: the numba-compiled kernel (:mod:`.compiled`) if numba is
         installed, else :meth:`equations`."""
-        if self._fast is None and (self.aero is not None or self.generator is not None):
-            self._fast = self.equations          # the compiled kernels do not carry the loads yet
         if self._fast is None:
             from .compiled import compiled_equations
             self._fast = compiled_equations(self) or self.equations

@@ -1,4 +1,5 @@
-"""Time integration of the turbine's structural equations and ElastoDyn's output channels (table and plot).
+"""Time integration of the turbine's equations (structure, aerodynamic loads, generator) and the output channels of
+:mod:`.outputs`.
 
 Outputs are written every ``dt_output`` seconds exactly (``k dt_output <= duration``), taken from the integrator's
 continuous extension: the adaptive steps are not forced onto the output times. The run stops with a
@@ -8,7 +9,6 @@ continuous extension: the adaptive steps are not forced onto the output times. T
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -16,31 +16,17 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from ...files import atomic_path, write_atomic
-from .kane import TurbineModel
+from .outputs import CHANNELS, channels, load_row, plot_outputs, table_text, write_table
 from .parameters import coordinate_label
 from .system import FreeSystem
 
-RAD_S_TO_RPM = 30.0 / np.pi
+__all__ = ["CHANNELS", "METHODS", "DivergenceError", "SimulationResult", "UnstableStep", "plot_outputs",
+           "simulate", "table_text", "write_table"]
+
 #: largest |lambda| h for which classical RK4 stays stable on an undamped mode (2 sqrt(2) on the imaginary axis)
 RK4_STABILITY = 2.8
 #: integrators: the compiled ones (numba), scipy's, and fixed-step RK4
 METHODS = ("auto", "DP853", "DP54", "RK45", "DOP853", "RK4")
-
-#: output channel -> (unit, description): OpenFAST ElastoDyn's names, definitions and signs
-CHANNELS = {
-    "OoPDefl1": ("m", "blade 1 tip out-of-plane deflection, positive downwind (xc1)"),
-    "IPDefl1": ("m", "blade 1 tip in-plane deflection, positive toward the trailing edge (yc1)"),
-    "TTDspFA": ("m", "tower-top fore-aft displacement, positive downwind"),
-    "TTDspSS": ("m", "tower-top side-to-side displacement, positive to the left looking downwind"),
-    "YawPzn": ("deg", "nacelle yaw angle"),
-    "Azimuth": ("deg", "rotor azimuth (blade 1 up at 0)"),
-    "RotSpeed": ("rpm", "rotor speed (low-speed shaft at the hub)"),
-    "LSSGagVxa": ("rpm", "low-speed-shaft speed at the gearbox"),
-    "GenSpeed": ("rpm", "generator (high-speed shaft) speed"),
-    "RootMOoP1": ("kN m", "blade 1 root out-of-plane bending moment (from downwind loads positive)"),
-    "RootMIP1": ("kN m", "blade 1 root in-plane bending moment (from loads toward the leading edge positive)"),
-}
 
 
 class UnstableStep(ValueError):
@@ -57,7 +43,8 @@ class DivergenceError(RuntimeError):
 
 @dataclass(frozen=True)
 class SimulationResult:
-    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each."""
+    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each, and the load
+    columns (T, len(outputs.LOAD_COLUMNS)) in SI."""
 
     time: NDArray
     q: NDArray
@@ -66,6 +53,7 @@ class SimulationResult:
     free: NDArray
     outputs: dict[str, NDArray]
     evaluations: int
+    loads: NDArray | None = None
 
 
 def output_times(duration: float, dt_output: float) -> NDArray:
@@ -75,40 +63,6 @@ def output_times(duration: float, dt_output: float) -> NDArray:
     if dt_output > duration * (1 + 1e-12):
         raise ValueError(f"the output step {dt_output:g} s exceeds the simulated time {duration:g} s")
     return np.arange(int(math.floor(duration / dt_output + 1e-9)) + 1) * dt_output
-
-
-def root_moments(model: TurbineModel, q: NDArray, u: NDArray, du: NDArray, blade: int = 0) -> tuple[float, float]:
-    """Out-of-plane and in-plane bending moments at a blade root (N m), from gravity and d'Alembert loads on the
-    blade's span nodes and tip mass: ``M = sum (r_p - r_root) x m_p (g - a_p)`` in the blade frame; out-of-plane
-    positive for downwind loads, in-plane positive for loads toward the leading edge (OpenFAST's RootMOoP1 and
-    RootMIP1)."""
-    motion = model.motion(q, u)
-    p = model.params
-    R = motion.blade_frames.R[blade]
-    root = motion.apex.r + R[:, 0] * p.hub_radius
-    masses = np.append(p.blade.point_mass, p.blade_tip_mass)
-    nodes = motion.blades
-    a = (nodes.G[blade] @ (nodes.Z[blade] @ du)) + nodes.a[blade]
-    loads = masses[:, None] * (model.gravity - a)
-    moment = np.sum(np.cross(nodes.r[blade] - root, loads), axis=0)
-    local = R.T @ moment
-    return float(-local[1]), float(local[2])
-
-
-def channels(system: FreeSystem, time: NDArray, q: NDArray, u: NDArray, moments: NDArray) -> dict[str, NDArray]:
-    """The output channels (units of :data:`CHANNELS`) for coordinates and rates (T, n) and the blade-1 root
-    moments (T, 2) in N m."""
-    model = system.model
-    p = model.params
-    tip = q[:, model.blade_columns[0]] @ p.blade.tip_value          # (T, 2): in-plane toward the LE, out-of-plane
-    top = q[:, model.tower_columns] @ p.tower.tip_value             # (T, 2): fore-aft, side-side
-    return {
-        "OoPDefl1": tip[:, 1], "IPDefl1": -tip[:, 0], "TTDspFA": top[:, 0], "TTDspSS": top[:, 1],
-        "YawPzn": np.degrees(q[:, 4]), "Azimuth": np.degrees(q[:, 5] + q[:, 6]) % 360.0,
-        "RotSpeed": (u[:, 5] + u[:, 6]) * RAD_S_TO_RPM, "LSSGagVxa": u[:, 5] * RAD_S_TO_RPM,
-        "GenSpeed": p.gearbox_ratio * u[:, 5] * RAD_S_TO_RPM, "RootMOoP1": moments[:, 0] / 1e3,
-        "RootMIP1": moments[:, 1] / 1e3,
-    }
 
 
 def divergence_limits(system: FreeSystem) -> NDArray:
@@ -134,6 +88,15 @@ def diverged(system: FreeSystem, state: int, time: float, status: int, method: s
     kind = "rate" if state >= system.size else "coordinate"
     return DivergenceError(f"the solution diverged at t = {time:.4g} s: the {kind} of {coordinate_label(dof)} "
                            f"({dof}) {what}{hint}", time, dof)
+
+
+def auto_method(model) -> str:
+    """The integrator 'auto' stands for: compiled Dormand-Prince 8(5,3) for the structure alone, 5(4) with
+    aerodynamic loads (the polars' linear interpolation has kinks in alpha, which cost the 8th-order method its
+    order: three times the right-hand sides at the same tolerance, measured); scipy's DOP853 without numba."""
+    if not hasattr(model.fast_equations(), "integrate"):
+        return "DOP853"
+    return "DP54" if model.aero is not None else "DP853"
 
 
 def rk4_stable_step(system: FreeSystem) -> tuple[float, str]:
@@ -177,8 +140,8 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
              progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Integrate from t = 0 to ``duration`` (s), outputs every ``dt_output`` s.
 
-    method : 'auto' (the compiled 8th-order Dormand-Prince 'DP853' when numba is installed, else scipy's
-        'DOP853', the same scheme), 'DP853' or 'DP54' (compiled Dormand-Prince 8(5,3) or 5(4), numba only), a
+    method : 'auto' (:func:`auto_method`: the compiled Dormand-Prince 'DP853', or 'DP54' with aerodynamics, when
+        numba is installed, else scipy's 'DOP853'), 'DP853' or 'DP54' (compiled Dormand-Prince 8(5,3) or 5(4), numba only), a
         scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``, ``atol``), or 'RK4' with the fixed
         ``step`` (s; refused with :class:`UnstableStep` beyond the stability limit of the fastest mode)
     progress : called with the simulated time as the run advances (compiled integrators and RK4)
@@ -186,7 +149,7 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     times = output_times(duration, dt_output)
     compiled = system.model.fast_equations()
     if method == "auto":
-        method = "DP853" if hasattr(compiled, "integrate") else "DOP853"
+        method = auto_method(system.model)
     limit = divergence_limits(system)
     count = [0]
 
@@ -225,45 +188,9 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
             check(t, x)
     full = [system.full(t, x) for t, x in zip(times, states)]
     q, u = np.array([a for a, _ in full]), np.array([b for _, b in full])
-    if hasattr(compiled, "root_moments"):
-        moments = compiled.root_moments(times, states, system.q0, system.u0, system.index)
+    if hasattr(compiled, "outputs"):
+        loads = compiled.outputs(times, states, system.q0, system.u0, system.index)
     else:
-        moments = np.array([root_moments(system.model, qi, ui, system.accelerations(qi, ui)) for qi, ui in zip(q, u)])
+        loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui)) for qi, ui in zip(q, u)])
     return SimulationResult(time=times, q=q, u=u, dofs=system.model.dofs, free=system.free,
-                            outputs=channels(system, times, q, u, moments), evaluations=count[0])
-
-
-def table_text(result: SimulationResult) -> str:
-    """CSV text: time and every output channel, with units in the header."""
-    names = list(CHANNELS)
-    header = "Time_s," + ",".join(f"{name}_{CHANNELS[name][0].replace(' ', '')}" for name in names)
-    data = np.column_stack([result.time] + [result.outputs[name] for name in names])
-    body = "\n".join(",".join(row) for row in np.char.mod("%.9g", data))
-    return header + "\n" + body + "\n"
-
-
-def write_table(result: SimulationResult, path: str | os.PathLike) -> None:
-    """Write the output table as CSV, atomically."""
-    write_atomic(path, table_text(result))
-
-
-def plot_outputs(result: SimulationResult, path: str | os.PathLike,
-                 channels: tuple[str, ...] = ("OoPDefl1", "IPDefl1", "TTDspFA", "TTDspSS", "YawPzn", "RotSpeed",
-                                               "GenSpeed", "RootMOoP1", "RootMIP1")) -> None:
-    """Plot the chosen channels against time into an image file (written atomically)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(len(channels), 1, figsize=(8, 1.6 * len(channels)), sharex=True)
-    for axis, name in zip(np.atleast_1d(axes), channels):
-        axis.plot(result.time, result.outputs[name], lw=1)
-        axis.set_ylabel(f"{name}\n[{CHANNELS[name][0]}]", fontsize=8)
-        axis.grid(alpha=0.3)
-    np.atleast_1d(axes)[-1].set_xlabel("time [s]")
-    figure.tight_layout()
-    try:
-        with atomic_path(path) as temporary:
-            figure.savefig(temporary, dpi=120)
-    finally:
-        plt.close(figure)
+                            outputs=channels(system.model, q, u, loads), evaluations=count[0], loads=loads)

@@ -1,0 +1,106 @@
+"""The turbine of an input deck for ``bladefem turbine``: an OpenFAST ``.fst`` (ElastoDyn, AeroDyn, InflowWind,
+ServoDyn) or an ElastoDyn main file alone (structure only).
+
+From a ``.fst``: the structure from ElastoDyn (:func:`turbine_from_elastodyn`), the yaw spring and damper from
+ServoDyn's ``YawSpr``, ``YawDamp``, the generator's torque law and efficiency from ServoDyn (``VSContrl`` 1), the
+aerodynamics (quasi-steady BEM at the AeroDyn nodes) from AeroDyn and InflowWind; wind speed, shear exponent and
+pitch may be overridden. ElastoDyn's DOF switches and initial conditions come with it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError
+from ..models.turbine.aero import TurbineAero
+from ..models.turbine.control import Generator
+from ..models.turbine.initial import InitialConditions
+from ..models.turbine.parameters import TurbineParameters
+from .turbine_elastodyn import (
+    NREL5MW_YAW_DAMPING,
+    NREL5MW_YAW_STIFFNESS,
+    deck_conditions,
+    turbine_from_elastodyn,
+)
+
+#: words of a .fst's first lines that tell it from an ElastoDyn main file
+FST_WORDS = {"CompElast", "EDFile"}
+
+
+@dataclass(frozen=True)
+class TurbineDeck:
+    """A turbine and its loads as a deck describes them (SI).
+
+    path : the deck; elastodyn : the ElastoDyn main file; params : the structure; aero : aerodynamic loads or None;
+    generator : the torque law (None without ServoDyn); switches : ElastoDyn's DOF switches; conditions : its
+    initial conditions; openfast : True for a .fst
+    """
+
+    path: str
+    elastodyn: str
+    params: TurbineParameters
+    aero: TurbineAero | None
+    generator: Generator | None
+    switches: dict[str, bool]
+    conditions: InitialConditions
+    openfast: bool
+
+
+def is_openfast_deck(path: str | Path) -> bool:
+    """True for an OpenFAST main input file (suffix .fst, or CompElast and EDFile among its first lines)."""
+    path = Path(path)
+    if path.suffix.lower() == ".fst":
+        return True
+    try:
+        with path.open(encoding="utf-8", errors="replace") as stream:
+            words = {word for _, line in zip(range(200), stream) for word in line.split()[:3]}
+    except OSError:
+        return False
+    return FST_WORDS <= words
+
+
+def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float | None = None,
+                      shear_exponent: float | None = None, pitch: float | None = None,
+                      yaw_stiffness: float | None = None, yaw_damping: float | None = None,
+                      **structure) -> TurbineDeck:
+    """The turbine of a .fst or an ElastoDyn main file.
+
+    aero : include the aerodynamic loads of a .fst (False: structure and generator only)
+    wind_speed : m/s at InflowWind's reference height; shear_exponent : power law; pitch : rad (default: BlPitch)
+    yaw_stiffness, yaw_damping : N m/rad, N m s/rad (default: ServoDyn's, else the NREL 5MW's)
+    structure : keyword arguments of :func:`turbine_from_elastodyn` (blade_shapes, rpm, tower_shapes, ...)
+    """
+    if not Path(path).is_file():
+        raise InputError("file not found", file=str(path))
+    if not is_openfast_deck(path):
+        for name, value in (("--wind-speed", wind_speed), ("--shear-exp", shear_exponent)):
+            if value is not None:
+                raise InputError("needs aerodynamics: give an OpenFAST .fst deck (this is an ElastoDyn main file)",
+                                 file=str(path), field=name)
+        params = turbine_from_elastodyn(
+            path, pitch=pitch, yaw_stiffness=NREL5MW_YAW_STIFFNESS if yaw_stiffness is None else yaw_stiffness,
+            yaw_damping=NREL5MW_YAW_DAMPING if yaw_damping is None else yaw_damping, **structure)
+        switches, conditions = deck_conditions(path)
+        return TurbineDeck(str(path), str(path), params, None, None, switches, conditions, False)
+    from .openfast_fst import read_openfast_deck
+    deck = read_openfast_deck(path)
+    servo = deck.servodyn
+    if yaw_stiffness is None:
+        yaw_stiffness = servo.yaw_spring if servo is not None else NREL5MW_YAW_STIFFNESS
+    if yaw_damping is None:
+        yaw_damping = servo.yaw_damper if servo is not None else NREL5MW_YAW_DAMPING
+    main = deck.elastodyn.path
+    params = turbine_from_elastodyn(main, pitch=pitch, yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping,
+                                    **structure)
+    loads = None
+    if deck.aerodyn is None:
+        for name, value in (("--wind-speed", wind_speed), ("--shear-exp", shear_exponent)):
+            if value is not None:
+                raise InputError("needs aerodynamics, but the deck has none (CompAero 0)", file=deck.path,
+                                 field=name)
+    elif aero:
+        loads = TurbineAero.from_deck(deck, params, wind_speed=wind_speed, shear_exponent=shear_exponent)
+    generator = Generator.from_servodyn(servo) if servo is not None else None
+    switches, conditions = deck_conditions(main)
+    return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True)

@@ -1,0 +1,148 @@
+"""The NREL 5MW with aerodynamics in the Kane model against OpenFAST v4.2.1 on the same deck (issue 11): rated wind
+at fixed speed (the deck's BEM_Mod 2 and the legacy BEM_Mod 1 bladefem shares), the torque law at 8 and 11.4 m/s,
+the power balance, and every output channel's sign from a deflected, yawed initial state."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bladefem.io.turbine_deck import read_turbine_deck
+from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
+from bladefem.models.turbine.initial import free_from_switches, initial_state
+from bladefem.models.turbine.outputs import LOAD_COLUMNS
+from bladefem.models.turbine.simulate import simulate
+
+ROOT = Path(__file__).resolve().parents[1]
+DECK = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
+DATA = ROOT / "tests" / "data" / "openfast"
+RPM = math.pi / 30
+#: OpenFAST's units of the channels compared, as factors to bladefem's (kN, kN m, kW, N, N m, W, m, rpm)
+DEFLECTIONS = ("OoPDefl1", "IPDefl1", "TTDspFA", "TTDspSS")
+
+pytestmark = pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="100 s runs need the kernels")
+
+
+def run(wind_speed: float, rpm: float, duration: float, locked: bool, dt: float = 0.05, **options):
+    """bladefem's model of the deck at ``wind_speed``, from rest deflections at ``rpm``, the generator locked or on
+    the torque law; returns (model, system, result)."""
+    deck = read_turbine_deck(DECK, wind_speed=wind_speed, rpm=rpm, **options)
+    model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
+    switches = {**deck.switches, "GenDOF": not locked}
+    free = select_dofs(model.dofs, [], base=free_from_switches(model.dofs, switches))
+    q0, u0, _ = initial_state(model, free, deck.conditions.with_(rotor_speed=rpm * RPM))
+    system = FreeSystem(model, free, q0, u0)
+    return model, system, simulate(system, duration, dt_output=dt)
+
+
+def window_mean(result, name: str, start: float) -> float:
+    return float(np.mean(result.outputs[name][result.time >= start - 1e-9]))
+
+
+@pytest.fixture(scope="module")
+def rated():
+    """100 s at 11.4 m/s, 12.1 rpm (generator locked), pitch 0, from the undeflected state: OpenFAST's case."""
+    return run(11.4, 12.1, 100.0, locked=True, dt=0.025)
+
+
+def test_rated_wind_fixed_speed_against_openfast(rated):
+    """Means over 80-100 s against OpenFAST with the deck's BEM_Mod 2: thrust and power within 3 %, deflection
+    means within 6 % (the issue's acceptance); measured -1.1 % thrust, -1.6 % power, OoPDefl1 -0.6 %, IPDefl1 +4 %,
+    TTDspFA -1.5 %, TTDspSS -1 %. The thrust and power difference is the polar projection of BEM_Mod 2 on the
+    deflected blade (cant up to 12 deg): against the same OpenFAST run with the legacy BEM_Mod 1 (bladefem's
+    projection) thrust and torque agree to 0.6 % (measured +0.34 %, +0.06 %; the rest is ElastoDyn's 0.1 deg
+    elastic twist of the bent tip, docs/turbine.md), the deflections to 2.5 % (the tip 1.7 %) except IPDefl1
+    (FE blade shapes against ElastoDyn's polynomials: 6.5 %, within the issue's 6 % against the deck's run)."""
+    _, _, result = rated
+    polar = json.loads((DATA / "rated_fixed_speed.json").read_text())["channels"]
+    legacy = json.loads((DATA / "rated_fixed_speed_bem_mod1.json").read_text())["channels"]
+    ours = {name: window_mean(result, name, 80.0) for name in ("RtAeroFxh", "RotThrust", "RotPwr", "RtAeroPwr",
+                                                              "RtAeroMxh", "RotTorq", *DEFLECTIONS)}
+    for name in ("RtAeroFxh", "RotThrust", "RotPwr", "RtAeroPwr"):
+        assert ours[name] == pytest.approx(polar[name]["mean"], rel=0.03), name
+    for name in DEFLECTIONS:
+        assert ours[name] == pytest.approx(polar[name]["mean"], rel=0.06), name
+    for name in ("RtAeroFxh", "RotThrust", "RtAeroMxh", "RotTorq"):
+        assert ours[name] == pytest.approx(legacy[name]["mean"], rel=0.006), name
+    for name in ("OoPDefl1", "TTDspFA", "TTDspSS"):
+        assert ours[name] == pytest.approx(legacy[name]["mean"], rel=0.025), name
+    # the blade's 1P deflection oscillation and the tower's, in amplitude
+    for name in ("OoPDefl1", "IPDefl1"):
+        std = np.std(result.outputs[name][result.time >= 80.0 - 1e-9])
+        assert std == pytest.approx(polar[name]["std"], rel=0.1), name
+
+
+def test_power_balance(rated):
+    """Mean aerodynamic power = mean generator power + mean damping losses, to 1e-3, over the last 8 revolutions
+    (39.7 s) of the rated run (measured 1.8e-4: the energy the decaying tower side-side motion still gives up);
+    the generator is held at 12.1 rpm by the torque it takes (GenTq). With the change of stored energy (kinetic,
+    gravity, strain) the balance is exact: 1e-6 (measured 2e-8, the trapezoidal rule on 0.025 s samples). The
+    powers are the loads' own work rates (u . Q)."""
+    model, _, result = rated
+    loads = result.loads
+    column = {name: loads[:, i] for i, name in enumerate(LOAD_COLUMNS)}
+    generator_speed = model.params.gearbox_ratio * result.u[:, 5]
+    window = result.time >= 100.0 - 8 * 60 / 12.1 - 1e-9
+    t = result.time[window]
+    aero = np.trapezoid(column["aero_work"][window], t)
+    generator = np.trapezoid((column["generator_torque"] * generator_speed)[window], t)
+    damping = np.trapezoid(column["damping_power"][window], t)
+    stored = np.subtract(*[sum(model.energy(result.q[i], result.u[i])) for i in np.flatnonzero(window)[[-1, 0]]])
+    assert abs(stored) < 1e-3 * aero
+    assert aero > 0 and generator > 0 and damping > 0
+    assert abs(aero - generator - damping) < 1e-3 * aero
+    assert abs(aero - generator - damping - stored) < 1e-6 * aero
+    # the aerodynamic power on the shaft is the rotor's RtAeroPwr, less the work on blade and tower motion
+    assert np.mean(column["aero_work"][window]) == pytest.approx(np.mean(column["aero_power"][window]), rel=2e-3)
+
+
+@pytest.mark.parametrize("wind_speed, rpm", [(8.0, 9.156), (11.4, 12.1)])
+def test_torque_law_steady_operation_against_openfast(wind_speed, rpm):
+    """ServoDyn's torque law with the generator free, pitch 0: steady rotor speed within 0.5 % (measured -0.16 %
+    and -0.12 %), generator power and rotor thrust within 3 % (measured -0.5 % and -0.3 % at 8 m/s, -1.5 % and
+    -1.0 % at 11.4 m/s: the BEM_Mod 2 projection of the more deflected blade, as at fixed speed). Started at
+    OpenFAST's initial speed; the speed settles within 60 s (to 1e-4 rpm), the means are over 80-100 s."""
+    data = json.loads((DATA / "torque_law.json").read_text())
+    reference = next(p for p in data["points"] if p["wind_speed_m_s"] == wind_speed)["channels"]
+    _, _, result = run(wind_speed, rpm, 100.0, locked=False)
+    assert window_mean(result, "RotSpeed", 80.0) == pytest.approx(reference["RotSpeed"]["mean"], rel=0.005)
+    assert window_mean(result, "RotSpeed", 80.0) == pytest.approx(window_mean(result, "RotSpeed", 60.0), abs=1e-3)
+    for name in ("GenPwr", "RotThrust", "GenTq"):
+        assert window_mean(result, name, 80.0) == pytest.approx(reference[name]["mean"], rel=0.03), name
+
+
+@pytest.mark.parametrize("case", ["signs_fixed", "signs_free"])
+def test_every_channel_follows_openfast_from_a_deflected_yawed_start(case):
+    """OpenFAST run from OoPDefl 2 m, IPDefl -0.5 m, Azimuth 30 deg, NacYaw 3 deg, TTDspFA 0.2 m, TTDspSS 0.1 m at
+    11.4 m/s (ElastoDyn-compatible structure): every channel's time history over 10 s correlates with OpenFAST's
+    (same sign and phase; correlation > 0.97, measured 0.985 or more except the root moments, 0.998 from the first
+    output step on) and its mean agrees within 3 % (the BEM_Mod 2 share). GenTq and GenPwr only with the torque law:
+    with the rotor speed held OpenFAST writes the law at the imposed speed."""
+    data = json.loads((DATA / "channel_signs.json").read_text())["cases"][case]
+    options = {"blade_shapes": "polynomial", "elastodyn_compatible": True, "gauss_points": 1}
+    deck = read_turbine_deck(DECK, wind_speed=11.4, rpm=12.1, **options)
+    model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
+    switches = {**deck.switches, "GenDOF": case == "signs_free"}
+    free = select_dofs(model.dofs, [], base=free_from_switches(model.dofs, switches))
+    conditions = deck.conditions.with_(oop_deflection=2.0, ip_deflection=-0.5, azimuth=math.radians(30.0),
+                                       nacelle_yaw=math.radians(3.0), tower_top_fa=0.2, tower_top_ss=0.1,
+                                       rotor_speed=12.1 * RPM)
+    q0, u0, _ = initial_state(model, free, conditions)
+    result = simulate(FreeSystem(model, free, q0, u0), 10.0, dt_output=0.1)
+    np.testing.assert_allclose(result.time, data["time_s"], atol=1e-9)
+    for name, channel in data["channels"].items():
+        if name in ("GenTq", "GenPwr") and case == "signs_fixed" or name == "BldPitch1":
+            continue
+        theirs, ours = np.array(channel["values"]), result.outputs[name]
+        if name == "Azimuth":
+            theirs, ours = np.unwrap(np.radians(theirs)), np.unwrap(np.radians(ours))
+        # OpenFAST writes t = 0 without the blades' inertial loads (JSON notes): compare from the first step
+        a, b = ours[1:] - ours[1:].mean(), theirs[1:] - theirs[1:].mean()
+        if np.ptp(theirs) > 1e-9 * max(1.0, abs(theirs).max()):
+            assert a @ b / np.sqrt((a @ a) * (b @ b)) > 0.97, name
+        assert ours[1:].mean() == pytest.approx(theirs[1:].mean(), rel=0.03, abs=0.01), name
