@@ -16,6 +16,8 @@ flap backward whirl at 11.4 m/s (+3.05 % frozen wake, +2.82 % quasi-steady) and 
 induction re-solved (+2.07 %). Their cause is the aerodynamic stiffness of the blade's elastic out-of-plane slope:
 bladefem projects the inflow on the section turned by the slope (AeroDyn's legacy projection, ``BEM_Mod`` 1), the
 reference ran the deck's polar projection (``BEM_Mod`` 2), and at 11.4 m/s the blade tips deflect most (5.6 m).
+Which term of the polar projection's linearization differs is not pinned down (one candidate: its frozen wake holds
+the induced velocity times the cosine of the cant, which takes a factor 1 - a off the slope's stiffness).
 Measured: with neither the inflow projection nor the section force turned by the elastic slope, the 1st flap
 frequencies come within 0.5 % of OpenFAST at 8, 11.4 and 16 m/s (the velocity projection alone carries the
 difference); bladefem keeps the legacy projection, which the time simulation shares.
