@@ -87,6 +87,20 @@ def test_without_aerodynamics_at_rest_the_linearization_is_todays(model):
                                    rtol=0, atol=1e-9)
 
 
+def test_a_parked_rotor_stands_at_its_azimuth(model):
+    """Parked at 0.5 rad without gravity or aerodynamics: the equilibrium is the undeflected state there and the
+    modes are ``linearize``'s at that azimuth (names in multi-blade coordinates of that azimuth)."""
+    structure = TurbineModel(model.params.with_(gravity=0.0))
+    free = fixed_speed(model)
+    point = steady_state(structure, None, free, 0.0, azimuth=0.5)
+    assert point.azimuths[0] == 0.5 and np.abs(point.q).max() == 0.0
+    ours, today = linearize_at(structure, None, point, free), linearize(structure, free, 0.0, 0.5)
+    assert [m.name for m in ours.modes] == [m.name for m in today.modes]
+    # the same central differences on the compiled kernel instead of the numpy equations: round-off
+    np.testing.assert_allclose([m.frequency_hz for m in ours.modes], [m.frequency_hz for m in today.modes],
+                               rtol=1e-9)
+
+
 # -- one blade through the turbine model against the blade FE with Coriolis and aerodynamics ----------------------
 
 def refined_rotor(blade, nodes: int):

@@ -116,3 +116,31 @@ def test_schedule_file(tmp_path):
         assert error.value.line == line and error.value.file == str(path)
     with pytest.raises(InputError):
         read_schedule(tmp_path / "missing.csv")
+
+
+def test_the_damping_document_is_what_its_script_writes(tmp_path):
+    """docs/aeroelastic.md is the current output of examples/aeroelastic_damping.py (its numbers to the printed
+    0.01 %: rounding may move the last digit)."""
+    import re
+    import subprocess
+    import sys
+
+    written = tmp_path / "aeroelastic.md"
+    subprocess.run([sys.executable, str(ROOT / "examples" / "aeroelastic_damping.py"), "--output", str(written)],
+                   check=True, cwd=ROOT, capture_output=True)
+    numbers = [re.findall(r"-?\d+\.\d+", text) for text in (written.read_text(),
+                                                              (ROOT / "docs" / "aeroelastic.md").read_text())]
+    assert len(numbers[0]) == len(numbers[1]) > 200
+    assert max(abs(float(a) - float(b)) for a, b in zip(*numbers)) <= 0.011
+
+
+def test_a_deck_with_aerodynamics_linearizes_at_its_wind_speed(capsys):
+    """Without --wind-speed the .fst's --linearize is aeroelastic at InflowWind's HWindSpeed (11.4 m/s in the 5MW
+    deck); --shear-exp replaces its PLExp (the azimuth-averaged thrust changes)."""
+    code, out, _ = run(capsys, DECK, "--linearize", "--rpm", 12.1, "--json", *FAST)
+    assert code == 0
+    uniform = json.loads(out)
+    assert uniform["wind_speed_m_s"] == 11.4 and uniform["modes"]
+    code, out, _ = run(capsys, DECK, "--linearize", "--rpm", 12.1, "--shear-exp", 0.2, "--json", *FAST)
+    sheared = json.loads(out)["operating_point"]["thrust_N"]
+    assert code == 0 and abs(sheared / uniform["operating_point"]["thrust_N"] - 1) > 1e-3

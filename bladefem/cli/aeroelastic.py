@@ -150,7 +150,11 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
 def structure_builder(deck, args: argparse.Namespace, notes: list[str]):
     """``pitch (rad) -> TurbineModel`` of the deck's ElastoDyn structure with the command's options; the notes of
     the first build go to ``notes``."""
-    from ..io.turbine_elastodyn import NREL5MW_YAW_DAMPING, NREL5MW_YAW_STIFFNESS, turbine_from_elastodyn
+    from ..io.turbine_elastodyn import (
+        NREL5MW_YAW_DAMPING,
+        NREL5MW_YAW_STIFFNESS,
+        turbine_from_elastodyn,
+    )
     from ..models.turbine import TurbineModel
 
     servo = deck.servodyn
@@ -213,7 +217,10 @@ def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, g
 
 def sweep_command(turbine, requests, args: argparse.Namespace) -> int:
     from ..files import write_atomic
-    from ..models.turbine.aeroelastic_campbell import aeroelastic_campbell, campbell_text
+    from ..models.turbine.aeroelastic_campbell import (
+        aeroelastic_campbell,
+        campbell_text,
+    )
     from ..report import progress_bar
 
     progress = progress_bar("Aeroelastic sweep", args.quiet or len(requests) == 1)
@@ -249,7 +256,8 @@ def aeroelastic_table(linear, free_count: int) -> str:
     induction = "frozen wake" if linear.induction == "frozen" else "quasi-steady induction"
     lines = [f"# aeroelastic modes at {point.wind_speed:g} m/s, {point.rpm:.4g} rpm ({speed}), pitch "
              f"{point.pitch_deg:.4g} deg; {induction}; {free_count} free DOFs; {where}",
-             f"# operating point ({'static' if point.rotor_speed == 0.0 else 'azimuth-averaged'} equilibrium): thrust {point.thrust / 1e3:.1f} kN, aerodynamic "
+             f"# operating point ({'static' if point.rotor_speed == 0.0 else 'azimuth-averaged'} equilibrium): "
+             f"thrust {point.thrust / 1e3:.1f} kN, aerodynamic "
              f"torque {point.torque / 1e3:.1f} kN m, power {point.power / 1e6:.3f} MW; blade tip {d['OoPDefl']:.3f} m "
              f"out of plane, {d['IPDefl']:.3f} m in plane; tower top {d['TTDspFA']:.3f} m fore-aft, "
              f"{d['TTDspSS']:.3f} m side-side"]

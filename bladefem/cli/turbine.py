@@ -21,7 +21,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
-from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic, wants_aeroelastic
+from .aeroelastic import (
+    add_aeroelastic_options,
+    check_aeroelastic_options,
+    run_aeroelastic,
+    wants_aeroelastic,
+)
 from .aeroelastic import wind_speeds as wind_speeds_type
 from .inputs import rpm_range
 
