@@ -232,6 +232,32 @@ def test_quasi_steady_induction_lowers_the_flap_damping_less_than_it_changes_the
         assert steady[name].frequency_hz != frozen[name].frequency_hz
 
 
+def test_the_free_rotor_speed_mode_is_the_torque_balance(deck, model):
+    """Rigid turbine, only the generator azimuth free, the deck's torque law at 11.4 m/s (its steep slip line,
+    region 2.5): the rotor-speed mode is the real root of the one-DOF balance J dOmega/dt = Q(Omega) -
+    N T_g(N Omega), lambda = (dQ/dOmega - N^2 dT_g/domega) / J, with J the model's inertia about the shaft and
+    dQ/dOmega the frozen-wake aerodynamic torque differenced by hand; named 'rotor speed', damping ratio 1. (In
+    region 2 the pole is slower than 0.02 Hz and listed with the rigid-body motions.)"""
+    generator = Generator.from_servodyn(deck.servodyn)
+    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4)
+    free = select_dofs(model.dofs, ["generator_azimuth"])
+    point = steady_state(model, aero, free, None, generator)
+    mode = next(m for m in linearize_at(model, aero, point, free, generator).modes if m.name == "rotor speed")
+    gen, ratio, h = model.dofs.index("generator_azimuth"), model.params.gearbox_ratio, 1e-4
+    q, u = point.state(model, point.azimuths[0])              # one coordinate: linearized at the first azimuth
+    held = held_induction(model, aero, q, u)
+    step = h * np.eye(model.n)[gen]
+    sections = SectionAero.of(aero)
+    dQ = (sections.generalized(model, held, q, u + step) - sections.generalized(model, held, q, u - step)
+          ).sum(axis=0)[gen] / (2 * h)
+    speed = ratio * u[gen]
+    dT = (generator.torque(speed + ratio * h) - generator.torque(speed - ratio * h)) / (2 * h)
+    rate = (dQ - ratio * dT) / model.equations(q, u)[0][gen, gen]
+    assert mode.damping_ratio == 1.0 and rate < 0
+    # central differences of smooth loads; the azimuth's gravity and tilt stiffness moves the root by 1e-5
+    assert 2 * math.pi * mode.frequency_hz == pytest.approx(-rate, rel=1e-4)
+
+
 # -- the operating point against OpenFAST -------------------------------------------------------------------------
 
 def openfast_points(variant: str = "frozen_wake") -> list[dict]:
