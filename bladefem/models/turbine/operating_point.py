@@ -271,5 +271,6 @@ def trim_guess(structure: TurbineModel, aero: TurbineAero | None, generator: Gen
             return float(brentq(imbalance, a, b, xtol=1e-10))
     raise InputError(f"the generator torque law holds the rotor nowhere below {top * 30 / math.pi:.3g} rpm at "
                      f"{aero.inflow.speed:g} m/s with pitch {math.degrees(aero.pitch):g} deg: give the rotor speed "
-                     "(--rpm) or the pitch (--pitch-deg)", field="--wind-speed")
+                     "(--rpm), the pitch (--pitch-deg) or both against wind speed (--schedule; the NREL 5MW's: "
+                     "cases/nrel5mw/table_7_1_schedule.csv)", field="--wind-speed")
 
