@@ -48,8 +48,9 @@ def modes(model: Any, rpm: float = 0.0, n_modes: int = 10, elements: int | None 
     if rpm != 0:
         raise ValueError(f"a tower does not rotate: rpm must be 0, got {rpm} (bladefem.campbell(tower, rpm) draws "
                          "its frequencies against the rotor's excitation bands)")
+    from .limits import check_elements, check_n_modes
     from .models.tower import tower_modes
-    return tower_modes(model, n_modes, elements)
+    return tower_modes(model, check_n_modes(n_modes), check_elements(elements))
 
 
 def campbell(model: Any, rpm: Sequence[float], n_modes: int = 6, elements: int | None = None,
@@ -61,5 +62,7 @@ def campbell(model: Any, rpm: Sequence[float], n_modes: int = 6, elements: int |
     if _is_blade(model):
         from .modal import campbell as blade_campbell
         return blade_campbell(model, rpm, n_modes, elements)
+    from .limits import check_elements, check_n_modes, check_speeds
     from .models.tower_campbell import tower_campbell
-    return tower_campbell(model, rpm, n_modes, elements, operating_rpm, blades)
+    speeds = check_speeds(rpm, check_n_modes(n_modes), check_elements(elements))
+    return tower_campbell(model, speeds, n_modes, elements, operating_rpm, blades)

@@ -17,6 +17,7 @@ pytest.importorskip("pyarrow")
 from bladefem.batch import ResultStore, read_plan, run_batch, run_case, summarize  # noqa: E402
 from bladefem.batch.cases import apply_inputs  # noqa: E402
 from bladefem.batch.plan import correlated_normals  # noqa: E402
+from bladefem.batch.runner import WORKER_TRIM_THRESHOLD  # noqa: E402
 from bladefem.cli import main  # noqa: E402
 from bladefem.io.case import read_case  # noqa: E402
 from bladefem.modal import modes  # noqa: E402
@@ -63,10 +64,11 @@ def test_a_killed_worker_loses_no_case_and_duplicates_none(tmp_path):
 analysis: {{type: modes, rpm: 12.1, n_modes: 4, elements: 200}}
 grid: {{mass_scale: [0.96, 0.97, 0.98, 0.99, 1.0, 1.01, 1.02, 1.03], edge_stiffness_scale: [0.95, 1.05]}}
 """))
-    killed = []
+    killed, trim = [], []
 
     def kill_one_worker(client, case) -> None:
         if not killed:
+            trim.extend(client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_")).values())
             pids = client.run(os.getpid)
             pid = sorted(pids.values())[0]
             os.kill(pid, signal.SIGKILL)
@@ -74,6 +76,7 @@ grid: {{mass_scale: [0.96, 0.97, 0.98, 0.99, 1.0, 1.01, 1.02, 1.03], edge_stiffn
 
     run = run_batch(plan, tmp_path / "out", workers=2, on_result=kill_one_worker)
     assert killed and run.finished == 16
+    assert trim == [str(WORKER_TRIM_THRESHOLD)] * 2             # the local workers' glibc trim threshold (runner)
     table = ResultStore(tmp_path / "out").table().to_pylist()
     per_case = {}
     for row in table:

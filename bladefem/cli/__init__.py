@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from types import ModuleType
 from typing import NoReturn
 
-from ..errors import InputError
+from ..errors import InputError, SolveError
 
 __all__ = ["COMMANDS", "Parser", "build_parser", "main"]
 
@@ -85,6 +85,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except InputError as error:
         print(f"bladefem: error: {error}", file=sys.stderr)
         return 2
+    except SolveError as error:        # the input read, but the answer would not be a result
+        source = getattr(args, "input", None) or getattr(args, "main", None)
+        print(f"bladefem: error: {source + ': ' if source else ''}{error}", file=sys.stderr)
+        return 1
     except BrokenPipeError:
         return 0
     except OSError as error:           # e.g. an output folder that cannot be created

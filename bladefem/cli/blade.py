@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from ..errors import InputError
+from . import options
 from .damping import (
     add_aero_options,
     add_coriolis_option,
@@ -14,15 +15,7 @@ from .damping import (
     reject_for_towers,
     wants_quadratic,
 )
-from .inputs import (
-    add_blade_options,
-    finite_float,
-    is_blade,
-    positive_int,
-    read_structure,
-    rpm_band,
-    rpm_range,
-)
+from .inputs import add_blade_options, is_blade, positive_int, read_structure, rpm_band
 
 METHODS = ("fe", "galerkin")
 
@@ -32,8 +25,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
         "modes", help="natural frequencies and mode shapes of a blade or tower",
         description="Natural frequencies (Hz) and mode shapes of a blade at one rotor speed, or of a tower.")
     add_blade_options(modes)
-    modes.add_argument("--rpm", type=finite_float, default=0.0, help="rotor speed, rpm (blades; default 0)")
-    modes.add_argument("--n-modes", type=positive_int, default=10, metavar="N", help="number of modes (default 10)")
+    modes.add_argument("--rpm", type=options.rpm, default=0.0, help="rotor speed, rpm (blades; default 0)")
+    modes.add_argument("--n-modes", type=options.n_modes, default=10, metavar="N", help="number of modes (default 10)")
     modes.add_argument("--method", choices=METHODS, default="fe",
                        help="fe: finite elements (default); galerkin: the analytical assumed-modes model (blades)")
     modes.add_argument("--terms", metavar="NW,NV,NPHI",
@@ -52,15 +45,19 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                     "frequencies against the rotor's 1P and blade-passing bands over the operating range, and the "
                     "soft-soft / soft-stiff / stiff-stiff classification.")
     add_blade_options(campbell)
-    campbell.add_argument("--rpm", type=rpm_range, required=True, metavar="START:STOP:COUNT",
+    campbell.add_argument("--rpm", type=options.rpm_sweep, required=True, metavar="START:STOP:COUNT",
                           help="rotor speeds, rpm (e.g. 0:15:16)")
-    campbell.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="families (default 6)")
+    campbell.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="families (default 6)")
     campbell.add_argument("--operating-rpm", type=rpm_band, metavar="RPM|LOW:HIGH",
                           help="operating speed to mark, or operating range (towers: the range of the 1P and "
                                "blade-passing bands; default the swept range)")
     campbell.add_argument("--blades", type=positive_int, default=3, metavar="N",
                           help="towers: number of blades, the blade-passing harmonic (default 3)")
     campbell.add_argument("--plot", metavar="FILE.png", help="write the diagram to this image (PNG, PDF, SVG)")
+    campbell.add_argument("--vtk", metavar="DIR",
+                          help="write the mode shapes as VTK for ParaView into this folder: each family at every "
+                               "speed (a .pvd collection, time = rotor speed in rpm; towers: the tower's modes) and a "
+                               "JSON sidecar")
     add_coriolis_option(campbell)
     campbell.add_argument("--json", action="store_true", help="print JSON instead of a table")
     campbell.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -107,6 +104,10 @@ def run_modes(args: argparse.Namespace) -> int:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
+    options.check_sweep(args.rpm, args.n_modes, args.elements)
+    options.check_output(args.plot)
+    if args.vtk:
+        options.check_folder(args.vtk, "--vtk")
     model = read_structure(args)
     if not is_blade(model):
         reject_for_towers(args)
@@ -129,6 +130,7 @@ def run_campbell(args: argparse.Namespace) -> int:
     if args.plot:
         from ..plots.campbell import save_campbell_plot
         save_campbell_plot(result, args.plot, title=model.name, operating_rpm=operating)
+    write_vtk_folder(model, result, args)
     if args.json:
         from ..io.results import campbell_to_dict, dumps
         print(dumps({"input": args.input, "structure": "blade", **campbell_to_dict(result)}))
@@ -148,6 +150,9 @@ def tower_campbell_command(args: argparse.Namespace, tower) -> int:
     if args.plot:
         from ..plots.tower_campbell import save_tower_campbell_plot
         save_tower_campbell_plot(chart, args.plot)
+    if args.vtk:
+        from ..models.tower import tower_modes
+        write_vtk_folder(tower, tower_modes(tower, args.n_modes, args.elements), args)
     if args.json:
         from ..io.results import dumps, tower_campbell_to_dict
         print(dumps({"input": args.input, "structure": "tower", **tower_campbell_to_dict(chart)}))
@@ -157,3 +162,14 @@ def tower_campbell_command(args: argparse.Namespace, tower) -> int:
         if args.plot:
             print(f"tower chart written to {args.plot}", file=sys.stderr)
     return 0
+
+
+def write_vtk_folder(structure, result, args: argparse.Namespace) -> None:
+    """``--vtk DIR``: the modes of ``result`` as VTK files in DIR (``campbell.pvd``, its VTU files and sidecar),
+    the folder named on stderr."""
+    if not args.vtk:
+        return
+    from ..io.vtk import write_vtk
+    export = write_vtk(structure, result, args.vtk, "campbell", args.n_modes)
+    files = f"{len(export.meshes)} VTU file" + ("s" if len(export.meshes) != 1 else "")
+    print(f"mode shapes for ParaView: {export.collection} ({files}, sidecar {export.sidecar.name})", file=sys.stderr)

@@ -10,7 +10,8 @@ from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
-from .inputs import finite_float, positive_int
+from . import options
+from .inputs import positive_int
 
 if TYPE_CHECKING:                       # the CLI imports heavy modules only in the command that needs them
     from ..modal.results import CampbellResult, ModalResult
@@ -28,7 +29,7 @@ def add_aero_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--aero", metavar="AERODYN_PRIMARY",
                        help="AeroDyn primary file: its first blade file and airfoils give the sections' aerodynamic "
                             "damping and stiffness at --wind-speed, --rpm and --pitch-deg")
-    group.add_argument("--wind-speed", type=finite_float, metavar="M_S", help="wind speed along the shaft, m/s")
+    group.add_argument("--wind-speed", type=options.non_negative, metavar="M_S", help="wind speed along the shaft, m/s")
     group.add_argument("--blades", type=positive_int, default=3, metavar="N",
                        help="number of blades for the BEM induction (default 3)")
 

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from . import options
 
 DEFAULT_BLADE_NODES = 17
 DEFAULT_TOWER_NODES = 20
@@ -52,6 +53,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="with --check: accepted frequency difference, percent "
                              f"(default {CHECK_TOLERANCE_PERCENT:g})")
     parser.add_argument("--dry-run", action="store_true", help="with --write: show a unified diff, write nothing")
+    parser.add_argument("--backup", action="store_true", help="with --write: keep the old file as FILE.dat.bak")
     parser.add_argument("--force", action="store_true",
                         help="with --write: write the fresh fit even where it is worse than the file's coefficients")
     parser.add_argument("--part", choices=("blade", "tower"),
@@ -61,14 +63,14 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                              f"file, else {DEFAULT_BLADE_NODES} for a blade and {DEFAULT_TOWER_NODES} for a tower)")
     parser.add_argument("--n-modes", type=int, default=12, metavar="N", help="FE modes computed (default 12)")
     parser.add_argument("--elements", type=int, metavar="N", help="FE elements (default: refined until converged)")
-    parser.add_argument("--min-tip-ratio", type=float, default=MIN_TIP_RATIO, metavar="X",
+    parser.add_argument("--min-tip-ratio", type=options.non_negative, default=MIN_TIP_RATIO, metavar="X",
                         help=f"warn when |tip displacement| / max |displacement| < X (default {MIN_TIP_RATIO})")
     geometry = parser.add_argument_group("geometry for ElastoDyn blade or tower files given alone")
     geometry.add_argument("--elastodyn-main", metavar="FILE", help="ElastoDyn main file to take the geometry from")
-    geometry.add_argument("--tip-radius", type=float, metavar="M", help="TipRad, m")
-    geometry.add_argument("--hub-radius", type=float, metavar="M", help="HubRad, m")
-    geometry.add_argument("--tower-height", type=float, metavar="M", help="flexible tower length, m")
-    geometry.add_argument("--top-mass", type=float, metavar="KG", help="tower-top point mass, kg")
+    geometry.add_argument("--tip-radius", type=options.positive, metavar="M", help="TipRad, m")
+    geometry.add_argument("--hub-radius", type=options.non_negative, metavar="M", help="HubRad, m")
+    geometry.add_argument("--tower-height", type=options.positive, metavar="M", help="flexible tower length, m")
+    geometry.add_argument("--top-mass", type=options.non_negative, metavar="KG", help="tower-top point mass, kg")
     parser.set_defaults(run=run)
 
 
@@ -85,6 +87,11 @@ def _check(args: argparse.Namespace) -> None:
         raise InputError("--dry-run needs --write FILE.dat", field="--dry-run")
     if args.force and not args.write:
         raise InputError("--force needs --write FILE.dat", field="--force")
+    options.check_limits(args)
+    if args.backup and not args.write:
+        raise InputError("--backup needs --write FILE.dat", field="--backup")
+    if args.write and not args.dry_run:
+        options.check_output(args.write)
 
 
 def _part(args: argparse.Namespace) -> str | None:
@@ -161,7 +168,7 @@ def run(args: argparse.Namespace) -> int:
         elif worse and not args.force:
             raise InputError(f"the fresh fit is worse than the file's coefficients ({'; '.join(worse)}); nothing "
                              "written (--force writes it anyway)", file=args.write, field="--write")
-        _update(args.write, result, args.dry_run)
+        _update(args.write, result, args.dry_run, args.backup)
     return 0
 
 
@@ -261,8 +268,9 @@ def _table(title: str, fits: dict) -> list[str]:
     return lines
 
 
-def _update(path: str, result: Any, dry_run: bool) -> None:
+def _update(path: str, result: Any, dry_run: bool, backup: bool = False) -> None:
     from ..files import write_atomic
+    from ..io._fast_format import text_encoding
     from ..io.elastodyn_blade import blade_with_mode_shapes
     from ..io.elastodyn_tower import tower_with_mode_shapes
 
@@ -273,6 +281,6 @@ def _update(path: str, result: Any, dry_run: bool) -> None:
                                     fromfile=path, tofile=f"{path} (updated)")
         sys.stdout.write("\n" + "".join(diff))
         return
-    write_atomic(Path(path), new)
+    write_atomic(Path(path), new, encoding=text_encoding(path), backup=backup)
     changed = sum(a != b for a, b in zip(old.splitlines(), new.splitlines()))
     print(f"\n# updated {path}: {changed} coefficient lines changed, every other byte kept")

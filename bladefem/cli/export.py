@@ -6,26 +6,23 @@ Every file written is printed on stdout, one path a line; stderr ends with the c
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
 from ..errors import InputError
-from .inputs import add_blade_options, is_blade, positive_int, read_structure
+from . import options
+from .inputs import add_blade_options, is_blade, read_structure
 
 
 def rotor_speeds(text: str) -> tuple[float, ...]:
     """R (one speed, rpm) or START:STOP:COUNT (a sweep) -> rotor speeds, rpm."""
     if ":" in text:
-        from .inputs import rpm_range
-        return rpm_range(text)
+        return options.rpm_sweep(text)
     try:
-        value = float(text)
+        float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a rotor speed in rpm or START:STOP:COUNT, got '{text}'") from None
-    if not math.isfinite(value) or value < 0:
-        raise argparse.ArgumentTypeError(f"expected a non-negative rotor speed in rpm, got '{text}'")
-    return (value,)
+    return (options.rpm(text),)
 
 
 def add_planform_option(parser: argparse.ArgumentParser) -> None:
@@ -57,7 +54,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="rotor speed, rpm (default 0), or a sweep (VTK collection and Campbell diagram); "
                              "blades only")
     export.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
-    export.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="modes (default 6)")
+    export.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="modes (default 6)")
     export.add_argument("--vtk", action="store_true", help="VTU files, a .pvd collection and a JSON sidecar")
     export.add_argument("--png", action="store_true",
                         help="one picture per mode and a strip of all (one speed), or the Campbell diagram (sweep)")
@@ -81,6 +78,8 @@ def run_export(args: argparse.Namespace) -> int:
     vtk = args.vtk or not (args.png or args.gif)
     if (args.png and not sweep) or args.gif:
         require_pyvista("--gif" if args.gif else "--png")
+    options.check_sweep(args.rpm, args.n_modes, args.elements)
+    options.check_folder(args.output)
     model = read_drawn_structure(args)
     out = Path(args.output)
     if is_blade(model):

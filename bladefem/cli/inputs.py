@@ -10,6 +10,7 @@ import argparse
 import math
 
 from ..errors import InputError
+from . import options
 
 #: root conditions of a blade (:data:`bladefem.sections.ROOTS`, repeated so that parsing imports no numpy)
 ROOTS: tuple[str, ...] = ("cantilever", "hinged")
@@ -25,33 +26,33 @@ def add_blade_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--part", choices=PARTS,
                         help="blade or tower of an input that holds both (ElastoDyn main, windIO; default blade)")
     geometry = parser.add_argument_group("blade geometry (ElastoDyn blade files; override case-file values)")
-    geometry.add_argument("--tip-radius", type=float, metavar="M", help="rotor tip radius TipRad, m")
-    geometry.add_argument("--hub-radius", type=float, metavar="M", help="hub radius HubRad, m")
-    geometry.add_argument("--precone-deg", "--precone", dest="precone_deg", type=float, metavar="DEG",
+    geometry.add_argument("--tip-radius", type=options.positive, metavar="M", help="rotor tip radius TipRad, m")
+    geometry.add_argument("--hub-radius", type=options.non_negative, metavar="M", help="hub radius HubRad, m")
+    geometry.add_argument("--precone-deg", "--precone", dest="precone_deg", type=options.finite, metavar="DEG",
                           help="precone angle, degrees")
-    geometry.add_argument("--pitch-deg", "--pitch", dest="pitch_deg", type=float, metavar="DEG",
+    geometry.add_argument("--pitch-deg", "--pitch", dest="pitch_deg", type=options.finite, metavar="DEG",
                           help="blade pitch angle, degrees (positive to feather)")
-    geometry.add_argument("--tip-mass", type=float, metavar="KG",
+    geometry.add_argument("--tip-mass", type=options.non_negative, metavar="KG",
                           help="tip (brake) point mass, kg; for an ElastoDyn tower file, the tower-top point mass")
     geometry.add_argument("--elastodyn-main", metavar="FILE",
                           help="ElastoDyn main file to read TipRad, HubRad, PreCone(1), TipMass(1) (blade) or "
                                "TowerHt and the rotor-nacelle body (tower) from")
     geometry.add_argument("--root", choices=ROOTS, help="root condition (default: from the case, else cantilever)")
     add_tower_options(parser)
-    parser.add_argument("--elements", type=positive_int, metavar="N",
+    parser.add_argument("--elements", type=options.elements, metavar="N",
                         help="target number of elements along the span (default: refined until converged)")
 
 
 def add_tower_options(parser: argparse.ArgumentParser) -> None:
     """Options for towers (YAML ``kind: tower``, ElastoDyn tower files, BModes and windIO towers)."""
     group = parser.add_argument_group("towers")
-    group.add_argument("--tower-height", type=float, metavar="M",
+    group.add_argument("--tower-height", type=options.positive, metavar="M",
                        help="flexible tower length for an ElastoDyn tower file without --elastodyn-main, m")
     group.add_argument("--no-gravity", action="store_true", help="leave out gravity (axial load, pendulum effect)")
     group.add_argument("--point-top-mass", action="store_true",
                        help="with an ElastoDyn main file: the rotor-nacelle mass as a point mass, as ElastoDyn uses "
                             "it (default: a rigid body with offset and inertia)")
-    group.add_argument("--rotor-azimuth-deg", type=float, default=0.0, metavar="DEG",
+    group.add_argument("--rotor-azimuth-deg", type=options.finite, default=0.0, metavar="DEG",
                        help="azimuth of blade 1 for the rigid rotor-nacelle body, degrees (default 0)")
 
 
@@ -62,16 +63,6 @@ def positive_int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got '{text}'") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got '{text}'")
-    return value
-
-
-def finite_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got '{text}'") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, got '{text}'")
     return value
 
 
@@ -124,6 +115,7 @@ def read_structure(args: argparse.Namespace) -> object:
                             precone=None if args.precone_deg is None else math.radians(args.precone_deg),
                             pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
         model = read_model(args.input, part, geometry)
+    options.check_applicable(args, tower=not isinstance(model, Blade))
     if isinstance(model, Blade):
         return model.with_(root=args.root) if args.root is not None else model
     if part == "blade":

@@ -10,7 +10,8 @@ from pathlib import Path
 
 from ..errors import InputError
 from .export import add_planform_option, read_drawn_structure
-from .inputs import add_blade_options, finite_float, is_blade, positive_int, rpm_band, rpm_range
+from . import options
+from .inputs import add_blade_options, is_blade, positive_int, rpm_band
 
 
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
@@ -23,17 +24,17 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     add_blade_options(report)
     add_planform_option(report)
     report.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
-    report.add_argument("--rpm", type=finite_float, default=0.0, metavar="RPM",
+    report.add_argument("--rpm", type=options.rpm, default=0.0, metavar="RPM",
                         help="blades: operating rotor speed, rpm (frequency table, pictures, coefficients; "
                              "default 0)")
-    report.add_argument("--sweep", type=rpm_range, metavar="START:STOP:COUNT",
+    report.add_argument("--sweep", type=options.rpm_sweep, metavar="START:STOP:COUNT",
                         help="Campbell sweep, rpm (default 0 to 1.25 x RPM, or 0 to 15 rpm, 16 speeds)")
     report.add_argument("--operating-rpm", type=rpm_band, metavar="LOW:HIGH",
                         help="towers: the rotor's operating range for the 1P and blade-passing bands, rpm "
                              "(default the sweep)")
     report.add_argument("--blades", type=positive_int, default=3, metavar="N",
                         help="towers: number of blades (default 3)")
-    report.add_argument("--n-modes", type=positive_int, default=6, metavar="N", help="modes (default 6)")
+    report.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="modes (default 6)")
     report.add_argument("--no-pictures", action="store_true", help="leave out the 3-D mode pictures")
     report.add_argument("--quiet", action="store_true", help="no progress bar")
     report.set_defaults(run=run_report)
@@ -59,11 +60,13 @@ def run_report(args: argparse.Namespace) -> int:
 
     if args.rpm < 0:
         raise InputError(f"must not be negative, got {args.rpm}", field="--rpm")
+    speeds = args.sweep if args.sweep is not None else default_sweep(args.rpm)
+    options.check_sweep(speeds, args.n_modes, args.elements, "--sweep")
+    options.check_folder(args.output)
     model = read_drawn_structure(args)
     if not is_blade(model) and args.rpm != 0:
         raise InputError("a tower does not rotate: give the rotor's range with --operating-rpm LOW:HIGH",
                          field="--rpm")
-    speeds = args.sweep if args.sweep is not None else default_sweep(args.rpm)
     if len(speeds) < 2:
         raise InputError("a Campbell sweep needs at least two rotor speeds", field="--sweep")
     written = write_report(model, args.output, args.rpm, speeds, args.n_modes, args.elements,

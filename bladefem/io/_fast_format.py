@@ -16,9 +16,10 @@ import math
 import os
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 
 from ..errors import InputError
+from ..files import read_input
+from ..limits import MAX_MAGNITUDE
 
 #: A value (quoted string or a token without blanks) followed by a key name such as ``TipRad`` or ``PreCone(1)``.
 #: BModes writes ``rot_rpm:`` (a colon after the key) and sometimes ``"file" : key``; both are accepted.
@@ -46,23 +47,24 @@ class FastText:
     path: str
     lines: list[str]
     keys: dict[str, KeyValue] = field(default_factory=dict)
+    #: how the file's bytes decode ("utf-8", or "latin-1" for legacy files); write it back the same way
+    encoding: str = "utf-8"
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> FastText:
         """Read a file as text; a missing or unreadable file is an :class:`InputError`."""
         path = str(path)
-        try:
-            raw = Path(path).read_bytes()
-        except OSError as error:
-            raise InputError(f"cannot read file ({error.strerror or error})", file=path) from None
-        try:
-            text = raw.decode("utf-8")
-        except UnicodeDecodeError:
-            text = raw.decode("latin-1")
+        raw = read_input(path)
+        encoding = text_encoding(raw)
+        text = raw.decode(encoding)
         if "\x00" in text:
             raise InputError("not a text file (contains NUL bytes)", file=path,
-                             line=text[:text.index("\x00")].count("\n") + 1, field="content")
-        return cls.parse(path, text)
+                             line=text[:text.index("\x00")].count("\n") + 1)
+        if not text.strip():
+            raise InputError("file holds only blank lines", file=path, line=1)
+        parsed = cls.parse(path, text)
+        parsed.encoding = encoding
+        return parsed
 
     @classmethod
     def parse(cls, path: str, text: str) -> FastText:
@@ -137,18 +139,22 @@ class FastText:
         raise self.error(f"table header starting with '{first_column}' not found", len(self.lines) or None,
                          first_column)
 
-    def table(self, first_line: int, rows: int, columns: tuple[str, ...]) -> list[list[float]]:
-        """Read ``rows`` rows of numbers starting at 1-based line ``first_line``, one value per column name."""
+    def table(self, first_line: int, rows: int, columns: tuple[str, ...], exact: bool = False) -> list[list[float]]:
+        """Read ``rows`` rows of numbers starting at 1-based line ``first_line``, one value per column name (and,
+        with ``exact``, nothing more on the line)."""
         table = []
         for number in range(first_line, first_line + rows):
             if number > len(self.lines):
                 raise self.error(f"table ends early: expected {rows} rows, found {number - first_line}", number - 1,
                                  columns[0])
-            table.append(self.row(number, columns))
+            table.append(self.row(number, columns, exact))
         return table
 
-    def row(self, number: int, columns: tuple[str, ...]) -> list[float]:
+    def row(self, number: int, columns: tuple[str, ...], exact: bool = False) -> list[float]:
         words = self.lines[number - 1].split()
+        if exact and len(words) > len(columns):
+            raise self.error(f"expected {len(columns)} values ({' '.join(columns)}), found {len(words)}", number,
+                             columns[-1])
         values = []
         for i, name in enumerate(columns):
             if i >= len(words):
@@ -174,14 +180,30 @@ class FastText:
         return "".join(lines)
 
 
+def text_encoding(data: bytes | str | os.PathLike) -> str:
+    """"utf-8" when the bytes (or the file's bytes) decode as UTF-8, else "latin-1" (legacy FAST and BModes files
+    carry Latin-1 degree signs and micro signs in their comments)."""
+    if not isinstance(data, bytes):
+        data = read_input(data)
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return "latin-1"
+    return "utf-8"
+
+
 def to_float(text: str, error, line: int | None, key: str) -> float:
-    """A finite float from Fortran-style text (``1.0D+3`` and ``1.0d3`` accepted)."""
+    """A finite float from Fortran-style text (``1.0D+3`` and ``1.0d3`` accepted), at most
+    :data:`~bladefem.limits.MAX_MAGNITUDE` in size."""
     try:
         value = float(text.replace("D", "E").replace("d", "e"))
     except ValueError:
         raise error(f"expected a number, got '{text}'", line, key) from None
     if not math.isfinite(value):
         raise error(f"value is not a finite number ({text})", line, key)
+    if abs(value) > MAX_MAGNITUDE:
+        raise error(f"{text} is beyond any value a blade, tower or turbine input takes (|value| up to "
+                    f"{MAX_MAGNITUDE:g})", line, key)
     return value
 
 

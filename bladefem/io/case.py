@@ -27,8 +27,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, shown
+from ..limits import MAX_MAGNITUDE
 from ..sections import ROOTS, Blade, SectionTable, tip_mass_at_section
+from .checks import body_problem, check_section_values, length_problem, precone_problem
 from .yamlnodes import Key, load_yaml
 
 #: case-file column -> (SectionTable field, factor to SI)
@@ -94,10 +96,11 @@ class CaseFile:
             raise case.error("expected a mapping of keys at the top level", ())
         for name in data:
             if name not in known_keys:
-                raise case.error(f"unknown key (known: {', '.join(sorted(known_keys))})", (name,), str(name))
+                raise case.error(f"unknown key (known: {', '.join(sorted(known_keys))})", (name,),
+                                 shown(name, quoted=False))
         found = data.get("kind", "blade")
         if found != kind:
-            raise case.error(f"expected 'kind: {kind}', got {found!r}", ("kind",))
+            raise case.error(f"expected 'kind: {kind}', got {shown(found)}", ("kind",))
         return case
 
     def number(self, key: Key, default: float | None = None, field: str | None = None) -> float:
@@ -107,7 +110,10 @@ class CaseFile:
                 raise self.error("missing value", key, field)
             return default
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            raise self.error(f"expected a finite number, got {value!r}", key, field)
+            raise self.error(f"expected a finite number, got {shown(value)}", key, field)
+        if abs(value) > MAX_MAGNITUDE:
+            raise self.error(f"{value:g} is beyond any real blade or tower (|value| up to {MAX_MAGNITUDE:g})", key,
+                             field)
         return float(value)
 
     def table(self, key: Key, columns_map: dict[str, str], required: Sequence[str]) -> dict[str, np.ndarray]:
@@ -118,14 +124,15 @@ class CaseFile:
             raise self.error("expected a mapping with 'columns' and 'rows'", key)
         for name in data:
             if name not in ("columns", "rows"):
-                raise self.error("unknown key (known: columns, rows)", key + (name,), str(name))
+                raise self.error("unknown key (known: columns, rows)", key + (name,),
+                                 shown(name, quoted=False))
         columns, rows = data.get("columns"), data.get("rows")
         if not isinstance(columns, list) or not columns:
             raise self.error("expected a list of column names", key + ("columns",))
         for i, name in enumerate(columns):
-            if name not in columns_map:
-                raise self.error(f"unknown column '{name}' (known: {', '.join(columns_map)})", key + ("columns", i),
-                                 str(name))
+            if not isinstance(name, str) or name not in columns_map:
+                raise self.error(f"unknown column {shown(name)} (known: {', '.join(columns_map)})",
+                                 key + ("columns", i), shown(name, quoted=False))
         targets = [columns_map[name] for name in columns]
         if len(set(targets)) != len(targets):
             raise self.error("a quantity is given twice", key + ("columns",))
@@ -142,50 +149,83 @@ class CaseFile:
                                  key + ("rows", i), "rows")
             for j, value in enumerate(row):
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                    hint = " (YAML reads 1e11 as text: write 1.0e+11)" if _looks_numeric(value) else ""
-                    raise self.error(f"expected a finite number, got {value!r}{hint}", key + ("rows", i, j),
+                    raise self.error(f"expected a finite number, got {shown(value)}", key + ("rows", i, j),
                                      columns[j])
+                if abs(value) > MAX_MAGNITUDE:
+                    raise self.error(f"{value:g} is beyond any real blade or tower (|value| up to "
+                                     f"{MAX_MAGNITUDE:g})", key + ("rows", i, j), columns[j])
                 values[i, j] = value
         return {target: values[:, j] for j, target in enumerate(targets)} | {"_columns": np.array(columns)}
 
 
-def _looks_numeric(value: object) -> bool:
-    """A string that would have been a number (PyYAML reads 1e11 without a dot or sign as text)."""
-    try:
-        float(str(value))
-    except ValueError:
-        return False
-    return isinstance(value, str)
-
-
-def _section_table(case: CaseFile, hub_radius: float) -> SectionTable:
+def _section_table(case: CaseFile, hub_radius: float, tip_radius: float | None, option: str | None) -> SectionTable:
+    """The section table; span fractions scaled by ``tip_radius - hub_radius`` (the file's tip_radius_m when
+    ``tip_radius`` is None). ``option``: the command-line option that changed the geometry, if any (errors name
+    it instead of a line of the file)."""
     key: Key = ("sections",)
     given = case.table(key, {name: field for name, (field, _) in COLUMNS.items()}, REQUIRED_COLUMNS)
     columns = [str(name) for name in given.pop("_columns")]
     if "span" not in given:
         raise case.error("give one of span_m or span_fraction", key + ("columns",))
     table = {COLUMNS[name][0]: given[COLUMNS[name][0]] * COLUMNS[name][1] for name in columns}
-    if "span_fraction" in columns:
-        tip = case.number(("tip_radius_m",), field="tip_radius_m")
-        if tip <= hub_radius:
-            raise case.error("tip_radius_m must exceed hub_radius_m", ("tip_radius_m",))
-        table["span"] = table["span"] * (tip - hub_radius)
+    name = "span_fraction" if "span_fraction" in columns else "span_m"
+    span, last = table["span"], key + ("rows", len(table["span"]) - 1, columns.index(name))
+    if name == "span_fraction":
+        if span[-1] != 1.0:
+            raise case.error(f"the last span_fraction must be 1 (the tip), got {span[-1]}", last, name)
+        tip = case.number(("tip_radius_m",), field="tip_radius_m") if tip_radius is None else tip_radius
+        where = ("tip_radius_m",)
+    else:
+        if tip_radius is not None:
+            raise InputError("the case's table gives span_m, which fixes the blade length: --tip-radius applies to "
+                             "span_fraction tables (--hub-radius moves the root)", file=str(case.path),
+                             field="--tip-radius")
+        tip, where = hub_radius + float(span[-1]), last
+        if case.get(("tip_radius_m",)) is not None and option is None:
+            given = case.number(("tip_radius_m",))
+            if abs(given - tip) > 1e-9 * max(tip, 1.0):
+                raise case.error(f"tip_radius_m {given:g} contradicts hub_radius_m + the last span_m = {tip:.12g}: "
+                                 "give one or make them agree", ("tip_radius_m",))
+    problem = length_problem(hub_radius, tip)
+    if name == "span_fraction":
+        _raise(case, problem, where, option)
+        table["span"] = span * (tip - hub_radius)
     lines = tuple(case.lines.get(key + ("rows", i), 0) for i in range(len(table["span"])))
-    return SectionTable(**table, source=str(case.path), lines=lines)
+    sections = SectionTable(**table, source=str(case.path), lines=lines)
+    _raise(case, problem, where, option)
+    return sections
 
 
-def read_case(path: str | Path) -> Blade:
-    """Read a bladefem YAML case file into a :class:`~bladefem.sections.Blade`."""
+def _raise(case: CaseFile, problem: str | None, key: Key, option: str | None) -> None:
+    """Raise ``problem`` (if any) at ``key``, or naming the command-line ``option`` that caused it."""
+    if problem and option:
+        raise InputError(problem, file=str(case.path), field=option)
+    if problem:
+        raise case.error(problem, key)
+
+
+def read_case(path: str | Path, tip_radius: float | None = None, hub_radius: float | None = None) -> Blade:
+    """Read a bladefem YAML case file into a :class:`~bladefem.sections.Blade`. ``tip_radius`` and ``hub_radius``
+    (m) replace the file's values (a span_m table fixes the length: the tip radius cannot then be changed)."""
     case = CaseFile.open(path, "blade", TOP_KEYS)
     path, data = case.path, case.data
-    hub_radius = case.number(("hub_radius_m",), 0.0)
-    if hub_radius < 0:
+    file_hub = case.number(("hub_radius_m",), 0.0)
+    if file_hub < 0:
         raise case.error("must not be negative", ("hub_radius_m",))
+    if hub_radius is not None and not (math.isfinite(hub_radius) and hub_radius >= 0):
+        raise InputError(f"must be a non-negative number, got {hub_radius}", file=str(path), field="--hub-radius")
+    hub_override = hub_radius is not None
+    hub_radius = file_hub if hub_radius is None else hub_radius
+    precone = math.radians(case.number(("precone_deg",), 0.0))
+    problem = precone_problem(precone)
+    if problem:
+        raise case.error(problem, ("precone_deg",))
     pitch = math.radians(case.number(("pitch_deg",), 0.0))
     root = data.get("root", "cantilever")
     if root not in ROOTS:
         raise case.error(f"unknown root condition '{root}' (choose from {', '.join(ROOTS)})", ("root",))
-    sections = _section_table(case, hub_radius)
+    option = "--tip-radius" if tip_radius is not None else "--hub-radius" if hub_override else None
+    sections = _section_table(case, hub_radius, tip_radius, option)
     tip_mass = None
     if data.get("tip_mass") is not None:
         tip = data["tip_mass"]
@@ -193,7 +233,8 @@ def read_case(path: str | Path) -> Blade:
             raise case.error("expected a mapping", ("tip_mass",))
         for key in tip:
             if key not in TIP_KEYS:
-                raise case.error(f"unknown key (known: {', '.join(TIP_KEYS)})", ("tip_mass", key), str(key))
+                raise case.error(f"unknown key (known: {', '.join(TIP_KEYS)})", ("tip_mass", key),
+                                 shown(key, quoted=False))
         values = {TIP_KEYS[k]: case.number(("tip_mass", k), 0.0) for k in TIP_KEYS}
         for name, value in values.items():
             if value < 0 and "offset" not in name:
@@ -201,11 +242,15 @@ def read_case(path: str | Path) -> Blade:
                                                                               if v == name)))
         theta = float(sections.twist[-1]) + pitch
         tip_mass = tip_mass_at_section(theta=theta, **values)
+        problem = body_problem(tip_mass.mass, tip_mass.offset, tip_mass.inertia, sections.length)
+        if problem:
+            raise case.error(problem, ("tip_mass",))
     notes = [str(note) for note in data.get("notes", []) or []]
     if sections.torsion_stiffness is None:
         notes.append("no torsion_stiffness column: torsion is rigid (the twist DOF is removed)")
     if sections.axial_stiffness is None:
         notes.append("no axial_stiffness column: the blade is inextensible (the axial DOF is removed)")
-    return Blade(sections=sections, hub_radius=hub_radius, precone=math.radians(case.number(("precone_deg",), 0.0)),
-                 pitch=pitch, tip_mass=tip_mass, root=root, name=str(data.get("name", path.stem)),
+    check_section_values(sections)
+    return Blade(sections=sections, hub_radius=hub_radius, precone=precone, pitch=pitch, tip_mass=tip_mass,
+                 root=root, name=str(data.get("name", path.stem)),
                  notes=tuple(notes))

@@ -8,11 +8,15 @@ blade and tower files (found by their keys ``NumBl``/``TipRad``, ``NBlInpSt``, `
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
+import numpy as np
+
 from ..errors import InputError
+from ..files import read_input
 from ..sections import Blade, TipMass
+from .checks import body_problem, check_section_values, length_problem, precone_problem
 from .tower import Tower
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -39,13 +43,11 @@ class Geometry:
 def detect_format(path: str | Path) -> str:
     """One of :data:`FORMATS`; :class:`InputError` when the file is missing or not recognised."""
     path = Path(path)
-    if not path.is_file():
-        raise InputError("file not found", file=str(path))
-    try:
-        with path.open(encoding="utf-8", errors="replace") as stream:
-            head = [line for _, line in zip(range(SNIFF_LINES), stream)]
-    except OSError as error:
-        raise InputError(f"cannot read file ({error.strerror or error})", file=str(path)) from None
+    data = read_input(path)
+    if b"\x00" in data[:65536]:
+        raise InputError("not a text file (contains NUL bytes)", file=str(path),
+                         line=data[:data.index(b"\x00")].count(b"\n") + 1)
+    head = data.decode("utf-8", errors="replace").splitlines()[:SNIFF_LINES]
     words = {word.rstrip(":") for line in head for word in line.split()[:4]}
     if path.suffix.lower() in YAML_SUFFIXES:
         if any(line.startswith("requirements:") for line in head):
@@ -65,8 +67,9 @@ def detect_format(path: str | Path) -> str:
         return "elastodyn-main"
     if any(line.startswith("components:") for line in head):
         return "windio"
-    raise InputError("unrecognised input format (expected a bladefem case or windIO .yaml, a BModes .bmi, or an "
-                     "ElastoDyn main, blade or tower file)", file=str(path), line=1)
+    raise InputError(f"unrecognised input format: not .yaml/.yml/.bmi, and none of its first {len(head)} lines "
+                     "names the keys of an ElastoDyn main (NumBl, TipRad), blade (NBlInpSt) or tower (NTwInpSt) "
+                     "file or a BModes deck (beam_type, sec_props_file)", file=str(path), line=1)
 
 
 def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None,
@@ -87,9 +90,12 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
     if part not in (None, "blade", "tower"):
         raise InputError(f"part must be 'blade' or 'tower', got '{part}'", field="part")
     if kind == "elastodyn-tower" or (part == "tower" and kind == "elastodyn-main"):
+        _refuse(geometry, BLADE_OPTIONS + (("tower_height", "top_mass") if kind == "elastodyn-main" else ()),
+                "a tower given by an ElastoDyn main file" if kind == "elastodyn-main" else "a tower", path)
         return _elastodyn_tower(Path(path), kind, geometry)
     if kind in ("elastodyn-blade", "elastodyn-main"):
-        return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry)
+        _refuse(geometry, TOWER_OPTIONS, "a blade", path)
+        return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry, path)
     if kind == "bmodes":
         from .bmodes import read_bmodes
         from .bmodes_model import (
@@ -99,25 +105,100 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         )
         deck = read_bmodes(path)
         if deck.beam_type == 2:
-            return tower_model_from_bmodes(deck) if deck.wires is not None else tower_from_bmodes(deck)
-        return _overrides(blade_from_bmodes(deck), geometry)
+            _refuse(geometry, BLADE_OPTIONS + TOWER_OPTIONS + ("elastodyn_main",), "a BModes tower deck", path)
+            tower = tower_model_from_bmodes(deck) if deck.wires is not None else tower_from_bmodes(deck)
+            check_section_values(tower.sections)
+            return tower
+        _refuse(geometry, TOWER_OPTIONS + ("elastodyn_main",), "a blade", path)
+        if geometry.precone is None and precone_problem(deck.precone):
+            raise InputError(str(precone_problem(deck.precone)), file=str(path), line=deck.key_lines.get("precone"),
+                             field="precone")
+        radius = deck.radius if geometry.tip_radius is None else geometry.tip_radius
+        hub = deck.hub_rad if geometry.hub_radius is None else geometry.hub_radius
+        _check_length(hub, radius, path, geometry)
+        blade = blade_from_bmodes(replace(deck, radius=radius, hub_rad=hub))
+        check_section_values(blade.sections)
+        body = blade.tip_mass
+        problem = body_problem(body.mass, body.offset, body.inertia, blade.length) if body is not None else None
+        if problem and geometry.tip_mass is None:
+            raise InputError(f"tip mass: {problem}", file=str(path), line=deck.key_lines.get("tip_mass"),
+                             field="tip_mass")
+        return _overrides(blade, geometry, path)
     if kind == "windio":
         from .windio import read_windio
         from .windio_model import blade_from_windio, tower_from_windio
         turbine = read_windio(path)
         if part == "tower" or turbine.blade is None:
+            _refuse(geometry, BLADE_OPTIONS + ("tower_height", "elastodyn_main"), "a windIO tower", path)
             return tower_from_windio(turbine, geometry.top_mass)
-        return _overrides(blade_from_windio(turbine), geometry)
+        _refuse(geometry, TOWER_OPTIONS + ("elastodyn_main",), "a blade", path)
+        _refuse(geometry, ("tip_radius",), "a windIO blade (its reference axis fixes the length; --hub-radius "
+                "moves the root)", path)
+        if geometry.hub_radius is not None:
+            _check_length(geometry.hub_radius, geometry.hub_radius + turbine.blade.length, path, geometry)
+            turbine = replace(turbine, hub_radius=geometry.hub_radius)
+        return _overrides(blade_from_windio(turbine), geometry, path)
     from .tower_case import is_tower_case, read_tower_case
     if is_tower_case(path):
+        _refuse(geometry, BLADE_OPTIONS + ("tower_height", "elastodyn_main"), "a bladefem tower case", path)
+        if geometry.top_mass is not None:
+            _refuse(geometry, ("top_mass",), "a bladefem tower case (its top_mass key gives it)", path)
         return read_tower_case(path)
     from .case import read_case
-    return _overrides(read_case(path), geometry)
+    _refuse(geometry, TOWER_OPTIONS + ("elastodyn_main",), "a bladefem blade case", path)
+    return _overrides(read_case(path, geometry.tip_radius, geometry.hub_radius), geometry, path)
 
 
-def _overrides(blade: Blade, geometry: Geometry) -> Blade:
-    changes = {name: getattr(geometry, name) for name in ("precone", "pitch") if getattr(geometry, name) is not None}
-    return blade.with_(**changes) if changes else blade
+#: Geometry fields that only blades take, and only towers
+BLADE_OPTIONS = ("tip_radius", "hub_radius", "precone", "pitch", "tip_mass")
+TOWER_OPTIONS = ("tower_height", "top_mass")
+#: Geometry field -> command-line option
+OPTION_NAMES = {"tip_radius": "--tip-radius", "hub_radius": "--hub-radius", "precone": "--precone-deg",
+                "pitch": "--pitch-deg", "tip_mass": "--tip-mass", "elastodyn_main": "--elastodyn-main",
+                "tower_height": "--tower-height", "top_mass": "--top-mass"}
+
+
+def _refuse(geometry: Geometry, names: tuple[str, ...], what: str, path: str | Path) -> None:
+    """An InputError for the first of ``names`` that is set: it does not apply to this input."""
+    for name in names:
+        if getattr(geometry, name) is not None:
+            raise InputError(f"{OPTION_NAMES[name]} ({name}) does not apply to {what}", file=str(path),
+                             field=OPTION_NAMES[name])
+
+
+def _check_length(hub_radius: float, tip_radius: float, path: str | Path, geometry: Geometry) -> None:
+    problem = length_problem(hub_radius, tip_radius)
+    if problem:
+        option = "--tip-radius" if geometry.tip_radius is not None else "--hub-radius"
+        raise InputError(problem, file=str(path), field=option if (geometry.tip_radius, geometry.hub_radius) != (
+            None, None) else "radius")
+
+
+def _overrides(blade: Blade, geometry: Geometry, path: str | Path) -> Blade:
+    """Precone, pitch and tip mass from ``geometry`` (the tip mass replaces the mass of the file's tip body, its
+    offsets and inertias kept); the precone checked whatever its source."""
+    changes: dict[str, object] = {name: getattr(geometry, name) for name in ("precone", "pitch")
+                                  if getattr(geometry, name) is not None}
+    for name in ("pitch", "tip_mass"):
+        value = getattr(geometry, name)
+        if value is not None and not (math.isfinite(value) and (name == "pitch" or value >= 0)):
+            raise InputError(f"must be a {'finite' if name == 'pitch' else 'non-negative'} number, got {value}",
+                             file=str(path), field=OPTION_NAMES[name])
+    if geometry.tip_mass is not None:
+        body = blade.tip_mass
+        keep = body is not None and (np.any(body.offset) or np.any(body.inertia))
+        changes["tip_mass"] = (replace(body, mass=geometry.tip_mass) if keep
+                               else TipMass(geometry.tip_mass) if geometry.tip_mass > 0 else None)
+    problem = precone_problem(changes.get("precone", blade.precone))  # type: ignore[arg-type]
+    if problem:
+        raise InputError(problem, file=str(path), field="--precone-deg" if "precone" in changes else "precone")
+    blade = blade.with_(**changes) if changes else blade
+    body = blade.tip_mass
+    problem = body_problem(body.mass, body.offset, body.inertia, blade.length) if body is not None else None
+    if problem:
+        raise InputError(f"tip mass: {problem}", file=str(path),
+                         field="--tip-mass" if geometry.tip_mass else "tip_mass")
+    return blade
 
 
 def _elastodyn_blade(path: Path, kind: str, g: Geometry) -> Blade:
@@ -134,8 +215,18 @@ def _elastodyn_blade(path: Path, kind: str, g: Geometry) -> Blade:
     tip_mass = g.tip_mass if g.tip_mass is not None else (main.tip_mass[0] if main else 0.0)
     if not (math.isfinite(tip_mass) and tip_mass >= 0):
         raise InputError(f"must be a non-negative number, got {tip_mass}", field="tip_mass")
+    precone = main.precone[0] if main else 0.0
+    if main is not None and precone_problem(precone):
+        raise InputError(str(precone_problem(precone)), file=main.path, line=main.key_lines.get("PreCone(1)"),
+                         field="PreCone(1)")
+    problem = length_problem(hub_radius, tip_radius)
+    if problem:
+        given = g.tip_radius is not None or g.hub_radius is not None
+        raise InputError(problem, file=str(path) if given or main is None else main.path,
+                         line=None if given or main is None else main.key_lines.get("TipRad"),
+                         field=("--tip-radius" if g.tip_radius is not None else "--hub-radius") if given else "TipRad")
     return blade_from_elastodyn(read_elastodyn_blade(blade_path), tip_radius=tip_radius, hub_radius=hub_radius,
-                                precone=main.precone[0] if main else 0.0, tip_mass=tip_mass)
+                                precone=precone, tip_mass=tip_mass)
 
 
 def _elastodyn_tower(path: Path, kind: str, g: Geometry) -> Tower:

@@ -25,6 +25,7 @@ from ..files import write_atomic
 from ..sections import Blade, SectionTable, TipMass
 from ._fast_format import FastText, degrees_exact, format_number
 from ._modeshape_blocks import block_lines, block_values, read_block
+from .checks import check_section_values
 from .elastodyn_main import read_elastodyn_main
 
 #: Mode name -> ElastoDyn block prefix.
@@ -80,7 +81,7 @@ def read_elastodyn_blade(path: str | Path) -> ElastoDynBladeFile:
     text = FastText.read(path)
     stations = text.int("NBlInpSt", minimum=2)
     columns, first_row = _table_layout(text)
-    rows = text.table(first_row, stations, columns)
+    rows = text.table(first_row, stations, columns, exact=True)
     table = {name: np.array([row[i] for row in rows]) for i, name in enumerate(columns)}
     station_lines = tuple(range(first_row, first_row + stations))
     _check_stations(text, table, station_lines)
@@ -165,6 +166,7 @@ def blade_from_elastodyn(blade_file: ElastoDynBladeFile, *, tip_radius: float, h
         source=f.path,
         lines=f.station_lines or None,
     )
+    check_section_values(sections)
     notes = (
         f"ElastoDyn blade file {Path(f.path).name if f.path else ''}: AdjBlMs = {f.adj_mass:g} applied to the mass, "
         f"AdjFlSt = {f.adj_flap_stiffness:g} and AdjEdSt = {f.adj_edge_stiffness:g} to the flap and edge stiffness",

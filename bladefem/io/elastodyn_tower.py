@@ -19,6 +19,7 @@ from ..files import write_atomic
 from ..sections import SectionTable, TipMass
 from ._fast_format import FastText, format_number
 from ._modeshape_blocks import block_lines, block_values, read_block
+from .checks import check_section_values
 from .elastodyn_blade import _check_stations, blade_from_elastodyn, read_elastodyn_blade
 from .elastodyn_main import read_elastodyn_main
 from .tower import Tower
@@ -75,7 +76,7 @@ def read_elastodyn_tower(path: str | Path) -> ElastoDynTowerFile:
     first_row = header + 1
     if first_row <= len(text.lines) and text.lines[first_row - 1].lstrip().startswith("("):
         first_row += 1
-    rows = text.table(first_row, stations, columns)
+    rows = text.table(first_row, stations, columns, exact=True)
     table = {name: np.array([row[i] for row in rows]) for i, name in enumerate(columns)}
     station_lines = tuple(range(first_row, first_row + stations))
     _check_stations(text, table, station_lines, "HtFract", ("TMassDen", "TwFAStif", "TwSSStif"))
@@ -127,6 +128,7 @@ def tower_from_elastodyn(tower_file: ElastoDynTowerFile, *, height: float, base_
         source=f.path,
         lines=f.station_lines or None,
     )
+    check_section_values(sections)
     if isinstance(top_mass, (int, float)):
         top_mass = TipMass(float(top_mass)) if top_mass > 0 else None
     notes = (f"ElastoDyn tower file {Path(f.path).name if f.path else ''}: AdjTwMa = {f.adj_mass:g}, "

@@ -34,7 +34,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, shown
+from ..limits import MAX_MAGNITUDE
 from ..sections import SectionTable
 from ..sections.tower import (
     STANDARD_GRAVITY,
@@ -47,6 +48,7 @@ from ..sections.tower import (
     Wires,
 )
 from .case import CaseFile
+from .checks import body_problem, check_section_values
 from .yamlnodes import Key, load_yaml
 
 #: case-file column -> SectionTable field
@@ -70,6 +72,8 @@ WIRE_KEYS = {"count": "count", "stiffness_N_per_m": "stiffness", "angle_deg": "a
              "azimuth_deg": "azimuth"}
 PLATFORM_KEYS = {"mass_kg", "cm_m", "inertia_kg_m2", "added_mass_SI", "hydrostatic_SI", "mooring_SI",
                  "base_height_m"}
+#: Largest gravity accepted, m/s^2 (about 100 g: beyond it is a typing slip, not a study)
+MAX_GRAVITY = 1000.0
 SOIL_COLUMNS = {"height_m": "height", "lateral_N_per_m2": "lateral", "axial_N_per_m2": "axial",
                 "torsional_N_m_per_m": "torsional"}
 
@@ -80,7 +84,8 @@ def _keys(case: CaseFile, key: Key, known: set[str] | dict[str, str]) -> dict:
         raise case.error("expected a mapping", key)
     for name in value:
         if name not in known:
-            raise case.error(f"unknown key (known: {', '.join(sorted(known))})", key + (name,), str(name))
+            raise case.error(f"unknown key (known: {', '.join(sorted(known))})", key + (name,),
+                             shown(name, quoted=False))
     return value
 
 
@@ -96,6 +101,9 @@ def _array(case: CaseFile, key: Key, shapes: tuple[tuple[int, ...], ...]) -> np.
     if array.shape not in shapes or not np.all(np.isfinite(array)):
         raise case.error(f"expected finite numbers of shape {' or '.join(map(str, shapes))}, got shape "
                          f"{array.shape}", key)
+    if np.any(np.abs(array) > MAX_MAGNITUDE):
+        raise case.error(f"{np.max(np.abs(array)):g} is beyond any real tower (|value| up to {MAX_MAGNITUDE:g})",
+                         key)
     return array
 
 
@@ -105,16 +113,27 @@ def _sections(case: CaseFile) -> SectionTable:
     columns = list(table.pop("_columns"))
     if ("height_m" in columns) == ("height_fraction" in columns):
         raise case.error("give exactly one of height_m or height_fraction", key + ("columns",))
-    if "height_fraction" in columns:
+    height = None
+    if "height_fraction" in columns or case.get(("height_m",)) is not None:
         height = case.number(("height_m",), field="height_m")
         if height <= 0:
-            raise case.error("must be positive", ("height_m",))
+            raise case.error(f"must be positive, got {height:g}", ("height_m",))
+    if "height_fraction" in columns:
+        last = key + ("rows", len(table["span"]) - 1, columns.index("height_fraction"))
+        if table["span"][-1] != 1.0:
+            raise case.error(f"the last height_fraction must be 1 (the top), got {table['span'][-1]}", last,
+                             "height_fraction")
         table["span"] = table["span"] * height
     lines = tuple(case.lines.get(key + ("rows", i), 0) for i in range(len(table["span"])))
-    return SectionTable(**table, source=str(case.path), lines=lines)
+    sections = SectionTable(**table, source=str(case.path), lines=lines)
+    check_section_values(sections)
+    if height is not None and abs(sections.length - height) > 1e-9 * height:
+        raise case.error(f"height_m {height:g} contradicts the table's last height_m {sections.length:.12g}: give one "
+                         "or make them agree", ("height_m",))
+    return sections
 
 
-def _top_mass(case: CaseFile) -> TopMass | None:
+def _top_mass(case: CaseFile, sections: SectionTable) -> TopMass | None:
     key: Key = ("top_mass",)
     if case.get(key) is None:
         return None
@@ -125,7 +144,11 @@ def _top_mass(case: CaseFile) -> TopMass | None:
     offset = _array(case, key + ("cm_offset_m",), ((3,),)) if "cm_offset_m" in data else np.zeros(3)
     inertia = (_array(case, key + ("inertia_kg_m2",), ((3,), (3, 3))) if "inertia_kg_m2" in data
                else np.zeros(3))
-    return _located(case, key + ("inertia_kg_m2",), lambda: TopMass(mass, offset, inertia))
+    top = _located(case, key + ("inertia_kg_m2",), lambda: TopMass(mass, offset, inertia))
+    problem = body_problem(top.mass, top.offset, top.inertia, sections.length)
+    if problem:
+        raise case.error(problem, key + ("cm_offset_m",))
+    return top
 
 
 def _located(case: CaseFile, key: Key, build: Any) -> Any:
@@ -184,7 +207,7 @@ def is_tower_case(path: str | Path) -> bool:
     """True if ``path`` is a YAML file whose top level says ``kind: tower`` (false for unreadable files)."""
     try:
         data, _ = load_yaml(path)
-    except Exception:        # any reading problem is reported by the reader that is chosen instead
+    except InputError:       # any reading problem is reported by the reader that is chosen instead
         return False
     return isinstance(data, dict) and data.get("kind") == "tower"
 
@@ -194,15 +217,16 @@ def read_tower_case(path: str | Path) -> Tower:
     case = CaseFile.open(path, "tower", TOP_KEYS)
     data = case.data
     gravity = case.number(("gravity_m_s2",), STANDARD_GRAVITY)
-    if gravity < 0:
-        raise case.error("must not be negative (0 switches gravity off)", ("gravity_m_s2",))
+    if not 0 <= gravity <= MAX_GRAVITY:
+        raise case.error(f"must lie between 0 (gravity off) and {MAX_GRAVITY:g} m/s^2, got {gravity:g}",
+                         ("gravity_m_s2",))
     sections = _sections(case)
     notes = [str(note) for note in data.get("notes", []) or []]
     if sections.torsion_stiffness is None:
         notes.append("no torsion_stiffness column: torsion is rigid (the tower twists only with its base)")
     if sections.axial_stiffness is None:
         notes.append("no axial_stiffness column: the tower is inextensible (it moves axially only with its base)")
-    top, supports = _top_mass(case), _supports(case)
+    top, supports = _top_mass(case, sections), _supports(case)
     return _located(case, ("supports",), lambda: Tower(
         sections=sections, base_height=case.number(("base_height_m",), 0.0), top_mass=top, supports=supports,
-        gravity=gravity, name=str(data.get("name", Path(path).stem)), notes=tuple(notes)))
+        gravity=gravity, name=str(data.get("name", case.path.stem)), notes=tuple(notes)))

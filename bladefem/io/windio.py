@@ -28,11 +28,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError
+from ..errors import InputError, shown
+from ..limits import MAX_MAGNITUDE
+from .checks import MAX_JUMP, MAX_REACH, MAX_TWIST, precone_problem
 from .yamlnodes import Key, load_yaml
 
 STIFFNESS_KEYS = tuple(f"K{i}{j}" for i in range(1, 7) for j in range(i, 7))
 INERTIA_KEYS = ("mass", "cm_x", "cm_y", "i_edge", "i_flap", "i_plr", "i_cp")
+#: Section properties checked for absurd magnitudes and for jumps between neighbouring grid points
+PROPERTIES = tuple(f"K{i}{i}" for i in range(1, 7)) + ("mass", "i_edge", "i_flap", "i_plr", "i_cp")
 
 
 @dataclass(frozen=True)
@@ -118,16 +122,8 @@ def arc_length(axis: dict[str, Distribution]) -> float:
 
 
 def _as_number(value: Any) -> float | None:
-    """A finite float from a YAML scalar; YAML 1.1 reads ``1.0e9`` (no exponent sign) as a string, so numeric
-    strings are accepted too. None when not a finite number."""
-    if isinstance(value, bool):
-        return None
-    if isinstance(value, str):
-        try:
-            value = float(value)
-        except ValueError:
-            return None
-    if not isinstance(value, (int, float)) or not math.isfinite(value):
+    """A finite float from a YAML scalar (numbers resolve by YAML 1.2, so ``1.0e9`` is one); None otherwise."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         return None
     return float(value)
 
@@ -166,7 +162,9 @@ class _Reader:
         raw = self.get(key, default)
         value = _as_number(raw)
         if value is None:
-            raise self.error(f"expected a finite number, got {raw!r}", key)
+            raise self.error(f"expected a finite number, got {shown(raw)}", key)
+        if abs(value) > MAX_MAGNITUDE:
+            raise self.error(f"{value:g} is beyond any real blade or tower (|value| up to {MAX_MAGNITUDE:g})", key)
         if minimum is not None and value < minimum:
             raise self.error(f"must be at least {minimum}, got {value}", key)
         return value
@@ -179,11 +177,20 @@ class _Reader:
         numbers = [_as_number(item) for item in value]
         for i, item in enumerate(numbers):
             if item is None:
-                raise self.error(f"expected a finite number, got {value[i]!r}", key + (i,))
+                raise self.error(f"expected a finite number, got {shown(value[i])}", key + (i,))
             if positive and item <= 0:
                 raise self.error(f"must be positive, got {item}", key + (i,))
             if minimum is not None and item < minimum:
                 raise self.error(f"must be at least {minimum}, got {item}", key + (i,))
+            if abs(item) > MAX_MAGNITUDE or (key[-1] in PROPERTIES and 0 < abs(item) < 1 / MAX_MAGNITUDE):
+                raise self.error(f"{item:g} is beyond any real blade or tower (SI magnitudes from "
+                                 f"{1 / MAX_MAGNITUDE:g} to {MAX_MAGNITUDE:g})", key + (i,))
+        if key[-1] in PROPERTIES and all(item > 0 for item in numbers):  # type: ignore[operator]
+            for i in range(1, len(numbers)):
+                ratio = numbers[i] / numbers[i - 1]  # type: ignore[operator]
+                if not 1 / MAX_JUMP <= ratio <= MAX_JUMP:
+                    raise self.error(f"jumps from {numbers[i - 1]:g} to {numbers[i]:g} between neighbouring grid "
+                                     f"points (more than {MAX_JUMP:g} times: a unit slip?)", key + (i,))
         if length is not None and len(value) != length:
             raise self.error(f"expected {length} values (one per grid point), got {len(value)}", key)
         return np.array(numbers, dtype=float)
@@ -232,11 +239,21 @@ def read_windio(path: str | Path) -> WindIOTurbine:
         number_of_blades=int(blades),
         upwind=orientation == "upwind",
         hub_radius=r.number(("components", "hub", "diameter"), 0.0, minimum=0) / 2,
-        cone_angle=math.radians(r.number(("components", "hub", "cone_angle"), 0.0)),
+        cone_angle=_cone_angle(r),
         hub_mass=r.number(("components", "hub", "elastic_properties", "mass"), 0.0, minimum=0),
         drivetrain_mass=r.number(("components", "drivetrain", "elastic_properties", "mass"), 0.0, minimum=0),
         yaw_mass=r.number(("components", "yaw", "elastic_properties", "mass"), 0.0, minimum=0),
         blade=blade, tower=tower, path=str(path), lines=lines)
+
+
+def _cone_angle(r: _Reader) -> float:
+    """The hub's cone angle, rad, within ElastoDyn's precone range."""
+    key = ("components", "hub", "cone_angle")
+    angle = math.radians(r.number(key, 0.0))
+    problem = precone_problem(angle)
+    if problem:
+        raise r.error(problem.replace("precone", "cone_angle"), key)
+    return angle
 
 
 def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
@@ -259,13 +276,27 @@ def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
         raise r.error("missing key", elastic + ("inertia_matrix", "mass"))
     r.array(elastic + ("inertia_matrix", "mass"), positive=True)
     beam_twist = r.distribution(key + ("outer_shape", "twist"), math.pi / 180) if twist else None
+    if beam_twist is not None and np.any(np.abs(beam_twist.values) > MAX_TWIST):
+        i = int(np.flatnonzero(np.abs(beam_twist.values) > MAX_TWIST)[0])
+        raise r.error("twist beyond a half turn (degrees expected)", key + ("outer_shape", "twist", "values", i))
     shape = r.get(key + ("outer_shape",), None)
     chord = (r.distribution(key + ("outer_shape", "chord"))
              if twist and isinstance(shape, dict) and "chord" in shape else None)
     beam = WindIOBeam(axis, stiffness_grid, stiffness, inertia_grid, inertia, beam_twist, chord)
     if not beam.length > 0:
         raise r.error("reference axis has zero length", key + ("reference_axis",))
+    _check_reach(r, elastic + ("inertia_matrix",), inertia, MAX_REACH * beam.length)
     return beam
+
+
+def _check_reach(r: _Reader, key: Key, inertia: dict[str, NDArray], reach: float) -> None:
+    """Centre-of-mass offsets and radii of gyration within :data:`~bladefem.io.checks.MAX_REACH` beam lengths."""
+    for name, values in inertia.items():
+        gyration = name.startswith("i_")
+        far = values > inertia["mass"] * reach**2 if gyration else np.abs(values) > reach
+        if name != "mass" and np.any(far):
+            raise r.error(f"{'radius of gyration' if gyration else 'offset'} beyond {MAX_REACH:g} beam lengths "
+                          f"({reach / MAX_REACH:g} m)", key + (name, int(np.flatnonzero(far)[0])))
 
 
 def _validate_with_windio(r: _Reader) -> None:

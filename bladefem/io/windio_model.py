@@ -23,6 +23,7 @@ from ..errors import InputError
 from ..files import write_atomic
 from ..sections import Blade, SectionTable, TipMass
 from ._fast_format import degrees_exact
+from .checks import check_section_values
 from .tower import Tower
 from .windio import WindIOBeam, WindIOTurbine
 
@@ -98,6 +99,7 @@ def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
         chord=None if beam.chord is None else np.interp(x, beam.chord.grid, beam.chord.values),
         source=turbine.path,
     )
+    check_section_values(sections)
     return Blade(sections=sections, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
                  name=f"{turbine.name} blade", notes=_notes(turbine, beam, "blade"))
 
@@ -132,6 +134,7 @@ def tower_from_windio(turbine: WindIOTurbine, top_mass: TipMass | float | None =
         source=turbine.path,
     )
     base = float(beam.reference_axis["z"].values[0])
+    check_section_values(sections)
     return Tower(sections=sections, base_height=base, top_mass=top_mass, name=f"{turbine.name} tower", notes=notes)
 
 

@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..assembly import BladeMatrices, assemble_blade, blade_graded_nodes, subdivide
+from ..limits import check_elements, check_n_modes, check_rpm, check_speeds
 from ..sections import Blade
 from .campbell import TRACKING_MARGIN, campbell_sweep, mac_matrix, track_families
 from .estimate import frequency_errors
@@ -63,7 +64,9 @@ def _require_blade(model: object, name: str) -> None:
 
 
 def blade_matrices(blade: Blade, elements: int | None = None, n_modes: int = 10, rpm: float = 0.0) -> BladeMatrices:
-    """Matrices on a mesh of about ``elements`` elements, or on a mesh converged at ``rpm`` (None)."""
+    """Matrices on a mesh of about ``elements`` elements, or on a mesh converged at ``rpm`` (None). Arguments
+    outside :mod:`bladefem.limits` raise a ``ValueError``."""
+    rpm, n_modes, elements = check_rpm(rpm), check_n_modes(n_modes), check_elements(elements)
     return converged_matrices(blade, n_modes, rpm=rpm) if elements is None else assemble_blade(blade, elements)
 
 
@@ -72,19 +75,20 @@ def modes(blade: Blade, rpm: float = 0.0, n_modes: int = 10, elements: int | Non
 
     ``elements``: target number of elements over the span (stations are always nodes), or None for the mesh
     chosen automatically so that the frequencies are within 1e-6 of the converged ones. For blades and towers
-    alike: :func:`bladefem.modes`.
+    alike: :func:`bladefem.modes`. Arguments outside :mod:`bladefem.limits` raise a ``ValueError``.
     """
     _require_blade(blade, "modes")
     matrices = blade_matrices(blade, elements, n_modes, rpm)
-    return solve_modes(matrices, rpm, n_modes, blade.notes + matrices.notes)
+    return solve_modes(matrices, float(rpm), n_modes, blade.notes + matrices.notes)
 
 
 def campbell(blade: Blade, rpm: Sequence[float], n_modes: int = 6, elements: int | None = None) -> CampbellResult:
     """Modes over rotor speeds ``rpm`` (rpm), families tracked by MAC; the matrices are assembled once. For blades
-    and towers alike: :func:`bladefem.campbell`."""
+    and towers alike: :func:`bladefem.campbell`. Arguments outside :mod:`bladefem.limits` raise a ``ValueError``."""
     _require_blade(blade, "campbell")
-    matrices = blade_matrices(blade, elements, n_modes, float(np.max(rpm)))
-    return campbell_sweep(matrices, rpm, n_modes, blade.notes + matrices.notes)
+    speeds = check_speeds(rpm, check_n_modes(n_modes), check_elements(elements))
+    matrices = blade_matrices(blade, elements, n_modes, max(speeds))
+    return campbell_sweep(matrices, speeds, n_modes, blade.notes + matrices.notes)
 
 
 __all__ = ["KINDS", "BladeMatrices", "CampbellResult", "MeshChoice", "ModalResult", "Mode", "ModeFamily",
