@@ -30,6 +30,12 @@ MAX_ELEMENTS = 3200
 MAX_SPEEDS = 1000
 #: Largest memory a sweep's mode shapes may take, bytes (estimated before it starts).
 MAX_SWEEP_BYTES = 2 * 2**30
+#: Longest time simulation of the turbine model, s: a day of turbine time (design load cases last 10 min; at the
+#: 30 to 50 times real time of the compiled model a day takes about an hour of CPU).
+MAX_SIMULATION_SECONDS = 86400.0
+#: Most output rows of a time simulation: each row holds about 80 numbers (states, loads, channels), so 2e6 rows
+#: take about 1.3 GB in memory and 1 GB as a CSV table.
+MAX_OUTPUT_ROWS = 2_000_000
 #: Elements assumed for the estimate when the mesh is chosen automatically (its upper limit).
 AUTOMATIC_MESH_ELEMENTS = 1600
 #: Most DOFs per node of a blade (flap value and slope, edge value and slope, twist, axial).

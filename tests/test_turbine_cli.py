@@ -151,6 +151,9 @@ def test_rk4_beyond_its_stability_limit_is_refused():
     (["--linearize", "--rpm", "-3"], "--rpm"),
     (["--linearize", "--shapes", "fe"], "blade_shapes"),
     (["--linearize", "--damping", "rna"], "damping"),
+    (["--simulate", "1e6"], "--simulate"),                          # beyond a day of turbine time
+    (["--simulate", "1000", "--dt", "1e-4"], "--dt"),               # 1e7 output rows
+    (["--simulate", "1", "--plot", "x.txt"], "--plot"),             # no figure format
 ])
 def test_user_mistakes_name_the_field(argv, field):
     with pytest.raises(InputError) as error:
@@ -165,6 +168,23 @@ def test_campbell_range_is_checked_by_the_parser(capsys):
             run(MAIN, "--campbell", text)
         assert exit.value.code == 2
     assert "START:STOP:COUNT" in capsys.readouterr().err
+
+
+def test_campbell_sweep_is_bounded_by_the_parser(capsys):
+    with pytest.raises(SystemExit) as exit:
+        run(MAIN, "--campbell", "0:15:1001")
+    assert exit.value.code == 2 and "COUNT <= 1000" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("option", ["--output", "--plot"])
+def test_unwritable_outputs_are_refused_before_the_run(tmp_path, monkeypatch, option):
+    """A folder where the table or the figure should go is refused before the model is built."""
+    monkeypatch.setattr(turbine_cli, "build_model", lambda args: pytest.fail("the model was built"))
+    folder = tmp_path / "taken.png"
+    folder.mkdir()
+    with pytest.raises(InputError) as error:
+        run(MAIN, "--simulate", "100", option, str(folder))
+    assert "taken.png" in str(error.value) and "folder" in str(error.value)
 
 
 def test_missing_main_file_is_an_input_error(tmp_path):

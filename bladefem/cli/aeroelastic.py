@@ -22,6 +22,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import InputError
+from ..limits import MAX_SPEEDS
 
 INDUCTIONS = ("frozen", "quasi-steady")
 #: options that only the aeroelastic analysis reads
@@ -49,6 +50,8 @@ def wind_speeds(text: str) -> tuple[float, ...]:
             start_, stop_, n = float(start), float(stop), int(count)
             if n < 1 or not (math.isfinite(start_) and math.isfinite(stop_)) or stop_ < start_:
                 raise ValueError
+            if n > MAX_SPEEDS:
+                raise argparse.ArgumentTypeError(f"at most {MAX_SPEEDS} wind speeds (MAX_SPEEDS), got {n}")
             values = tuple(start_ + (stop_ - start_) * k / (n - 1) for k in range(n)) if n > 1 else (start_,)
         else:
             values = tuple(float(part) for part in text.split(","))
@@ -56,6 +59,8 @@ def wind_speeds(text: str) -> tuple[float, ...]:
         raise argparse.ArgumentTypeError(f"expected U, START:STOP:COUNT or U1,U2,... in m/s, got '{text}'") from None
     if not values or not all(math.isfinite(v) and v >= 0 for v in values):
         raise argparse.ArgumentTypeError(f"wind speeds must be non-negative numbers, got '{text}'")
+    if len(values) > MAX_SPEEDS:
+        raise argparse.ArgumentTypeError(f"at most {MAX_SPEEDS} wind speeds (MAX_SPEEDS), got {len(values)}")
     return values
 
 

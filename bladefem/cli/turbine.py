@@ -21,14 +21,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
-from .aeroelastic import (
-    add_aeroelastic_options,
-    check_aeroelastic_options,
-    run_aeroelastic,
-    wants_aeroelastic,
-)
+from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic, wants_aeroelastic
 from .aeroelastic import wind_speeds as wind_speeds_type
-from .inputs import rpm_range
+from .options import check_output, rpm_sweep
 
 if TYPE_CHECKING:
     import numpy as np
@@ -40,6 +35,8 @@ ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflecti
                      "RotSpeed": ("rotor_speed", math.pi / 30)}
 #: coordinates that are angles, given in degrees as NAME_deg
 ANGLES = ("yaw", "generator_azimuth", "drivetrain")
+#: figure formats of --plot (by suffix)
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial")
 AERO_ONLY = ("wind_speed", "shear_exp")
 
@@ -54,7 +51,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("main", metavar="DECK", help="OpenFAST main file (.fst) or ElastoDyn main input file")
     action = parser.add_mutually_exclusive_group(required=True)
     action.add_argument("--linearize", action="store_true", help="the full-system modes at --rpm")
-    action.add_argument("--campbell", type=rpm_range, nargs="?", const=(), metavar="START:STOP:COUNT",
+    action.add_argument("--campbell", type=rpm_sweep, nargs="?", const=(), metavar="START:STOP:COUNT",
                         help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm (with "
                              "aerodynamics: over the wind speeds of --wind-speed, no rotor speeds given)")
     action.add_argument("--simulate", type=float, metavar="SECONDS", help="integrate in time for SECONDS")
@@ -135,6 +132,12 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value > 0):
             raise InputError(f"must be a positive number, got {value}", field="--" + name)
+    check_duration(args.simulate, args.dt)
+    if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
+        raise InputError(f"the figure's format goes by its suffix: one of {', '.join(PLOT_SUFFIXES)}",
+                         file=args.plot, field="--plot")
+    check_output(args.output)
+    check_output(args.plot)
     if args.no_aero:
         for name in AERO_ONLY:
             if getattr(args, name) is not None:
@@ -151,6 +154,22 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not math.isfinite(value):
             raise InputError(f"must be a number, got {value}", field="--" + name.replace("_", "-"))
+
+
+def check_duration(seconds: float | None, dt: float | None) -> None:
+    """Refuse a --simulate longer than :data:`~bladefem.limits.MAX_SIMULATION_SECONDS` or with more output rows
+    than :data:`~bladefem.limits.MAX_OUTPUT_ROWS`, before the model is built."""
+    from ..limits import MAX_OUTPUT_ROWS, MAX_SIMULATION_SECONDS
+
+    if seconds is None:
+        return
+    if seconds > MAX_SIMULATION_SECONDS:
+        raise InputError(f"at most {MAX_SIMULATION_SECONDS:g} s (a day of turbine time) in one run, got {seconds:g}",
+                         field="--simulate")
+    rows = seconds / (0.05 if dt is None else dt)
+    if rows > MAX_OUTPUT_ROWS:
+        raise InputError(f"{rows:.3g} output rows (at most {MAX_OUTPUT_ROWS:g}): give a larger --dt or a shorter "
+                         "--simulate", field="--dt" if dt is not None else "--simulate")
 
 
 def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, float], dict[str, float]]:
