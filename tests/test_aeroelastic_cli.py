@@ -91,6 +91,8 @@ def test_the_torque_law_sets_the_rotor_speed(capsys):
     ((DECK, "--linearize", "--wind-speed", 30, "--schedule", SCHEDULE), "--wind-speed"),
     ((DECK, "--simulate", 1, "--wind-speed", "5,8"), "--wind-speed"),
     ((DECK, "--linearize", "--wind-speed", 11.4, "--azimuth-deg", 30), "--azimuth-deg"),
+    ((DECK, "--linearize", "--wind-speed", 0, "--rpm", 12.1), "--wind-speed"),
+    ((DECK, "--linearize", "--wind-speed", 1e6, "--rpm", 12.1, *FAST), "--wind-speed"),
 ])
 def test_mistakes_are_one_line_errors(capsys, argv, field):
     code, out, err = run(capsys, *argv)
@@ -98,7 +100,7 @@ def test_mistakes_are_one_line_errors(capsys, argv, field):
     assert len(err.strip().splitlines()) == 1 and f"field '{field}'" in err
 
 
-@pytest.mark.parametrize("text", ["abc", "5:3:2", "-1", "4:8:0", "nan"])
+@pytest.mark.parametrize("text", ["abc", "5:3:2", "-1", "4:8:0", "nan", "0:25:100000"])
 def test_bad_wind_speeds_are_usage_errors(capsys, text):
     code, _, err = run(capsys, DECK, "--linearize", "--wind-speed", text)
     assert code == 2 and "--wind-speed" in err

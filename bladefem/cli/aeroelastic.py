@@ -146,10 +146,7 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     turbine = AeroelasticTurbine(structure=structure, rotor=deck.rotor(), inflow=inflow, free=free,
                                  generator=generator)
     turbine.model(requests[0].pitch)                 # the first build reports the structure's notes
-    stream = sys.stderr if args.json else sys.stdout
-    for note in dict.fromkeys(structure_notes + notes):
-        print(f"# {note}", file=stream)
-    return sweep_command(turbine, requests, args)
+    return sweep_command(turbine, requests, args, list(dict.fromkeys(structure_notes + notes)))
 
 
 def structure_builder(deck, args: argparse.Namespace, notes: list[str]):
@@ -212,6 +209,9 @@ def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, g
             speed = conditions.rotor_speed
             notes.append(f"rotor speed {speed * 30 / math.pi:g} rpm (RotSpeed, generator locked)")
         points = [(u, speed, pitch) for u in args.wind_speed]
+    if any(u == 0.0 and speed != 0.0 for u, speed, _ in points):
+        raise InputError("a turning rotor in still air has no operating point of the BEM: give a positive wind "
+                         "speed, --rpm 0 (parked), or --no-aero for the structure alone", field="--wind-speed")
     if any(speed is not None for _, speed, _ in points) and free[gen]:
         free[gen] = False
         notes.append("rotor speed imposed: the generator azimuth is locked")
@@ -220,7 +220,9 @@ def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, g
             points]
 
 
-def sweep_command(turbine, requests, args: argparse.Namespace) -> int:
+def sweep_command(turbine, requests, args: argparse.Namespace, notes: list[str]) -> int:
+    """Linearize at every request, then print the notes (stderr with --json) and the results: nothing on stdout
+    when a point fails."""
     from ..files import write_atomic
     from ..models.turbine.aeroelastic_campbell import (
         aeroelastic_campbell,
@@ -230,6 +232,8 @@ def sweep_command(turbine, requests, args: argparse.Namespace) -> int:
 
     progress = progress_bar("Aeroelastic sweep", args.quiet or len(requests) == 1)
     result = aeroelastic_campbell(turbine, requests, args.induction or "frozen", progress=progress)
+    for note in notes:
+        print(f"# {note}", file=sys.stderr if args.json else sys.stdout)
     if args.json:
         data = [linear.as_dict() for linear in result.linearizations]
         text = json.dumps(data[0] if args.linearize else data, indent=1) + "\n"

@@ -214,6 +214,7 @@ def steady_state(structure: TurbineModel, aero: TurbineAero | None, free: NDArra
     speed = trim_guess(structure, aero, generator) if trim else float(rotor_speed)
     law = generator if trim else None
     K = static_stiffness(structure, P @ x, speed, azimuths, P)
+    reach = structure.params.blade.length                 # a modal amplitude (m) beyond it is no equilibrium
     mean = None
     for iteration in range(1, MAX_ITERATIONS + 1):
         mean = mean_forcing(structure, aero, law, P @ x, speed, azimuths)
@@ -229,6 +230,10 @@ def steady_state(structure: TurbineModel, aero: TurbineAero | None, free: NDArra
             speed = max(speed + step_speed, 0.5 * speed)
         dx = np.linalg.solve(K, residual) if P.size else np.zeros(0)
         x = x + dx
+        if not (np.isfinite(x).all() and np.isfinite(speed)) or np.abs(P @ x).max(initial=0.0) > reach:
+            raise InputError(f"no steady state at {aero.inflow.speed if aero else 0.0:g} m/s and "
+                             f"{speed * 30 / math.pi:.4g} rpm: the static deflections grow beyond the blade "
+                             "length (a small-deflection model cannot hold the loads there)", field="--wind-speed")
         scale = max(float(np.abs(x).max(initial=0.0)), 1e-3)
         if np.abs(dx).max(initial=0.0) <= TOLERANCE * scale and (not trim or abs(step_speed) <= TOLERANCE * speed):
             break
