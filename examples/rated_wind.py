@@ -213,9 +213,21 @@ def document(fixed: SimulationResult, full: SimulationResult, reduced: Simulatio
         "side-side mean survives the reduction; the paper's reduced model also drops those (its assumptions: no cone "
         "or tilt, loads in global coordinates, no elastic rotations), which this study does not.",
     ]
-    lines = [wrapped for line in lines for wrapped in wrap(line)]
+    lines = [wrapped for line in paragraphs(lines) for wrapped in wrap(line)]
     lines += ["", "![time histories](rated-wind-time.png)", "", "![spectra](rated-wind-spectra.png)"]
     return "\n".join(lines) + "\n"
+
+
+def paragraphs(lines: list[str]) -> list[str]:
+    """Consecutive prose lines joined into one (headings, tables, bullets, figures and blank lines stay apart)."""
+    out: list[str] = []
+    for line in lines:
+        prose = line and not line.startswith(("|", "#", "- ", "!"))
+        if prose and out and out[-1] and not out[-1].startswith(("|", "#", "!")):
+            out[-1] += " " + line
+        else:
+            out.append(line)
+    return out
 
 
 def wrap(line: str, width: int = 118) -> list[str]:
