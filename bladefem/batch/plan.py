@@ -24,7 +24,9 @@ from ..errors import InputError
 from ..io.yamlnodes import load_yaml
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
 
-ANALYSES = ("modes", "campbell", "check")
+ANALYSES = ("modes", "campbell", "check", "turbine_simulate")
+#: analyses of the whole turbine (an OpenFAST deck), not of a blade or tower
+TURBINE_ANALYSES = ("turbine_simulate",)
 DISTRIBUTIONS = ("normal", "uniform", "lognormal")
 MAX_CASES = 1_000_000
 
@@ -48,11 +50,16 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "n_modes": {"type": "integer", "minimum": 1, "maximum": 30},
                 "elements": {"type": "integer", "minimum": 1, "maximum": 5000},
                 "spec": {"type": "string"}, "spec_model": {"type": "string"},
+                "wind_speed_m_s": {"type": "number", "minimum": 0, "maximum": 100},
+                "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180},
+                "seconds": {"type": "number", "exclusiveMinimum": 0, "maximum": 3600},
+                "dt": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
+                "statistics_from_s": {"type": "number", "minimum": 0},
             },
         },
         "grid": {"type": "object", "minProperties": 1,
                  "propertyNames": {"enum": [f"{c}_scale" for c in SCALES] + ["tip_mass_kg", "precone_deg",
-                                                                             "pitch_deg", "rpm"]},
+                                                                             "pitch_deg", "rpm", "wind_speed_m_s"]},
                  "additionalProperties": _NUMBERS},
         "samples": {
             "type": "object", "additionalProperties": False, "required": ["count", "seed", "properties"],
@@ -84,7 +91,10 @@ PLAN_SCHEMA: dict[str, Any] = {
 @dataclass(frozen=True)
 class Analysis:
     """What each case computes: 'modes' at ``rpm`` (rpm), a 'campbell' sweep over ``sweep`` (start, stop, count
-    rpm), or the requirements of ``spec`` (a check spec) on its model ``spec_model``."""
+    rpm), the requirements of ``spec`` (a check spec) on its model ``spec_model``, or 'turbine_simulate': the
+    turbine of an OpenFAST deck simulated for ``seconds`` (s, output every ``dt`` s) at ``wind_speed`` (m/s),
+    ``turbine_rpm`` (rpm, generator locked) and ``pitch_deg`` (deg), each None for the deck's, with statistics
+    from ``statistics_from`` (s) to the end."""
 
     type: str
     rpm: float = 0.0
@@ -93,11 +103,21 @@ class Analysis:
     elements: int | None = None
     spec: Path | None = None
     spec_model: str | None = None
+    wind_speed: float | None = None
+    turbine_rpm: float | None = None
+    pitch_deg: float | None = None
+    seconds: float | None = None
+    dt: float = 0.05
+    statistics_from: float = 0.0
 
     def key(self) -> dict[str, Any]:
-        return {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
-                "elements": self.elements, "spec": None if self.spec is None else file_digest(self.spec),
-                "spec_model": self.spec_model}
+        key = {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
+               "elements": self.elements, "spec": None if self.spec is None else file_digest(self.spec),
+               "spec_model": self.spec_model}
+        if self.type in TURBINE_ANALYSES:
+            key.update(wind_speed=self.wind_speed, turbine_rpm=self.turbine_rpm, pitch_deg=self.pitch_deg,
+                       seconds=self.seconds, dt=self.dt, statistics_from=self.statistics_from)
+        return key
 
 
 @dataclass(frozen=True)
@@ -127,8 +147,35 @@ def _line(lines: dict, where: tuple) -> int | None:
     return None
 
 
+def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysis:
+    def refuse(message: str, field_: str) -> InputError:
+        return InputError(message, file=str(path), line=_line(lines, ("analysis", field_)), field=f"analysis.{field_}")
+
+    for key in ("n_modes", "elements", "spec", "spec_model"):
+        if key in entry:
+            raise refuse(f"not an input of a {entry['type']} analysis", key)
+    if "seconds" not in entry:
+        raise refuse("a turbine_simulate analysis needs seconds (the simulated time, s)", "type")
+    rpm = entry.get("rpm")
+    if isinstance(rpm, list):
+        raise refuse("a turbine analysis takes one rotor speed (rpm)", "rpm")
+    seconds, dt = float(entry["seconds"]), float(entry.get("dt", 0.05))
+    start = float(entry.get("statistics_from_s", seconds / 2))
+    if dt > seconds or start >= seconds:
+        raise refuse(f"need dt <= seconds and statistics_from_s < seconds ({seconds:g} s)",
+                     "dt" if dt > seconds else "statistics_from_s")
+    return Analysis(entry["type"], wind_speed=entry.get("wind_speed_m_s"), turbine_rpm=rpm,
+                    pitch_deg=entry.get("pitch_deg"), seconds=seconds, dt=dt, statistics_from=start)
+
+
 def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> Analysis:
     kind = entry["type"]
+    if kind in TURBINE_ANALYSES:
+        return _turbine_analysis(entry, path, lines)
+    for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg"):
+        if key in entry:
+            raise InputError(f"an input of the turbine analyses, not of {kind}", file=str(path),
+                             line=_line(lines, ("analysis", key)), field=f"analysis.{key}")
     rpm = entry.get("rpm", 0.0)
     sweep = None
     if kind == "campbell":
@@ -204,6 +251,13 @@ def read_plan(path: str | Path) -> Plan:
             raise InputError("a grid or samples plan needs 'model' (the base input)", file=str(path), line=1,
                              field="model")
         base = folder / data["model"]
+        if analysis.type in TURBINE_ANALYSES and "samples" in data:
+            raise InputError("samples scatter blade section properties: a turbine analysis varies wind_speed_m_s, "
+                             "rpm and pitch_deg in a grid, or decks in files", file=str(path),
+                             line=_line(lines, ("samples",)), field="samples")
+        if analysis.type not in TURBINE_ANALYSES and "wind_speed_m_s" in data.get("grid", {}):
+            raise InputError(f"a turbine input: a {analysis.type} analysis has no wind", file=str(path),
+                             line=_line(lines, ("grid", "wind_speed_m_s")), field="grid.wind_speed_m_s")
         if "grid" in data:
             names = list(data["grid"])
             variants = [dict(zip(names, values)) for values in itertools.product(*data["grid"].values())]
@@ -221,4 +275,4 @@ def read_plan(path: str | Path) -> Plan:
                                                                         v == "file" or v.endswith("_scale")))
 
 
-__all__ = ["ANALYSES", "Analysis", "PLAN_SCHEMA", "Plan", "correlated_normals", "factors", "read_plan"]
+__all__ = ["ANALYSES", "TURBINE_ANALYSES", "Analysis", "PLAN_SCHEMA", "Plan", "correlated_normals", "factors", "read_plan"]

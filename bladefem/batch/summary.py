@@ -12,7 +12,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 RESULT_COLUMNS = {"case_index", "case_hash", "status", "error", "mode", "name", "kind", "frequency_hz",
-                  "residual", "damping_ratio", "requirement", "check", "passed", "measured", "margin", "rpm"}
+                  "residual", "damping_ratio", "requirement", "check", "passed", "measured", "margin", "rpm",
+                  "channel", "unit", "mean", "std", "min", "max"}
 
 
 @dataclass(frozen=True)
@@ -72,10 +73,15 @@ def summarize(table: Any) -> BatchSummary:
     hashes = np.array(data.get("case_hash", []))
     failed = len(set(hashes[~ok]))
     checks = "measured" in data and "frequency_hz" not in data
-    value_name = "measured" if checks else "frequency_hz"
+    channels = "channel" in data
+    value_name = "mean" if channels else "measured" if checks else "frequency_hz"
     values = np.array([np.nan if v is None else v for v in data.get(value_name, [])], dtype=float)
     inputs = [name for name in _varied_inputs(data, ok) if not (name == "rpm" and _rpm_is_sweep(data, ok))]
-    if checks:
+    units: dict[str, str] = {}
+    if channels:                                  # turbine simulations: each channel's mean over the window
+        labels = [f"{c} mean" for c in data["channel"]]
+        units = {f"{c} mean": u for c, u in zip(data["channel"], data["unit"]) if c is not None}
+    elif checks:
         labels = [f"{r} / {c}" for r, c in zip(data["requirement"], data["check"])]
     elif _rpm_is_sweep(data, ok):
         labels = [f"{n} at {r:g} rpm" for n, r in zip(data["name"], data["rpm"])]
@@ -89,7 +95,7 @@ def summarize(table: Any) -> BatchSummary:
         for name in inputs:
             x = np.array(data[name], dtype=float)[rows]
             correlation[name], swing[name] = _sensitivity(x, y)
-        unit = "" if checks else "Hz"
+        unit = units.get(label, "") if channels else "" if checks else "Hz"
         quantities.append(Quantity(label, unit, y, correlation, swing))
     return BatchSummary(len(set(hashes)), failed, tuple(inputs), quantities)
 

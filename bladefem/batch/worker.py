@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from .cases import Case, apply_inputs, file_digest
+from .turbine import TURBINE_ANALYSES, check_turbine_case
 
 #: matrices kept per worker process (each a few MB for a converged blade)
 MATRIX_CACHE_SIZE = 8
@@ -127,8 +128,11 @@ def run_case(case: Case) -> list[dict[str, Any]]:
     """The result rows of one case; a failure gives one row with status 'error' and its message."""
     head = {"case_index": case.index, "case_hash": case.hash, **input_columns(case)}
     try:
-        structure = structure_of(case)
-        rows = ANALYSES[case.analysis.type](case, structure)
+        if case.analysis.type in TURBINE_ANALYSES:
+            check_turbine_case(case)
+            rows = TURBINE_ANALYSES[case.analysis.type](case)
+        else:
+            rows = ANALYSES[case.analysis.type](case, structure_of(case))
     except Exception as error:                               # recorded, and the batch goes on
         return [{**head, "status": "error", "error": f"{type(error).__name__}: {error}"}]
     return [{**head, "status": "ok", "error": None, **row} for row in rows]

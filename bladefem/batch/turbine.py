@@ -1,0 +1,85 @@
+"""Turbine analyses of a batch: the Kane turbine model of an OpenFAST deck per case, simulated in steady wind
+(statistics of each output channel over a window) or linearized about its operating point (aeroelastic modes).
+
+A case's wind speed (m/s), rotor speed (rpm) and pitch (deg) are the plan's grid values where it varies them,
+else the analysis's, else the deck's (InflowWind ``HWindSpeed``; the torque law or ``RotSpeed``; ``BlPitch``).
+A given rotor speed locks the generator, as ``bladefem turbine --rpm`` does.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+
+
+def operating_inputs(case: Any) -> tuple[float | None, float | None, float | None]:
+    """(wind speed m/s, rotor speed rpm, pitch deg) of a case, None where the deck decides."""
+    analysis = case.analysis
+
+    def pick(key: str, default: float | None) -> float | None:
+        return float(case.inputs[key]) if key in case.inputs else default
+
+    return (pick("wind_speed_m_s", analysis.wind_speed), pick("rpm", analysis.turbine_rpm),
+            pick("pitch_deg", analysis.pitch_deg))
+
+
+@lru_cache(maxsize=8)
+def _deck(path: str, digest: str, wind_speed: float | None, pitch_deg: float | None, rpm: float | None) -> Any:
+    from ..io.turbine_deck import read_turbine_deck
+    return read_turbine_deck(path, wind_speed=wind_speed, pitch=None if pitch_deg is None else math.radians(pitch_deg),
+                             blade_shapes="fe", rpm=rpm, gauss_points=2)
+
+
+def turbine_deck(case: Any) -> Any:
+    """The case's deck (:class:`~bladefem.io.turbine_deck.TurbineDeck`), read once per worker and operating point."""
+    from .cases import file_digest
+    model = case.inputs.get("file", case.model)
+    wind_speed, rpm, pitch_deg = operating_inputs(case)
+    return _deck(str(model), file_digest(model), wind_speed, pitch_deg, rpm)
+
+
+def simulate_rows(case: Any) -> list[dict[str, Any]]:
+    """Simulate ``analysis.seconds`` (s) from the deck's initial state; one row per output channel with its mean,
+    standard deviation, minimum and maximum over ``[analysis.statistics_from, seconds]`` (s), in the channel's
+    unit (OpenFAST's names and units)."""
+    from ..models.turbine import FreeSystem, TurbineModel, select_dofs
+    from ..models.turbine.initial import free_from_switches, initial_state
+    from ..models.turbine.outputs import CHANNELS
+    from ..models.turbine.simulate import simulate
+
+    analysis = case.analysis
+    deck = turbine_deck(case)
+    wind_speed, rpm, pitch_deg = operating_inputs(case)
+    model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
+    switches, conditions = deck.switches, deck.conditions
+    if rpm is not None:
+        switches = {**switches, "GenDOF": False}
+        conditions = conditions.with_(rotor_speed=rpm * math.pi / 30)
+    free = select_dofs(model.dofs, [], base=free_from_switches(model.dofs, switches))
+    q0, u0, _ = initial_state(model, free, conditions)
+    result = simulate(FreeSystem(model, free, q0, u0), analysis.seconds, dt_output=analysis.dt, rtol=1e-6,
+                      atol=1e-8)
+    window = result.time >= analysis.statistics_from - 1e-9
+    head = {"wind_speed_m_s": None if model.aero is None else float(model.aero.inflow.speed),
+            "rpm": None if rpm is None else rpm, "pitch_deg": None if pitch_deg is None else pitch_deg}
+    rows = []
+    for name in (n for n in CHANNELS if n in result.outputs):
+        values = np.asarray(result.outputs[name])[window]
+        rows.append({**head, "channel": name, "unit": CHANNELS[name][0], "mean": float(np.mean(values)),
+                     "std": float(np.std(values)), "min": float(np.min(values)), "max": float(np.max(values))})
+    return rows
+
+
+def check_turbine_case(case: Any) -> None:
+    """Refuse inputs a turbine case cannot take (section scale factors, tip mass, precone)."""
+    blade_only = sorted(k for k in case.inputs if k.endswith("_scale") or k in ("tip_mass_kg", "precone_deg"))
+    if blade_only:
+        raise InputError(f"{', '.join(blade_only)}: blade inputs, not for a turbine analysis", field=blade_only[0])
+
+
+TURBINE_ANALYSES = {"turbine_simulate": simulate_rows}
