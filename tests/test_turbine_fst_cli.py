@@ -110,7 +110,7 @@ def test_bad_deck_input_is_one_line_and_exit_2(deck_copy, capsys, damage, expect
 
 
 @pytest.mark.parametrize("argv, expected", [
-    ([str(DECK / FST), "--linearize"], ("--no-aero", "issue 12")),
+    ([str(DECK / FST), "--campbell", "0:12:3"], ("--campbell", "--no-aero")),
     ([str(MAIN), "--simulate", "1", "--wind-speed", "8"], ("--wind-speed", ".fst")),
     ([str(DECK / FST), "--simulate", "1", "--no-aero", "--shear-exp", "0.2"], ("--shear-exp", "--no-aero")),
     ([str(DECK / FST), "--simulate", "1", "--wind-speed", "-3"], ("--wind-speed", "non-negative")),

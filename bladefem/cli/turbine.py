@@ -3,10 +3,12 @@
     bladefem turbine DECK --linearize [--rpm R] [--azimuth-deg A] [--dof ...] [--json]   full-system modes
     bladefem turbine DECK --campbell 0:15:16 [--json] [--plot campbell.png]              Campbell diagram
     bladefem turbine DECK --simulate SECONDS [--wind-speed U] [--rpm R] [--dof ...] [--output out.csv]
+    bladefem turbine DECK.fst --linearize|--campbell [--wind-speed ...]   aeroelastic modes (see cli/aeroelastic.py)
 
 The deck is honoured: its DOF switches set the free coordinates and its initial conditions the initial state
 (``--dof`` and ``--initial`` override them); a .fst brings aerodynamics (AeroDyn, InflowWind), the generator torque
-law and the yaw spring (ServoDyn).
+law and the yaw spring (ServoDyn): its --linearize and --campbell are aeroelastic, about the operating point at the
+wind speed(s) (``--no-aero`` for the structure alone).
 """
 
 from __future__ import annotations
@@ -19,6 +21,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
+from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic, wants_aeroelastic
+from .aeroelastic import wind_speeds as wind_speeds_type
 from .options import check_output, rpm_sweep
 
 if TYPE_CHECKING:
@@ -47,15 +51,17 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("main", metavar="DECK", help="OpenFAST main file (.fst) or ElastoDyn main input file")
     action = parser.add_mutually_exclusive_group(required=True)
     action.add_argument("--linearize", action="store_true", help="the full-system modes at --rpm")
-    action.add_argument("--campbell", type=rpm_sweep, metavar="START:STOP:COUNT",
-                        help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm")
+    action.add_argument("--campbell", type=rpm_sweep, nargs="?", const=(), metavar="START:STOP:COUNT",
+                        help="full-system Campbell diagram at COUNT rotor speeds from START to STOP rpm (with "
+                             "aerodynamics: over the wind speeds of --wind-speed, no rotor speeds given)")
     action.add_argument("--simulate", type=float, metavar="SECONDS", help="integrate in time for SECONDS")
     parser.add_argument("--rpm", type=float, default=None,
                         help="rotor speed, rpm (default: RotSpeed of the main file); also the speed of the FE "
                              "blade shapes. With --simulate the generator is locked at this speed (add --dof "
                              "GenDOF=on to start at it with the generator free)")
-    parser.add_argument("--wind-speed", type=float, default=None, metavar="M_S",
-                        help="steady wind speed at the reference height, m/s (default: InflowWind's HWindSpeed)")
+    parser.add_argument("--wind-speed", type=wind_speeds_type, default=None, metavar="U|START:STOP:COUNT|U1,U2,...",
+                        help="steady wind speed at the reference height, m/s (default: InflowWind's HWindSpeed); "
+                             "--linearize: the operating point's, --campbell: a sweep over several")
     parser.add_argument("--shear-exp", type=float, default=None, metavar="EXPONENT",
                         help="power-law wind shear exponent (default: InflowWind's PLExp)")
     parser.add_argument("--pitch-deg", type=float, default=None, metavar="DEG",
@@ -104,6 +110,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_aeroelastic_options(parser)
     parser.set_defaults(run=run)
 
 
@@ -135,7 +142,11 @@ def check_options(args: argparse.Namespace) -> None:
         for name in AERO_ONLY:
             if getattr(args, name) is not None:
                 raise InputError("has no effect with --no-aero", field="--" + name.replace("_", "-"))
-    for name in ("rpm", "yaw_stiffness", "yaw_damping", "wind_speed"):
+    if args.simulate and args.wind_speed is not None:
+        if len(args.wind_speed) > 1:
+            raise InputError("--simulate takes one wind speed", field="--wind-speed")
+        args.wind_speed = args.wind_speed[0]
+    for name in ("rpm", "yaw_stiffness", "yaw_damping"):
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
@@ -217,10 +228,10 @@ def run(args: argparse.Namespace) -> int:
     from ..models.turbine.initial import free_from_switches, initial_state
 
     check_options(args)
+    check_aeroelastic_options(args)
+    if wants_aeroelastic(args):
+        return run_aeroelastic(args)
     deck, params, model = build_model(args)
-    if model.aero is not None and not args.simulate:
-        raise InputError("linearization with aerodynamics is not available yet (issue 12): add --no-aero for the "
-                         "structural modes", field="--no-aero")
     switches, conditions = deck.switches, deck.conditions
     if args.rpm is not None:
         conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)

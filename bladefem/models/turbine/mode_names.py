@@ -81,7 +81,8 @@ def name_modes(vectors: list[NDArray], shares: list[NDArray], coordinates: list[
     one mode, the one it dominates most (0.62 Hz with the generator locked), and the other mode it shares (the
     blades' collective edge against the hub) goes to its next family. Modes that do not oscillate (real
     eigenvalues: rigid-body motions, an undamped-spring coordinate's damper decay) are named by their dominant
-    family and use up its room, one coordinate per two of them."""
+    family and use up its room, one coordinate per two of them; the drivetrain's is the 'rotor speed' (a free rotor
+    settling under the generator's torque law and the aerodynamic torque)."""
     oscillating = [True] * len(vectors) if oscillating is None else oscillating
     families = [family(c) for c in coordinates]
     unique = list(dict.fromkeys(families))
@@ -114,6 +115,9 @@ def name_modes(vectors: list[NDArray], shares: list[NDArray], coordinates: list[
             if other and f"{name} {label}" in used and f"{name} {other}" not in used:
                 label = other                  # a degenerate pair (rotor on a rigid hub): one of each
             name += " " + label
+        if dominant == "drivetrain" and not oscillating[i]:
+            names.append("rotor speed")        # the free rotor's speed settling under the generator torque law
+            continue
         used[name] = used.get(name, 0) + 1
         if dominant == "drivetrain":
             names.append(f"{ORDINALS.get(str(used[name]), str(used[name]) + 'th')} drivetrain torsion")
