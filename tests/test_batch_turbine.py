@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 from pathlib import Path
 
 import numpy as np
@@ -52,6 +53,25 @@ grid: {{wind_speed_m_s: [8.0, 11.4]}}
     assert means[0] < means[1]                       # more wind below rated, more thrust
 
 
+def test_a_linearized_case_equals_the_command_line_linearization(tmp_path, capsys):
+    plan = read_plan(write_plan(tmp_path, f"""model: {DECK}
+analysis: {{type: turbine_linearize, rpm: 12.1, pitch_deg: 0}}
+grid: {{wind_speed_m_s: [11.4]}}
+"""))
+    rows = run_case(plan.cases[0])
+    assert all(row["status"] == "ok" for row in rows), rows[0].get("error")
+    assert main(["turbine", str(DECK), "--linearize", "--wind-speed", "11.4", "--rpm", "12.1", "--pitch-deg", "0",
+                 "--json"]) == 0
+    expected = json.loads(capsys.readouterr().out)
+    assert [row["name"] for row in rows] == [mode["name"] for mode in expected["modes"]]
+    for row, mode in zip(rows, expected["modes"]):
+        assert row["frequency_hz"] == pytest.approx(mode["frequency_hz"], rel=1e-12)
+        assert row["damping_ratio"] == pytest.approx(mode["damping_ratio"], rel=1e-9, abs=1e-12)
+        assert row["rpm"] == pytest.approx(12.1) and row["wind_speed_m_s"] == 11.4
+    flap = next(row for row in rows if row["name"] == "1st blade collective flap")
+    assert flap["damping_ratio"] > 0.3                    # aerodynamic damping of the flap family
+
+
 def test_summary_of_turbine_cases_is_per_channel():
     import pyarrow as pa
 
@@ -74,6 +94,8 @@ def test_summary_of_turbine_cases_is_per_channel():
     ("{type: turbine_simulate, seconds: 10, rpm: [0, 1, 2]}", "{pitch_deg: [0]}", "analysis.rpm"),
     ("{type: modes, wind_speed_m_s: 8}", "{rpm: [12.1]}", "analysis.wind_speed_m_s"),
     ("{type: modes}", "{wind_speed_m_s: [8.0]}", "grid.wind_speed_m_s"),
+    ("{type: turbine_linearize, seconds: 10}", "{wind_speed_m_s: [8.0]}", "analysis.seconds"),
+    ("{type: turbine_simulate, seconds: 10, induction: frozen}", "{rpm: [12.1]}", "analysis.induction"),
 ])
 def test_turbine_plan_mistakes_name_line_and_field(tmp_path, capsys, analysis, grid, field):
     plan = write_plan(tmp_path, f"model: {DECK}\nanalysis: {analysis}\ngrid: {grid}\n")

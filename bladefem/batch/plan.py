@@ -24,9 +24,9 @@ from ..errors import InputError
 from ..io.yamlnodes import load_yaml
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
 
-ANALYSES = ("modes", "campbell", "check", "turbine_simulate")
+ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize")
 #: analyses of the whole turbine (an OpenFAST deck), not of a blade or tower
-TURBINE_ANALYSES = ("turbine_simulate",)
+TURBINE_ANALYSES = ("turbine_simulate", "turbine_linearize")
 DISTRIBUTIONS = ("normal", "uniform", "lognormal")
 MAX_CASES = 1_000_000
 
@@ -55,6 +55,7 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "seconds": {"type": "number", "exclusiveMinimum": 0, "maximum": 3600},
                 "dt": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
                 "statistics_from_s": {"type": "number", "minimum": 0},
+                "induction": {"enum": ["frozen", "quasi-steady"]},
             },
         },
         "grid": {"type": "object", "minProperties": 1,
@@ -94,7 +95,8 @@ class Analysis:
     rpm), the requirements of ``spec`` (a check spec) on its model ``spec_model``, or 'turbine_simulate': the
     turbine of an OpenFAST deck simulated for ``seconds`` (s, output every ``dt`` s) at ``wind_speed`` (m/s),
     ``turbine_rpm`` (rpm, generator locked) and ``pitch_deg`` (deg), each None for the deck's, with statistics
-    from ``statistics_from`` (s) to the end."""
+    from ``statistics_from`` (s) to the end, or 'turbine_linearize' there with the BEM ``induction`` frozen or
+    quasi-steady."""
 
     type: str
     rpm: float = 0.0
@@ -109,6 +111,7 @@ class Analysis:
     seconds: float | None = None
     dt: float = 0.05
     statistics_from: float = 0.0
+    induction: str = "frozen"
 
     def key(self) -> dict[str, Any]:
         key = {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
@@ -116,7 +119,8 @@ class Analysis:
                "spec_model": self.spec_model}
         if self.type in TURBINE_ANALYSES:
             key.update(wind_speed=self.wind_speed, turbine_rpm=self.turbine_rpm, pitch_deg=self.pitch_deg,
-                       seconds=self.seconds, dt=self.dt, statistics_from=self.statistics_from)
+                       seconds=self.seconds, dt=self.dt, statistics_from=self.statistics_from,
+                       induction=self.induction)
         return key
 
 
@@ -151,14 +155,19 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
     def refuse(message: str, field_: str) -> InputError:
         return InputError(message, file=str(path), line=_line(lines, ("analysis", field_)), field=f"analysis.{field_}")
 
-    for key in ("n_modes", "elements", "spec", "spec_model"):
-        if key in entry:
+    simulate = entry["type"] == "turbine_simulate"
+    own = ("seconds", "dt", "statistics_from_s") if simulate else ("induction",)
+    for key in ("n_modes", "elements", "spec", "spec_model", "seconds", "dt", "statistics_from_s", "induction"):
+        if key in entry and key not in own:
             raise refuse(f"not an input of a {entry['type']} analysis", key)
-    if "seconds" not in entry:
-        raise refuse("a turbine_simulate analysis needs seconds (the simulated time, s)", "type")
     rpm = entry.get("rpm")
     if isinstance(rpm, list):
         raise refuse("a turbine analysis takes one rotor speed (rpm)", "rpm")
+    if not simulate:
+        return Analysis(entry["type"], wind_speed=entry.get("wind_speed_m_s"), turbine_rpm=rpm,
+                        pitch_deg=entry.get("pitch_deg"), induction=entry.get("induction", "frozen"))
+    if "seconds" not in entry:
+        raise refuse("a turbine_simulate analysis needs seconds (the simulated time, s)", "type")
     seconds, dt = float(entry["seconds"]), float(entry.get("dt", 0.05))
     start = float(entry.get("statistics_from_s", seconds / 2))
     if dt > seconds or start >= seconds:
@@ -172,7 +181,7 @@ def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> A
     kind = entry["type"]
     if kind in TURBINE_ANALYSES:
         return _turbine_analysis(entry, path, lines)
-    for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg"):
+    for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg", "induction"):
         if key in entry:
             raise InputError(f"an input of the turbine analyses, not of {kind}", file=str(path),
                              line=_line(lines, ("analysis", key)), field=f"analysis.{key}")

@@ -1,5 +1,6 @@
 """Turbine analyses of a batch: the Kane turbine model of an OpenFAST deck per case, simulated in steady wind
-(statistics of each output channel over a window) or linearized about its operating point (aeroelastic modes).
+(statistics of each output channel over a window) or linearized about its operating point (aeroelastic modes with
+their damping, as ``bladefem turbine DECK.fst --linearize``).
 
 A case's wind speed (m/s), rotor speed (rpm) and pitch (deg) are the plan's grid values where it varies them,
 else the analysis's, else the deck's (InflowWind ``HWindSpeed``; the torque law or ``RotSpeed``; ``BlPitch``).
@@ -75,6 +76,62 @@ def simulate_rows(case: Any) -> list[dict[str, Any]]:
     return rows
 
 
+def linearize_rows(case: Any) -> list[dict[str, Any]]:
+    """The aeroelastic modes at the case's operating point (``bladefem turbine DECK.fst --linearize --wind-speed U
+    [--rpm R] [--pitch-deg P] [--induction I]`` with its defaults): one row per mode with its name, frequency (Hz)
+    and damping ratio, and the operating point's rotor speed (rpm) and pitch (deg)."""
+    from ..io.openfast_fst import read_openfast_deck
+    from ..io.turbine_elastodyn import (
+        NREL5MW_YAW_DAMPING,
+        NREL5MW_YAW_STIFFNESS,
+        deck_conditions,
+        turbine_from_elastodyn,
+    )
+    from ..models.turbine import TurbineModel
+    from ..models.turbine.aeroelastic_campbell import AeroelasticTurbine, OperatingRequest, linearize_point
+    from ..models.turbine.control import Generator
+    from ..models.turbine.initial import free_from_switches
+    from ..models.turbine.parameters import dof_names
+
+    path = str(case.inputs.get("file", case.model))
+    deck = read_openfast_deck(path)
+    if deck.aerodyn is None:
+        raise InputError("the deck has no aerodynamics (CompAero 0)", file=deck.path, field="CompAero")
+    wind_speed, rpm, pitch_deg = operating_inputs(case)
+    switches, conditions = deck_conditions(deck.elastodyn.path)
+    dofs = dof_names(deck.elastodyn.num_blades)
+    free = free_from_switches(dofs, switches)
+    servo = deck.servodyn
+    generator = Generator.from_servodyn(servo) if servo is not None else None
+    gen = dofs.index("generator_azimuth")
+    if rpm is not None:
+        speed, free[gen] = rpm * math.pi / 30, False
+    elif free[gen] and generator is not None and generator.torque_law:
+        speed = None
+    elif free[gen]:
+        raise InputError("the generator is free but the deck has no torque law (ServoDyn VSContrl 1): give rpm",
+                         file=deck.path, field="rpm")
+    else:
+        speed = conditions.rotor_speed
+
+    def structure(pitch: float) -> TurbineModel:
+        return TurbineModel(turbine_from_elastodyn(
+            deck.elastodyn.path, "fe", rpm=rpm, pitch=pitch,
+            yaw_stiffness=servo.yaw_spring if servo is not None else NREL5MW_YAW_STIFFNESS,
+            yaw_damping=servo.yaw_damper if servo is not None else NREL5MW_YAW_DAMPING))
+
+    turbine = AeroelasticTurbine(structure=structure, rotor=deck.rotor(), inflow=deck.inflow, free=free,
+                                 generator=generator)
+    request = OperatingRequest(wind_speed=deck.inflow.speed if wind_speed is None else wind_speed,
+                               rotor_speed=speed, pitch=deck.pitch[0] if pitch_deg is None else math.radians(pitch_deg),
+                               azimuth=conditions.azimuth)
+    linear = linearize_point(turbine, request, case.analysis.induction)
+    point = linear.point
+    return [{"wind_speed_m_s": point.wind_speed, "rpm": point.rpm, "pitch_deg": point.pitch_deg, "mode": i + 1,
+             "name": mode.name, "frequency_hz": mode.frequency_hz, "damping_ratio": mode.damping_ratio}
+            for i, mode in enumerate(linear.modes)]
+
+
 def check_turbine_case(case: Any) -> None:
     """Refuse inputs a turbine case cannot take (section scale factors, tip mass, precone)."""
     blade_only = sorted(k for k in case.inputs if k.endswith("_scale") or k in ("tip_mass_kg", "precone_deg"))
@@ -82,4 +139,4 @@ def check_turbine_case(case: Any) -> None:
         raise InputError(f"{', '.join(blade_only)}: blade inputs, not for a turbine analysis", field=blade_only[0])
 
 
-TURBINE_ANALYSES = {"turbine_simulate": simulate_rows}
+TURBINE_ANALYSES = {"turbine_simulate": simulate_rows, "turbine_linearize": linearize_rows}
