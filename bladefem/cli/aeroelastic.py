@@ -23,6 +23,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..limits import MAX_SPEEDS
+from .options import emit
 
 INDUCTIONS = ("frozen", "quasi-steady")
 #: options that only the aeroelastic analysis reads
@@ -223,7 +224,6 @@ def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, g
 def sweep_command(turbine, requests, args: argparse.Namespace, notes: list[str]) -> int:
     """Linearize at every request, then print the notes (stderr with --json) and the results: nothing on stdout
     when a point fails."""
-    from ..files import write_atomic
     from ..models.turbine.aeroelastic_campbell import (
         aeroelastic_campbell,
         campbell_text,
@@ -241,11 +241,7 @@ def sweep_command(turbine, requests, args: argparse.Namespace, notes: list[str])
         text = aeroelastic_table(result.linearizations[0], int(turbine.free.sum()))
     else:
         text = campbell_text(result)
-    if args.output:
-        write_atomic(args.output, text)
-        print(f"# written to {Path(args.output)}", file=sys.stderr)
-    else:
-        sys.stdout.write(text)
+    emit(text, args.output)
     if args.plot:
         from ..plots.aeroelastic_campbell import save_aeroelastic_campbell_plot
         save_aeroelastic_campbell_plot(result, args.plot)

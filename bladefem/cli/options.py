@@ -149,3 +149,17 @@ def check_limits(args: argparse.Namespace) -> None:
 
 def _limit(message: str, name: str) -> None:
     raise LimitError(message, field=name)
+
+
+def emit(text: str, output: str | None) -> None:
+    """``text`` to the file ``output`` (written whole, named on stderr), or to stdout without one."""
+    import sys
+
+    if output:
+        from pathlib import Path
+
+        from ..files import write_atomic
+        write_atomic(output, text)
+        print(f"# written to {Path(output)}", file=sys.stderr)
+    else:
+        sys.stdout.write(text)

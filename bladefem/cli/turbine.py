@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 from ..errors import InputError
 from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic, wants_aeroelastic
 from .aeroelastic import wind_speeds as wind_speeds_type
-from .options import check_output, rpm_sweep
+from .options import check_output, emit, rpm_sweep
 
 if TYPE_CHECKING:
     import numpy as np
@@ -265,7 +265,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace) -> int:
-    from ..files import write_atomic
     from ..models.turbine.campbell import campbell, campbell_text
     from ..plots.turbine_campbell import save_turbine_campbell_plot
     from ..report import progress_bar
@@ -279,11 +278,7 @@ def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float
         text = modes_table(result.linearizations[0], int(free.sum()))
     else:
         text = campbell_text(result)
-    if args.output:
-        write_atomic(args.output, text)
-        print(f"# written to {Path(args.output)}", file=sys.stderr)
-    else:
-        sys.stdout.write(text)
+    emit(text, args.output)
     if args.plot:
         save_turbine_campbell_plot(result, args.plot)
     return 0
