@@ -134,7 +134,7 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     if args.wind_speed is None:
         args.wind_speed = (deck.inflow.speed,)
     switches, conditions = deck_conditions(deck.elastodyn.path)
-    notes: list[str] = []
+    notes: list[str] = list(deck.aerodyn.notes())
     structure_notes: list[str] = []
     structure = structure_builder(deck, args, structure_notes)
     dofs = dof_names(deck.elastodyn.num_blades)

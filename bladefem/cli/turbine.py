@@ -248,6 +248,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, wind "
               f"{inflow.speed:g} m/s at {inflow.reference_height:g} m, shear exponent {inflow.shear_exponent:g}, "
               f"pitch {math.degrees(model.aero.pitch):g} deg", file=notes)
+        for note in deck.notes:
+            print(f"# {note}", file=notes)
     if model.generator is not None and model.generator.torque_law:
         print("# generator: ServoDyn's simple variable-speed torque law (VSContrl 1)", file=notes)
     rpm = conditions.rotor_speed * 30 / math.pi

@@ -34,7 +34,7 @@ class TurbineDeck:
 
     path : the deck; elastodyn : the ElastoDyn main file; params : the structure; aero : aerodynamic loads or None;
     generator : the torque law (None without ServoDyn); switches : ElastoDyn's DOF switches; conditions : its
-    initial conditions; openfast : True for a .fst
+    initial conditions; openfast : True for a .fst; notes : what the reading of its aerodynamics says
     """
 
     path: str
@@ -45,6 +45,7 @@ class TurbineDeck:
     switches: dict[str, bool]
     conditions: InitialConditions
     openfast: bool
+    notes: tuple[str, ...] = ()
 
 
 def is_openfast_deck(path: str | Path) -> bool:
@@ -103,4 +104,5 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
         loads = TurbineAero.from_deck(deck, params, wind_speed=wind_speed, shear_exponent=shear_exponent)
     generator = Generator.from_servodyn(servo) if servo is not None else None
     switches, conditions = deck_conditions(main)
-    return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True)
+    notes = tuple(deck.aerodyn.notes()) if loads is not None else ()
+    return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True, notes)
