@@ -128,3 +128,13 @@ def test_unwritable_output_is_one_line_and_leaves_nothing(capsys, tmp_path):
     err = one_line_error(capsys, "campbell", CASE, "--rpm", "0:10:2", "--plot", blocker / "campbell.png")
     assert str(blocker) in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def test_warnings_are_one_line_on_stderr(capsys):
+    """A model warning (a tower loaded to half its buckling load) reads 'bladefem: warning: ...', without Python's
+    file name and source line."""
+    deck = Path(__file__).resolve().parent / "data" / "bmodes_tower_platform.bmi"
+    assert main(["modes", str(deck)]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err and all(line.startswith("bladefem: warning: ") for line in err)
+    assert "critical buckling load" in err[0] and ".py:" not in "".join(err)

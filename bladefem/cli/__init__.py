@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 from collections.abc import Sequence
 from types import ModuleType
 from typing import NoReturn
@@ -72,6 +73,12 @@ def subcommand(argv: Sequence[str]) -> str:
     return next((word for word in argv if not word.startswith("-")), "")
 
 
+def one_line_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                     file: object = None, line: str | None = None) -> None:
+    """A warning as one line on stderr, ``bladefem: warning: ...`` (not Python's file and source line)."""
+    print(f"bladefem: warning: {message}", file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``bladefem`` console script; returns the exit code."""
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -81,7 +88,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exit:         # --help, --version, or a usage error already printed on one line
         return int(exit.code or 0)
     try:
-        return int(args.run(args) or 0)
+        with warnings.catch_warnings():
+            warnings.showwarning = one_line_warning
+            return int(args.run(args) or 0)
     except InputError as error:
         print(f"bladefem: error: {error}", file=sys.stderr)
         return 2
