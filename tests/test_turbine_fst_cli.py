@@ -131,3 +131,25 @@ def test_structural_linearization_of_a_deck_takes_its_yaw_spring(capsys):
     assert [m["name"] for m in from_deck] == [m["name"] for m in from_main]
     np.testing.assert_allclose([m["frequency_hz"] for m in from_deck], [m["frequency_hz"] for m in from_main],
                                rtol=1e-9)
+
+
+def test_a_rotor_turned_in_still_air_motors_against_its_drag(tmp_path):
+    """12.1 rpm imposed at 0 m/s: the wake is skewed past 90 deg (the rotor's own motion is all the relative wind)
+    and the polar formulation's high-thrust curve keeps its clipped a_c = 0.5 there; the run ends (it divided by
+    zero before) and the air takes power from the rotor."""
+    out = tmp_path / "still.csv"
+    assert main(["turbine", str(DECK / FST), "--simulate", "2", "--wind-speed", "0", "--rpm", "12.1", "--output",
+                 str(out), *ED]) == 0
+    channels = table(out)
+    assert np.all(np.isfinite(channels["RtAeroPwr_W"]))
+    assert np.mean(channels["RtAeroPwr_W"][-10:]) < 0
+
+
+def test_the_high_thrust_curve_beyond_a_90_degree_skew():
+    from bladefem.aero.induction import empirical_thrust
+    for chi0 in (0.0, 0.5, 1.2, 2.4, 3.0):
+        ac, c0, c1, c2 = empirical_thrust(chi0, 0.9)
+        thrust = c0 + c1 * np.linspace(ac, 1.0, 50) + c2 * np.linspace(ac, 1.0, 50) ** 2
+        assert 0.35 <= ac <= 0.5 and np.all(thrust > 0)
+        assert c0 + c1 + c2 == pytest.approx(2.0)                          # C_T(1) = 2
+        assert c0 + c1 * ac + c2 * ac * ac == pytest.approx(4 * 0.9 * ac * (1 - ac))   # continuous at a_c

@@ -78,7 +78,7 @@ def empirical_thrust(chi0, loss):
     yaw = abs(chi0)
     if abs(math.cos(yaw)) < 1e-12:
         yaw += 1.5e-8
-    ac = min(0.35 / math.cos(yaw), 0.5)
+    ac = min(0.35 / abs(math.cos(yaw)), 0.5)      # a wake skewed past 90 deg keeps the clipped 0.5
     thrust_c = 4.0 * loss * ac * (1.0 - ac)
     slope_c = 4.0 * loss * (1.0 - 2.0 * ac)
     denom = ac * ac - 2.0 * ac + 1.0
