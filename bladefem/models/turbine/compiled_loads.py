@@ -65,6 +65,7 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.bem import node_loads
     from ...aero.performance import induction_weight
     from .compiled_kernels import beam_node, free_accelerations, full_state
+    from . import control
     from .compiled_kernels import equations as structural_equations
 
     @njit(cache=True)
@@ -220,16 +221,7 @@ if njit is not None:                                   # module-level kernels: n
         hub[5] = thrust / dynamic if along != 0.0 else 0.0
         hub[6], hub[7] = along, chi0
 
-    @njit(cache=True)
-    def law_torque(law, speed):
-        """Generator torque (N m) of :meth:`.control.Generator.vector` at the high-speed-shaft speed (rad/s)."""
-        if law[0] == 0.0 or speed <= 0.0:
-            return 0.0
-        if speed >= law[1]:
-            return law[2]
-        if speed < law[6]:
-            return law[3] * speed * speed
-        return law[4] * (speed - law[5])
+    law_torque = njit(cache=True)(control.law_torque)       # the torque law, compiled
 
     @njit(cache=True)
     def add_generator(f, u, generator_angle, law):
