@@ -8,11 +8,11 @@ import io
 import os
 import re
 import shutil
-import signal
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cpu_watchdog import cpu_limit
 
 from bladefem.cli import main
 from bladefem.errors import InputError
@@ -24,21 +24,6 @@ ROOT = Path(__file__).parent.parent
 DATA = Path(__file__).parent / "data"
 NREL = ROOT / "cases" / "nrel5mw_blade.yaml"
 UNIFORM = ROOT / "cases" / "uniform_blade.yaml"
-
-
-@contextlib.contextmanager
-def cpu_limit(seconds: float):
-    """Fail (instead of hanging) when the block takes more than ``seconds`` of CPU."""
-    def expire(signum, frame):
-        raise TimeoutError(f"more than {seconds} s of CPU")
-
-    previous = signal.signal(signal.SIGPROF, expire)
-    signal.setitimer(signal.ITIMER_PROF, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_PROF, 0)
-        signal.signal(signal.SIGPROF, previous)
 
 
 def cli(*argv: object) -> tuple[int, str, str]:

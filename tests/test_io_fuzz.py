@@ -22,7 +22,6 @@ import os
 import random
 import re
 import shutil
-import signal
 import sys
 import warnings
 from collections.abc import Callable
@@ -30,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cpu_watchdog import Hang, cpu_limit
 import yaml
 
 from bladefem.cli import main
@@ -52,23 +52,9 @@ FILE_LEVEL = ("file not found", "file is empty", "is a folder", "symbolic link",
               "not a regular file", "file too large", "invalid file name")
 
 
-class Hang(BaseException):
-    """Raised by the watchdog; a BaseException so that no ``except Exception`` in the code swallows it."""
-
-
-@contextlib.contextmanager
 def watchdog(seconds: float = CPU_SECONDS):
     """Raise :class:`Hang` after ``seconds`` of process CPU time."""
-    def expire(signum, frame):
-        raise Hang(f"more than {seconds} s of CPU")
-
-    previous = signal.signal(signal.SIGPROF, expire)
-    signal.setitimer(signal.ITIMER_PROF, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_PROF, 0)
-        signal.signal(signal.SIGPROF, previous)
+    return cpu_limit(seconds)
 
 
 # -- the mutator ----------------------------------------------------------------------------------------------------

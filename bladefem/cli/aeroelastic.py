@@ -234,18 +234,23 @@ def sweep_command(turbine, requests, args: argparse.Namespace, notes: list[str])
     result = aeroelastic_campbell(turbine, requests, args.induction or "frozen", progress=progress)
     for note in notes:
         print(f"# {note}", file=sys.stderr if args.json else sys.stdout)
-    if args.json:
-        data = [linear.as_dict() for linear in result.linearizations]
-        text = json.dumps(data[0] if args.linearize else data, indent=1) + "\n"
-    elif args.linearize:
-        text = aeroelastic_table(result.linearizations[0], int(turbine.free.sum()))
-    else:
-        text = campbell_text(result)
-    emit(text, args.output)
+    emit(linearization_text(result, args, lambda linear: aeroelastic_table(linear, int(turbine.free.sum())),
+                            campbell_text), args.output)
     if args.plot:
         from ..plots.aeroelastic_campbell import save_aeroelastic_campbell_plot
         save_aeroelastic_campbell_plot(result, args.plot)
     return 0
+
+
+def linearization_text(result, args: argparse.Namespace, table, campbell_text) -> str:
+    """The text of a linearization (``--linearize``: ``table`` of its one point) or a Campbell sweep
+    (``campbell_text``), or with ``--json`` its points' dicts (one, or a list)."""
+    if args.json:
+        data = [linear.as_dict() for linear in result.linearizations]
+        return json.dumps(data[0] if args.linearize else data, indent=1) + "\n"
+    if args.linearize:
+        return table(result.linearizations[0])
+    return campbell_text(result)
 
 
 def aeroelastic_table(linear, free_count: int) -> str:

@@ -165,9 +165,7 @@ def tower_campbell_command(args: argparse.Namespace, tower) -> int:
     if args.plot:
         from ..plots.tower_campbell import save_tower_campbell_plot
         save_tower_campbell_plot(chart, args.plot)
-    if args.vtk:
-        from ..models.tower import tower_modes
-        write_vtk_folder(tower, tower_modes(tower, args.n_modes, args.elements), args)
+    write_vtk_folder(tower, chart.modes, args)
     if args.json:
         from ..io.results import dumps, tower_campbell_to_dict
         print(dumps({"input": args.input, "structure": "tower", **tower_campbell_to_dict(chart)}))
@@ -180,11 +178,11 @@ def tower_campbell_command(args: argparse.Namespace, tower) -> int:
 
 
 def write_vtk_folder(structure, result, args: argparse.Namespace) -> None:
-    """``--vtk DIR``: the modes of ``result`` as VTK files in DIR (``campbell.pvd``, its VTU files and sidecar),
-    the folder named on stderr."""
+    """``--vtk DIR``: the modes of ``result`` (a blade's sweep, or the modes of a tower's chart) as VTK files in
+    DIR (``campbell.pvd``, its VTU files and sidecar), the folder named on stderr."""
     if not args.vtk:
         return
     from ..io.vtk import write_vtk
-    export = write_vtk(structure, result, args.vtk, "campbell", args.n_modes)
+    export = write_vtk(structure, result, args.vtk, "campbell")
     files = f"{len(export.meshes)} VTU file" + ("s" if len(export.meshes) != 1 else "")
     print(f"mode shapes for ParaView: {export.collection} ({files}, sidecar {export.sidecar.name})", file=sys.stderr)

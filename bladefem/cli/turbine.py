@@ -14,14 +14,19 @@ wind speed(s) (``--no-aero`` for the structure alone).
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
-from .aeroelastic import add_aeroelastic_options, check_aeroelastic_options, run_aeroelastic, wants_aeroelastic
+from .aeroelastic import (
+    add_aeroelastic_options,
+    check_aeroelastic_options,
+    linearization_text,
+    run_aeroelastic,
+    wants_aeroelastic,
+)
 from .aeroelastic import wind_speeds as wind_speeds_type
 from .options import check_output, emit, rpm_sweep
 
@@ -273,14 +278,8 @@ def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float
 
     progress = progress_bar("Campbell sweep", args.quiet or len(sweep) == 1)
     result = campbell(model, free, sweep, azimuth=azimuth, yaw=yaw, progress=progress)
-    if args.json:
-        data = [linear.as_dict() for linear in result.linearizations]
-        text = json.dumps(data[0] if args.linearize else data, indent=1) + "\n"
-    elif args.linearize:
-        text = modes_table(result.linearizations[0], int(free.sum()))
-    else:
-        text = campbell_text(result)
-    emit(text, args.output)
+    emit(linearization_text(result, args, lambda linear: modes_table(linear, int(free.sum())), campbell_text),
+         args.output)
     if args.plot:
         save_turbine_campbell_plot(result, args.plot)
     return 0
