@@ -273,9 +273,14 @@ def aeroelastic_table(linear, free_count: int) -> str:
              f"{d['TTDspSS']:.3f} m side-side"]
     if linear.rigid:
         lines.append(f"# rigid-body motions (not listed): {', '.join(linear.rigid)}")
-    lines.append(f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation")
-    for mode in linear.modes:
+    return "\n".join(lines + mode_lines(linear.modes)) + "\n"
+
+
+def mode_lines(modes) -> list[str]:
+    """A table of named modes: frequency (Hz), damping ratio (per cent) and the two largest participations."""
+    lines = [f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation"]
+    for mode in modes:
         top = sorted(mode.participation.items(), key=lambda item: -item[1])[:2]
         lines.append(f"{mode.name:<45} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
                      + ", ".join(f"{name} {share:.2f}" for name, share in top))
-    return "\n".join(lines) + "\n"
+    return lines

@@ -24,6 +24,7 @@ from .aeroelastic import (
     add_aeroelastic_options,
     check_aeroelastic_options,
     linearization_text,
+    mode_lines,
     run_aeroelastic,
     wants_aeroelastic,
 )
@@ -293,12 +294,7 @@ def modes_table(linear, free_count: int) -> str:
     lines = [f"# full-system modes at {linear.rpm:g} rpm, {free_count} free DOFs; {where}"]
     if linear.rigid:
         lines.append(f"# rigid-body motions (0 Hz, not listed): {', '.join(linear.rigid)}")
-    lines.append(f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation")
-    for mode in linear.modes:
-        top = sorted(mode.participation.items(), key=lambda item: -item[1])[:2]
-        lines.append(f"{mode.name:<45} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
-                     + ", ".join(f"{name} {share:.2f}" for name, share in top))
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + mode_lines(linear.modes)) + "\n"
 
 
 def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse.Namespace) -> int:
