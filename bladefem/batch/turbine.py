@@ -88,7 +88,12 @@ def linearize_rows(case: Any) -> list[dict[str, Any]]:
         turbine_from_elastodyn,
     )
     from ..models.turbine import TurbineModel
-    from ..models.turbine.aeroelastic_campbell import AeroelasticTurbine, OperatingRequest, linearize_point
+    from ..models.turbine.aeroelastic_campbell import (
+        AeroelasticTurbine,
+        OperatingRequest,
+        linearize_point,
+        rotor_speed,
+    )
     from ..models.turbine.control import Generator
     from ..models.turbine.initial import free_from_switches
     from ..models.turbine.parameters import dof_names
@@ -104,15 +109,11 @@ def linearize_rows(case: Any) -> list[dict[str, Any]]:
     servo = deck.servodyn
     generator = Generator.from_servodyn(servo) if servo is not None else None
     gen = dofs.index("generator_azimuth")
-    if rpm is not None:
-        speed, free[gen] = rpm * math.pi / 30, False
-    elif free[gen] and generator is not None and generator.torque_law:
-        speed = None
-    elif free[gen]:
-        raise InputError("the generator is free but the deck has no torque law (ServoDyn VSContrl 1): give rpm",
-                         file=deck.path, field="rpm")
-    else:
-        speed = conditions.rotor_speed
+    try:
+        speed, _ = rotor_speed(rpm, bool(free[gen]), generator, conditions.rotor_speed)
+    except ValueError as error:
+        raise InputError(f"{error}: give rpm", file=deck.path, field="rpm") from None
+    free[gen] = free[gen] and speed is None
 
     def structure(pitch: float) -> TurbineModel:
         return TurbineModel(turbine_from_elastodyn(

@@ -186,7 +186,7 @@ def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, g
     """An :class:`OperatingRequest` per wind speed (module description; ``conditions`` the deck's initial ones);
     locks the generator azimuth in ``free`` when the rotor speed is imposed."""
     from ..io.schedule import read_schedule
-    from ..models.turbine.aeroelastic_campbell import OperatingRequest
+    from ..models.turbine.aeroelastic_campbell import OperatingRequest, rotor_speed
 
     gen = dofs.index("generator_azimuth")
     if args.schedule is not None:
@@ -198,17 +198,12 @@ def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, g
             raise InputError("the blades have different BlPitch: give --pitch-deg", file=deck.elastodyn.path,
                              field="BlPitch(2)")
         pitch = math.radians(args.pitch_deg) if args.pitch_deg is not None else deck.pitch[0]
-        if args.rpm is not None:
-            speed = args.rpm * math.pi / 30
-        elif free[gen] and generator is not None and generator.torque_law:
-            speed = None
-            notes.append("rotor speed from the generator torque law (ServoDyn VSContrl 1) at fixed pitch")
-        elif free[gen]:
-            raise InputError("the generator is free but the deck has no torque law (ServoDyn VSContrl 1): give "
-                             "--rpm, a --schedule, or lock it (--dof GenDOF=off)", file=deck.path, field="--rpm")
-        else:
-            speed = conditions.rotor_speed
-            notes.append(f"rotor speed {speed * 30 / math.pi:g} rpm (RotSpeed, generator locked)")
+        try:
+            speed, note = rotor_speed(args.rpm, bool(free[gen]), generator, conditions.rotor_speed)
+        except ValueError as error:
+            raise InputError(f"{error}: give --rpm, a --schedule, or lock it (--dof GenDOF=off)", file=deck.path,
+                             field="--rpm") from None
+        notes.extend([note] if note else [])
         points = [(u, speed, pitch) for u in args.wind_speed]
     if any(u == 0.0 and speed != 0.0 for u, speed, _ in points):
         raise InputError("a turning rotor in still air has no operating point of the BEM: give a positive wind "

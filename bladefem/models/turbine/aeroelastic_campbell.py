@@ -58,6 +58,20 @@ class AeroelasticTurbine:
         return turbine_aero(self.rotor, inflow, model.params, pitch)
 
 
+def rotor_speed(rpm: float | None, generator_free: bool, generator: Generator | None,
+                deck_speed: float) -> tuple[float | None, str | None]:
+    """The rotor speed (rad/s) to linearize at, and a note: ``rpm`` (rpm) imposed; else, the generator free, None
+    (trimmed by the torque law); else the deck's ``deck_speed`` (rad/s, generator locked). ValueError when the
+    generator is free and the deck has no torque law."""
+    if rpm is not None:
+        return rpm * math.pi / 30, None
+    if generator_free and generator is not None and generator.torque_law:
+        return None, "rotor speed from the generator torque law (ServoDyn VSContrl 1) at fixed pitch"
+    if generator_free:
+        raise ValueError("the generator is free but the deck has no torque law (ServoDyn VSContrl 1)")
+    return deck_speed, f"rotor speed {deck_speed * 30 / math.pi:g} rpm (RotSpeed, generator locked)"
+
+
 def linearize_point(turbine: AeroelasticTurbine, request: OperatingRequest, induction: str = "frozen",
                     per_passage: int = 4, q0: NDArray | None = None) -> AeroelasticModel:
     """The operating point of ``request`` and the aeroelastic linear model there."""
