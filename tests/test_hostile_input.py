@@ -75,7 +75,10 @@ def test_case_reads_1e9(tmp_path):
 @pytest.mark.parametrize("text,line,message", [
     ("a: 1\nb: " + "9" * 5000 + "\n", 2, "5000 digits"),
     ("a: 1\nb: 1e999\n", 2, "beyond double precision"),
-    ("a:\n  b: " + "[" * 1000 + "]" * 1000 + "\n", 2, f"deeper than {MAX_DEPTH}"),
+    ("a:\n  b: " + "[" * (MAX_DEPTH + 6) + "]" * (MAX_DEPTH + 6) + "\n", 2, f"deeper than {MAX_DEPTH}"),
+    # far deeper: the YAML parser may refuse it before bladefem counts (PyYAML >= 6.0.4 does, in its own words);
+    # either way it is one error naming the line
+    ("a:\n  b: " + "[" * 1000 + "]" * 1000 + "\n", 2, ""),
     ("a: 1\nb: &x [*x]\n", 2, "no complete anchor"),
     ("a: 1\nb: 2\na: 3\n", 3, "duplicate key 'a' (first at line 1)"),
     ("a: !!python/object/apply:os.system [ls]\n", 1, "unsupported tag"),

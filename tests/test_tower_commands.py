@@ -87,6 +87,23 @@ def test_tower_campbell_command_table_json_and_chart(capsys, tmp_path):
     assert data["modes"][0]["bands_hit"] == ["1P"] and data["first_bending_hz"] == pytest.approx(F1, rel=2e-6)
 
 
+def test_the_chart_margin_is_an_option(capsys):
+    """The 5MW tower's first frequency 0.3163 Hz is 8.3 % below the 3P band's 0.345 Hz: resonant within the default
+    10 % margin, soft-stiff with 5 % (the margin the shipped design check asks); a blade refuses the option."""
+    tower = ROOT / "cases" / "nrel5mw_tower.yaml"
+    verdicts = {}
+    for margin in (None, "10", "5", "8.4", "8.2"):
+        extra = [] if margin is None else ["--margin-percent", margin]
+        code, out, _ = run(capsys, "campbell", tower, "--rpm", "0:15:4", "--operating-rpm", "6.9:12.1", "--json",
+                           *extra)
+        verdicts[margin] = json.loads(out)["verdict"]
+    assert verdicts == {None: "resonant", "10": "resonant", "5": "soft-stiff", "8.4": "resonant",
+                        "8.2": "soft-stiff"}
+    code, _, err = run(capsys, "campbell", ROOT / "cases" / "uniform_blade.yaml", "--rpm", "0:10:2",
+                       "--margin-percent", "5")
+    assert code == 2 and "field '--margin-percent'" in err
+
+
 def test_tower_modes_command_refuses_a_rotor_speed_and_the_galerkin_model(capsys):
     code, _, err = run(capsys, "modes", UNIFORM, "--rpm", "5")
     assert code == 2 and "field '--rpm'" in err and "does not rotate" in err

@@ -64,6 +64,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                                "range)")
     campbell.add_argument("--blades", type=positive_int, default=3, metavar="N",
                           help="towers: number of blades, the blade-passing harmonic (default 3)")
+    campbell.add_argument("--margin-percent", type=options.non_negative, metavar="PCT",
+                          help="towers: separation asked from each band, percent of its edge frequency (default 10; "
+                               "a design check's soft_stiff margin_percent means the same)")
     campbell.add_argument("--plot", metavar="FILE.png", help="write the diagram to this image (PNG, PDF, SVG)")
     campbell.add_argument("--vtk", metavar="DIR",
                           help="write the mode shapes as VTK for ParaView into this folder: each family at every "
@@ -161,7 +164,8 @@ def tower_campbell_command(args: argparse.Namespace, tower) -> int:
     """``bladefem campbell TOWER``: the soft-stiff chart as a table (or JSON) and optionally a figure."""
     from ..models.tower_campbell import tower_campbell
 
-    chart = tower_campbell(tower, args.rpm, args.n_modes, args.elements, args.operating_rpm, args.blades)
+    margin = {} if args.margin_percent is None else {"margin": args.margin_percent / 100.0}
+    chart = tower_campbell(tower, args.rpm, args.n_modes, args.elements, args.operating_rpm, args.blades, **margin)
     if args.plot:
         from ..plots.tower_campbell import save_tower_campbell_plot
         save_tower_campbell_plot(chart, args.plot)

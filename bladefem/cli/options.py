@@ -111,7 +111,7 @@ def check_output(path: str | None) -> None:
 BLADE_ONLY = {"tip_radius": "--tip-radius", "hub_radius": "--hub-radius", "precone_deg": "--precone-deg",
               "pitch_deg": "--pitch-deg", "root": "--root"}
 TOWER_ONLY = {"tower_height": "--tower-height", "no_gravity": "--no-gravity", "point_top_mass": "--point-top-mass",
-              "elastodyn_coefficients": "--elastodyn-coefficients"}
+              "elastodyn_coefficients": "--elastodyn-coefficients", "margin_percent": "--margin-percent"}
 
 
 def check_applicable(args: argparse.Namespace, tower: bool) -> None:
