@@ -88,10 +88,10 @@ def test_no_text_overlaps_and_marks_sit_on_the_crossings(top):
         assert not box_a.overlaps(box_b), f"'{a}' overlaps '{b}'"
     names = [t for t, _ in boxes]
     for label in ("Rotor speed (rpm)", "Natural frequency (Hz)", "1P", "3P", "6P", "9P",
-                  "operating speed (12.1 rpm)", "crossing with nP", "1st flap"):
+                  "operating speed (12.1 rpm)", "crossing with nP (n marked)", "1st flap"):
         assert label in names
     ax = fig.axes[0]
-    marks = next(line for line in ax.get_lines() if line.get_label() == "crossing with nP")
+    marks = next(line for line in ax.get_lines() if line.get_label() == "crossing with nP (n marked)")
     shown = [c for c in crossings(SWEEP) if c.frequency_hz <= ax.get_ylim()[1]]
     np.testing.assert_allclose(marks.get_xdata(), [c.rpm for c in shown])
     # every text stays inside the figure

@@ -262,7 +262,7 @@ def run(args: argparse.Namespace) -> int:
     if args.linearize or args.campbell is not None:
         azimuth = conditions.azimuth if args.azimuth_deg is None else math.radians(args.azimuth_deg)
         sweep = np.array([rpm]) if args.linearize else args.campbell
-        return linearize_command(model, free, sweep, azimuth, conditions.nacelle_yaw, args)
+        return linearize_command(model, free, sweep, azimuth, conditions.nacelle_yaw, args, operating_rpm=rpm)
     overrides, coordinates = parse_initial(args.initial or [], model.dofs)
     q0, u0, notes = initial_state(model, free, conditions.with_(**overrides))
     for name, value in coordinates.items():
@@ -272,9 +272,12 @@ def run(args: argparse.Namespace) -> int:
     return simulate_command(model, free, q0, u0, args)
 
 
-def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace) -> int:
+def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace,
+                      operating_rpm: float = 0.0) -> int:
+    """The modes at one rotor speed, or the Campbell diagram over ``sweep`` (rpm) with the operating speed
+    ``operating_rpm`` (the deck's RotSpeed or --rpm) marked on its plot."""
     from ..models.turbine.campbell import campbell, campbell_text
-    from ..plots.turbine_campbell import save_turbine_campbell_plot
+    from ..plots.turbine_campbell import TITLE, save_turbine_campbell_plot
     from ..report import progress_bar
 
     progress = progress_bar("Campbell sweep", args.quiet or len(sweep) == 1)
@@ -282,7 +285,8 @@ def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float
     emit(linearization_text(result, args, lambda linear: modes_table(linear, int(free.sum())), campbell_text),
          args.output)
     if args.plot:
-        save_turbine_campbell_plot(result, args.plot)
+        save_turbine_campbell_plot(result, args.plot, title=f"{TITLE}\n{Path(args.main).name}",
+                                   operating_rpm=operating_rpm or None)
     return 0
 
 
@@ -336,8 +340,20 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     else:
         sys.stdout.write(text)
     if args.plot:
-        plot_outputs(result, args.plot)
+        plot_outputs(result, args.plot, title=simulation_title(model, args))
     return 0
+
+
+def simulation_title(model, args: argparse.Namespace) -> str:
+    """What a simulation's figure shows: the deck, the simulated time, the wind and how the rotor turns."""
+    parts = [f"{Path(args.main).name}: {args.simulate:g} s simulated"]
+    if model.aero is not None:
+        parts.append(f"wind {model.aero.inflow.speed:g} m/s")
+    else:
+        parts.append("no aerodynamics")
+    if args.rpm is not None:
+        parts.append(f"rotor held at {args.rpm:g} rpm")
+    return ", ".join(parts)
 
 
 class SimulationProgress:

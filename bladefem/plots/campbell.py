@@ -13,6 +13,7 @@ from numpy.typing import NDArray
 from .labels import kind_labels
 from .style import (
     KIND_STYLES,
+    OPERATING_COLOUR,
     colormap,
     excitation_lines,
     finish_axes,
@@ -70,16 +71,40 @@ def family_labels(result: CampbellResult) -> list[str]:
     return kind_labels(family.kind for family in result.families)
 
 
+#: where a crossing's "nP" may go, points from the circle: below right first, then around it
+LABEL_OFFSETS = ((4, -9), (4, 3), (-15, -9), (-15, 3), (4, -17), (-15, 10), (10, -3), (-21, -3))
+
+
+def label_crossings(ax, marks: Sequence[tuple[float, float, int]]) -> None:
+    """Write "nP" beside each crossing circle (rpm, Hz, n), at the first of :data:`LABEL_OFFSETS` where it
+    overlaps no text already in the figure (the figure is laid out first, so the places are final)."""
+    figure = ax.figure
+    figure.canvas.draw()
+    renderer = figure.canvas.get_renderer()
+    taken = [text.get_window_extent(renderer) for text in figure.findobj(match=lambda a: hasattr(a, "get_text"))
+             if text.get_visible() and text.get_text()]
+    for rpm, frequency, harmonic in marks:
+        for offset in LABEL_OFFSETS:
+            label = ax.annotate(f"{harmonic}P", (rpm, frequency), xytext=offset, textcoords="offset points",
+                                fontsize=6.5, color="black", zorder=5)
+            label.set_in_layout(False)
+            box = label.get_window_extent(renderer)
+            if not any(box.overlaps(other) for other in taken):
+                taken.append(box)
+                break
+            label.remove()
+
+
 def mark_operating(ax, operating_rpm: float | tuple[float, float] | None) -> None:
     """The operating speed as a dotted line, or an operating range as a shaded band (both in the legend)."""
     if operating_rpm is None:
         return
     low, high = (operating_rpm, operating_rpm) if np.isscalar(operating_rpm) else operating_rpm
     if low == high:
-        ax.axvline(low, color="firebrick", linewidth=1.0, linestyle=":", zorder=2,
+        ax.axvline(low, color=OPERATING_COLOUR, linewidth=1.6, linestyle=(0, (1, 1.2)), zorder=2,
                    label=f"operating speed ({low:g} rpm)")
     else:
-        ax.axvspan(low, high, color="firebrick", alpha=0.08, linewidth=0, zorder=0,
+        ax.axvspan(low, high, color=OPERATING_COLOUR, alpha=0.12, linewidth=0, zorder=0,
                    label=f"operating range ({low:g}-{high:g} rpm)")
 
 
@@ -101,11 +126,12 @@ def campbell_figure(result: CampbellResult, title: str = "", operating_rpm: floa
     if marks:
         ax.plot([c.rpm for c in marks], [c.frequency_hz for c in marks], "o", markerfacecolor="none",
                 markeredgecolor="black", markersize=6.5, markeredgewidth=0.9, linestyle="none",
-                label="crossing with nP", zorder=4)
+                label="crossing with nP (n marked)", zorder=4)
     mark_operating(ax, operating_rpm)
     ax.set_xlim(0.0, right)
     ax.set_ylim(0.0, top)
     finish_axes(ax, title)
+    label_crossings(ax, [(c.rpm, c.frequency_hz, c.harmonic) for c in marks])
     return fig
 
 

@@ -129,6 +129,19 @@ def triad_points(draw: Drawing, origin: NDArray) -> list[tuple[NDArray, NDArray,
     return [(origin, origin + length * axis, label) for axis, label in zip(axes, draw.camera.axis_labels)]
 
 
+def add_triad_label(plotter: Any, view: View, start: NDArray, end: NDArray, label: str, font_size: int) -> None:
+    """The label of one triad arrow just beyond its tip on the screen, justified away from the arrow (so the arrow
+    head never covers the text, whichever way the arrow points in the picture)."""
+    across = np.array([np.dot(end - start, view.right), np.dot(end - start, view.up)])
+    screen = across / (np.linalg.norm(across) or 1.0)
+    point = end + 0.1 * np.linalg.norm(end - start) * (screen[0] * view.right + screen[1] * view.up)
+    horizontal = "left" if screen[0] > 0.3 else ("right" if screen[0] < -0.3 else "center")
+    vertical = "bottom" if screen[1] > 0.3 else ("top" if screen[1] < -0.3 else "center")
+    plotter.add_point_labels(point[None, :], [label], font_size=font_size, text_color="black", shape=None,
+                             show_points=False, always_visible=True, justification_horizontal=horizontal,
+                             justification_vertical=vertical)
+
+
 def triad_origin(draw: Drawing) -> NDArray:
     """Where the triad sits: beside the root, clear of the structure (below a blade, beside a tower)."""
     to = draw.to_drawing
@@ -163,9 +176,12 @@ class ModePicture:
 
 
 def render_frames(structure: Any, mode: Mode, amplitudes: tuple[float, ...] = (1.0,), title: str = "",
-                  window_size: tuple[int, int] | None = None, fraction: float = FRACTION) -> list[ModePicture]:
+                  window_size: tuple[int, int] | None = None, fraction: float = FRACTION,
+                  legend: bool = True) -> list[ModePicture]:
     """Render the undeformed structure (grey) and the mode (coloured by displacement magnitude) at each of
-    ``amplitudes`` times the drawing scale, all in one fixed view that frames every frame."""
+    ``amplitudes`` times the drawing scale, all in one fixed view that frames every frame. Without ``legend`` the
+    picture has no colour bar and no caption (a figure of several pictures gives them once) and larger triad
+    labels (it is shown smaller)."""
     pv = pyvista()
     draw = drawing(structure)
     beam = draw.beam
@@ -185,13 +201,15 @@ def render_frames(structure: Any, mode: Mode, amplitudes: tuple[float, ...] = (1
     sphere_rest = tip_body_position(beam)
     spheres = [sphere_rest + a * scale * tip_move for a in amplitudes]
     arrows = triad_points(draw, triad_origin(draw))
+    room = LABEL_ROOM if legend else 2.0 * LABEL_ROOM          # larger labels
     drawn = [rest.points, *[frame.points for frame in frames], arrows[0][0][None],
-             np.array([end + LABEL_ROOM * (end - start) for start, end, _ in arrows])]   # room for the labels
+             np.array([end + room * (end - start) for start, end, _ in arrows])]   # room for the labels
     if draw.tip_mass > 0:
         drawn += [centre + radius * np.vstack([np.eye(3), -np.eye(3)]) for centre in (sphere_rest, *spheres)]
     every = np.concatenate(drawn)
     view = fixed_view(draw.camera, draw.to_drawing, every, size[0] / size[1])
-    view = with_bands(view, min(TITLE_PIXELS / size[1], 0.2) if title else 0.0, min(FOOTER_PIXELS / size[1], 0.25))
+    footer = min(FOOTER_PIXELS / size[1], 0.25) if legend else 0.0
+    view = with_bands(view, min(TITLE_PIXELS / size[1], 0.2) if title else 0.0, footer)
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
     plotter.set_background("white")
     behind = -(2.0 * np.ptp(every @ view.normal) + 1e-3 * view.half_height) * view.normal
@@ -202,10 +220,10 @@ def render_frames(structure: Any, mode: Mode, amplitudes: tuple[float, ...] = (1
         plotter.add_mesh(pv.Sphere(radius=radius, center=sphere_rest + behind), color=UNDEFORMED, opacity=0.55)
     deformed = beam_mesh(beam, x, offset, reference)
     bar = {"title": "displacement magnitude / largest", "vertical": False, "position_x": 0.6, "position_y": 0.01,
-           "width": 0.36, "height": 0.06, "n_labels": 3, "fmt": "%.1f", "color": "black", "title_font_size": 12,
+           "width": 0.36, "height": 0.06, "n_labels": 2, "fmt": "%.1f", "color": "black", "title_font_size": 12,
            "label_font_size": 11}
     plotter.add_mesh(deformed, scalars="displacement", cmap=COLOURMAP, clim=(0.0, 1.0), ambient=0.45,
-                     diffuse=0.6, specular=0.0, smooth_shading=True, scalar_bar_args=bar)
+                     diffuse=0.6, specular=0.0, smooth_shading=True, scalar_bar_args=bar, show_scalar_bar=legend)
     line = pv.lines_from_points(moved_axis[0])
     line_values = np.linalg.norm(displacement.axis, axis=1) * scale / reference
     line.point_data["displacement"] = line_values
@@ -217,11 +235,12 @@ def render_frames(structure: Any, mode: Mode, amplitudes: tuple[float, ...] = (1
     for start, end, _ in arrows:
         arrow = pv.Arrow(start=start, direction=end - start, scale="auto", tip_radius=0.12, shaft_radius=0.035)
         plotter.add_mesh(arrow, color="#333333")
-    plotter.add_point_labels(np.array([end for _, end, _ in arrows]), [label for _, _, label in arrows],
-                             font_size=13, text_color="black", shape=None, show_points=False, always_visible=True)
+    for start, end, label in arrows:
+        add_triad_label(plotter, view, start, end, label, 13 if legend else 19)
     if title:
         plotter.add_text(title, position="upper_edge", font_size=11, color="black")
-    plotter.add_text(caption(draw), position="lower_left", font_size=8, color="black")
+    if legend:
+        plotter.add_text(caption(draw), position="lower_left", font_size=8, color="black")
     apply(plotter, view)
     pictures = []
     for k, frame in enumerate(frames):
@@ -240,9 +259,9 @@ def render_frames(structure: Any, mode: Mode, amplitudes: tuple[float, ...] = (1
 
 
 def render(structure: Any, mode: Mode, title: str = "", window_size: tuple[int, int] | None = None,
-           fraction: float = FRACTION) -> ModePicture:
+           fraction: float = FRACTION, legend: bool = True) -> ModePicture:
     """One picture of the mode at the drawing scale (see :func:`render_frames`)."""
-    return render_frames(structure, mode, (1.0,), title, window_size, fraction)[0]
+    return render_frames(structure, mode, (1.0,), title, window_size, fraction, legend)[0]
 
 
 def png_bytes(image: NDArray) -> bytes:
@@ -275,6 +294,17 @@ def save_mode_gif(structure: Any, result: ModalResult, number: int, path: str | 
     write_atomic(path, data)
 
 
+def colour_bar(fig: Any, axes: Any) -> None:
+    """One colour bar for all the pictures of a figure (each is drawn without its own)."""
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
+    bar = fig.colorbar(ScalarMappable(Normalize(0.0, 1.0), COLOURMAP), ax=axes.ravel().tolist(), location="bottom",
+                       shrink=0.35, aspect=30, pad=0.01, ticks=[0.0, 0.5, 1.0])
+    bar.set_label("displacement magnitude / largest", fontsize=7)
+    bar.ax.tick_params(labelsize=7)
+
+
 def save_mode_strip(structure: Any, result: ModalResult, path: str | Path, n_modes: int = 6,
                     window_size: tuple[int, int] | None = None) -> None:
     """The first ``n_modes`` modes in one image (PNG, PDF or SVG by extension), each titled: stacked for a blade,
@@ -290,12 +320,13 @@ def save_mode_strip(structure: Any, result: ModalResult, path: str | Path, n_mod
     figsize = (2.2 * columns, 3.8) if draw.tower else (7.0, 2.0 * rows)
     fig, axes = pyplot().subplots(rows, columns, figsize=figsize, dpi=200, squeeze=False, layout="constrained")
     for number, (ax, mode) in enumerate(zip(axes.ravel(), modes), 1):
-        ax.imshow(render(structure, mode, window_size=size).image)
+        ax.imshow(render(structure, mode, window_size=size, legend=False).image)
         ax.set_title(f"({chr(96 + number)}) {labels[number - 1]}, {mode.frequency_hz:.4g} Hz", fontsize=8,
                      loc="left")
         ax.set_axis_off()
     speed = f" at {result.rotor_speed_rpm:g} rpm" if result.rotor_speed_rpm else ""
     fig.suptitle(f"{draw.beam.name}: first {len(modes)} modes{speed}", fontsize=10)
+    colour_bar(fig, axes)
     fig.supxlabel(f"Grey: undeformed. Colour: displacement magnitude. Largest displacement drawn at {FRACTION:.0%} "
                   f"of the length.\n{caption(draw)[0].upper() + caption(draw)[1:]}.", fontsize=7)
     save_figure(fig, path)

@@ -21,6 +21,8 @@ RPM_LABEL = "Rotor speed (rpm)"
 FREQUENCY_LABEL = "Natural frequency (Hz)"
 EXCITATION_COLOUR = "0.5"
 LABEL_COLOUR = "0.3"
+#: the operating speed or range: near-black, unlike any mode family's colour
+OPERATING_COLOUR = "0.1"
 #: line styles by mode kind (blades and towers)
 KIND_STYLES = {"flap": "-", "edge": "--", "torsion": "-.", "axial": ":", "fore-aft": "-", "side-side": "--"}
 

@@ -142,20 +142,24 @@ def write_table(result, path: str | os.PathLike) -> None:
 
 def plot_outputs(result, path: str | os.PathLike,
                  channels: tuple[str, ...] = ("OoPDefl1", "IPDefl1", "TTDspFA", "TTDspSS", "YawPzn", "RotSpeed",
-                                               "GenSpeed", "RootMOoP1", "RootMIP1", "RotThrust", "RotPwr")) -> None:
-    """Plot the chosen channels against time into an image file (written atomically)."""
+                                               "GenSpeed", "RootMOoP1", "RootMIP1", "RotThrust", "RotPwr"),
+                 title: str = "") -> None:
+    """Plot the chosen channels against time into an image file (written atomically), titled with ``title`` (the
+    case: deck, wind, rotor speed)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     channels = tuple(name for name in channels if name in result.outputs)
-    figure, axes = plt.subplots(len(channels), 1, figsize=(8, 1.6 * len(channels)), sharex=True)
+    figure, axes = plt.subplots(len(channels), 1, figsize=(8, 1.6 * len(channels)), sharex=True,
+                               layout="constrained")
     for axis, name in zip(np.atleast_1d(axes), channels):
         axis.plot(result.time, result.outputs[name], lw=1)
         axis.set_ylabel(f"{name}\n[{CHANNELS[name][0]}]", fontsize=8)
         axis.grid(alpha=0.3)
     np.atleast_1d(axes)[-1].set_xlabel("time [s]")
-    figure.tight_layout()
+    if title:
+        figure.suptitle(title, fontsize=10)
     try:
         with atomic_path(path) as temporary:
             figure.savefig(temporary, dpi=120)
