@@ -103,13 +103,27 @@ def markdown(blocks: Sequence[Block]) -> str:
     return "\n".join(lines)
 
 
+IMAGE_TYPES = {".png": "image/png", ".svg": "image/svg+xml", ".jpg": "image/jpeg", ".gif": "image/gif"}
+
+
+def embedded(file: str, directory: Path | None) -> str:
+    """A data URI with the picture's bytes (base64), or the relative path when there is no folder to read it from."""
+    if directory is None:
+        return file
+    import base64
+    data = base64.b64encode((directory / file).read_bytes()).decode("ascii")
+    return f"data:{IMAGE_TYPES.get(Path(file).suffix.lower(), 'application/octet-stream')};base64,{data}"
+
+
 STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}"
          "table{border-collapse:collapse;margin:1em 0}td,th{padding:.2em .7em;border-bottom:1px solid #ccc}"
          "th{border-bottom:2px solid #444}td.r,th.r{text-align:right}figure{margin:1.5em 0}img{max-width:100%}"
          "figcaption{font-size:90%;color:#333}")
 
 
-def html_document(title: str, blocks: Sequence[Block]) -> str:
+def html_document(title: str, blocks: Sequence[Block], directory: Path | None = None) -> str:
+    """The report as one HTML page; its pictures (files in ``directory``) are embedded as data URIs, so the page
+    alone carries them."""
     e = html.escape
     body: list[str] = []
     for block in blocks:
@@ -124,7 +138,7 @@ def html_document(title: str, blocks: Sequence[Block]) -> str:
                            for row in block.rows)
             body.append(f"<table><tr>{head}</tr>{rows}</table>")
         else:
-            body.append(f'<figure><img src="{e(block.file)}" alt="{e(block.caption)}">'
+            body.append(f'<figure><img src="{e(embedded(block.file, directory))}" alt="{e(block.caption)}">'
                         f"<figcaption>{e(block.caption)}</figcaption></figure>")
     return (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>{e(title)}</title>'
             f"<style>{STYLE}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n")
@@ -227,14 +241,29 @@ def frequency_blocks(result: ModalResult) -> list[Block]:
                       "||K x - omega^2 M x|| / ||K x||.")]
 
 
+#: crossings closer than this to the operating speed (relative) are remarked on
+NEAR_OPERATING = 0.1
+
+
 def crossing_blocks(result: CampbellResult, operating_rpm: float | None) -> list[Block]:
+    """The table of crossings with the nP lines, and a remark on those within :data:`NEAR_OPERATING` of the
+    operating speed (rpm)."""
     labels = family_labels(result)
     rows = [(labels[c.family], f"{c.harmonic}P", f"{c.rpm:.2f}", f"{c.frequency_hz:.4f}",
              "" if operating_rpm is None else f"{c.rpm - operating_rpm:+.2f}") for c in crossings(result)]
     if not rows:
         return [Paragraph("No family crosses the 1P, 3P, 6P or 9P lines in the swept range.")]
-    return [Table(("family", "excitation", "rotor speed (rpm)", "frequency (Hz)", "from operating (rpm)"),
-                  rows, "llrrr")]
+    blocks: list[Block] = [Table(("family", "excitation", "rotor speed (rpm)", "frequency (Hz)",
+                                  "from operating (rpm)"), rows, "llrrr")]
+    if operating_rpm:
+        near = [c for c in crossings(result) if abs(c.rpm - operating_rpm) <= NEAR_OPERATING * operating_rpm]
+        blocks.append(Paragraph(
+            "Near the operating speed: " + "; ".join(
+                f"the {labels[c.family]} meets {c.harmonic}P at {c.rpm:.2f} rpm, {abs(c.rpm - operating_rpm):.2f} "
+                f"rpm {'below' if c.rpm < operating_rpm else 'above'} the operating {operating_rpm:g} rpm"
+                for c in near) + "." if near else
+            f"No crossing lies within {NEAR_OPERATING:.0%} of the operating speed {operating_rpm:g} rpm."))
+    return blocks
 
 
 def elastodyn_blocks(blade: Blade, rpm: float, elements: int | None) -> list[Block]:
@@ -255,12 +284,22 @@ def elastodyn_blocks(blade: Blade, rpm: float, elements: int | None) -> list[Blo
         Heading("ElastoDyn mode-shape coefficients"),
         Paragraph(f"Polynomials sum c_i x^i (i = 2..6, sum c_i = 1) fitted to the finite-element shapes at {rpm:g} "
                   f"rpm; 'ElastoDyn' is the frequency ElastoDyn derives from the polynomial with {fitted.nodes} "
-                  "nodes."),
+                  f"nodes. {mass_statement(blade)}"),
         Table(("mode", "x^2", "x^3", "x^4", "x^5", "x^6", "RMS error", "FE (Hz)", "ElastoDyn (Hz)"), rows,
               "lrrrrrrrr")]
     if fitted.warnings:
         blocks.append(Paragraph("Warnings: " + "; ".join(fitted.warnings) + "."))
     return blocks
+
+
+def mass_statement(blade: Blade) -> str:
+    """Which distributed mass the fit used: an ElastoDyn blade file's AdjBlMs (and stiffness factors) are applied
+    when read, a case file's mass stands as given; the two give different coefficients."""
+    adjusted = next((note for note in blade.notes if "AdjBlMs" in note), None)
+    if adjusted:
+        return f"The sections are the ElastoDyn blade file's with its factors applied ({adjusted})."
+    return ("The sections are used as given (mass factor 1): `bladefem elastodyn` on an ElastoDyn file scales the "
+            "mass by its AdjBlMs, so its coefficients and frequencies differ from these.")
 
 
 def can_render() -> bool:
@@ -334,5 +373,5 @@ def picture_blocks(structure: Any, result: ModalResult, directory: Path, n_modes
 def _write(directory: Path, title: str, blocks: list[Block], images: list[Path]) -> Report:
     paths = Report(directory / "report.md", directory / "report.html", tuple(images))
     write_atomic(paths.markdown, markdown(blocks))
-    write_atomic(paths.html, html_document(title, blocks))
+    write_atomic(paths.html, html_document(title, blocks, directory))
     return paths

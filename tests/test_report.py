@@ -96,7 +96,27 @@ def test_report_gives_the_frequencies_and_its_images_exist(written, galerkin):
     page = report.html.read_text()
     separators = [line for line in text.splitlines() if re.fullmatch(r"\|(:?-{3}:?\|)+", line)]
     assert page.count("<table>") == len(separators) >= 3                # the same tables in both formats
-    assert 'src="campbell.png"' in page and ('src="modes.png"' in page or not can_render())
+    # the page alone carries its pictures: each embedded with the bytes of the file beside it, no relative link
+    sources = re.findall(r'<img src="([^"]+)"', page)
+    assert len(sources) == (2 if can_render() else 1) and not re.search(r'src="[^"]*\.png"', page)
+    import base64
+    for source, name in zip(sources, ["modes.png", "campbell.png"][2 - len(sources):]):
+        header, data = source.split(",", 1)
+        assert header == "data:image/png;base64" and base64.b64decode(data) == (out / name).read_bytes()
+
+
+def test_report_remarks_on_crossings_near_the_operating_speed_and_the_mass_it_fitted(tmp_path):
+    """The NREL 5MW's 1st edge meets 6P 0.92 rpm below its 12.1 rpm; the coefficients' mass is stated."""
+    out = tmp_path / "report"
+    report = write_report(read_case(ROOT / "cases" / "nrel5mw_blade.yaml"), out, 12.1, list(np.linspace(0, 15, 16)),
+                          n_modes=4, pictures=False)
+    text = " ".join(report.markdown.read_text().split())
+    assert "Near the operating speed: the 1st edge meets 6P at 11.18 rpm, 0.92 rpm below the operating 12.1 rpm" \
+        in text
+    assert "used as given (mass factor 1)" in text and "AdjBlMs" in text
+    far = write_report(read_case(ROOT / "cases" / "nrel5mw_blade.yaml"), tmp_path / "far", 3.0, list(np.linspace(0, 15, 16)),
+                       n_modes=2, pictures=False)
+    assert "No crossing lies within 10% of the operating speed 3 rpm" in " ".join(far.markdown.read_text().split())
 
 
 def test_report_lists_elastodyn_coefficients_that_reproduce_the_modes(written, galerkin):
