@@ -36,7 +36,7 @@ from bladefem.aero._jit import COMPILED, kernel  # noqa: E402
 from bladefem.aero.bem import NODE_OUTPUTS, node_loads, section_loads, solve_nodes  # noqa: E402
 from bladefem.aero.kinematics import rigid_rotor  # noqa: E402
 from bladefem.aero.polars import pack_polars  # noqa: E402
-from bladefem.io.openfast_fst import read_openfast_deck  # noqa: E402
+from bladefem.builders.openfast_fst import read_openfast_deck  # noqa: E402
 
 DECK = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
 

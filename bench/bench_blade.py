@@ -92,7 +92,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=7)
     args = parser.parse_args()
 
-    from bladefem.io.case import read_case
+    from bladefem.builders.case import read_case
     from bladefem.modal import campbell, converged_mesh, solve_modes
 
     blade = read_case(CASE)

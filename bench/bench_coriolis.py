@@ -33,7 +33,7 @@ def timed(function: Callable[[], object], repeats: int) -> tuple[float, float]:
 
 
 def main() -> None:
-    from bladefem.io.case import read_case
+    from bladefem.builders.case import read_case
     from bladefem.modal import campbell_sweep, converged_mesh, solve_modes
     from bladefem.modal.quadratic import solve_quadratic_modes
     from bladefem.modal.quadratic_campbell import quadratic_campbell_sweep

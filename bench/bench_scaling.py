@@ -25,7 +25,7 @@ ELEMENTS = (50, 100, 200, 400, 800, 1600, 3200)
 CHILD = """
 import json, resource, sys, time
 import numpy as np
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.assembly import assemble_blade
 from bladefem.modal import campbell_sweep, solve_modes
 blade = read_case(sys.argv[1]); elements = int(sys.argv[2]); rpm = np.linspace(0, 15, 16)

@@ -40,8 +40,8 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from bladefem.io.turbine_deck import read_turbine_deck  # noqa: E402
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn  # noqa: E402
+from bladefem.builders.turbine_deck import read_turbine_deck  # noqa: E402
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn  # noqa: E402
 from bladefem.models.turbine import FreeSystem, TurbineModel  # noqa: E402
 from bladefem.models.turbine.simulate import simulate  # noqa: E402
 

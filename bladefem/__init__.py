@@ -24,8 +24,8 @@ def read(path: str | Path, part: str | None = None, **geometry: Any) -> Any:
     """The blade (:class:`bladefem.sections.Blade`) or tower (:class:`bladefem.sections.tower.Tower`) described by
     a file in any supported format; ``part`` ('blade' or 'tower') chooses for files holding both (an ElastoDyn main
     file, windIO). ``geometry``: options for files that lack it, SI units (``tip_radius=63.0``,
-    ``elastodyn_main="main.dat"``; see :class:`bladefem.io.detect.Geometry`)."""
-    from .io.detect import read_model
+    ``elastodyn_main="main.dat"``; see :class:`bladefem.builders.detect.Geometry`)."""
+    from .builders.detect import read_model
     from .sections import Blade
     from .sections.tower import as_tower
 

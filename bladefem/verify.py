@@ -141,7 +141,7 @@ def southwell_row(fe: Solver, lam: float = 0.25) -> VerifyRow:
 
 def nrel5mw_blade(path: str | Path = NREL5MW_MAIN) -> Blade:
     """The NREL 5MW blade from an ElastoDyn main file."""
-    from .io.elastodyn_blade import blade_from_elastodyn_main
+    from .builders.elastodyn_blade import blade_from_elastodyn_main
     if not Path(path).is_file():
         raise InputError("NREL 5MW ElastoDyn main file not found", file=str(path), field="--nrel5mw")
     return blade_from_elastodyn_main(path)

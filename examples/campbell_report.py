@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bladefem.io.case import read_case
-from bladefem.io.vtk import write_vtk
+from bladefem.builders.case import read_case
+from bladefem.outputs.vtk import write_vtk
 from bladefem.modal import blade_matrices
 from bladefem.report import sweep, write_report
 

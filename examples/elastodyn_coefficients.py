@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main, read_elastodyn_blade
-from bladefem.io.elastodyn_main import read_elastodyn_main
-from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
-from bladefem.io.tower_elastodyn import elastodyn_tower
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main, read_elastodyn_blade
+from bladefem.formats.elastodyn_main import read_elastodyn_main
+from bladefem.builders.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
+from bladefem.builders.tower_elastodyn import elastodyn_tower
 from bladefem.modal.elastodyn_fit import blade_coefficients
 from bladefem.models.tower_fit import tower_coefficients
 

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from bladefem.files import write_atomic
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
 from bladefem.models.turbine.simulate import SimulationResult, simulate
 

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.modal import campbell, modes
 from bladefem.plots.campbell import save_campbell_plot
 

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from bladefem.files import atomic_path, write_atomic
-from bladefem.io.turbine_deck import read_turbine_deck
+from bladefem.builders.turbine_deck import read_turbine_deck
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
 from bladefem.models.turbine.initial import free_from_switches, initial_state
 from bladefem.models.turbine.simulate import SimulationResult, simulate

@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
-from bladefem.io.results import write_atomic
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.outputs.results import write_atomic
 from bladefem.modal import campbell, modes
 from bladefem.models.galerkin import (
     PAPER_TERMS,

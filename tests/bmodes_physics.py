@@ -19,9 +19,9 @@ import scipy.sparse as sp
 import bladefem.assembly.blade as assembly_blade
 import bladefem.assembly.parameters as assembly_parameters
 import bladefem.assembly.tower as assembly_tower
-from bladefem.io.bmodes import BModesInput
-from bladefem.io.bmodes_model import blade_from_bmodes
-from bladefem.io.bmodes_tower import tower_from_bmodes
+from bladefem.formats.bmodes import BModesInput
+from bladefem.builders.bmodes_model import blade_from_bmodes
+from bladefem.builders.bmodes_tower import tower_from_bmodes
 from bladefem.modal import modes
 from bladefem.models.tower import tower_modes
 from bladefem.sections.tower import Wires

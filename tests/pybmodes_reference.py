@@ -83,8 +83,8 @@ def pybmodes_frequencies(path: Path, level: int) -> np.ndarray:
     """pybmodes' frequencies (Hz) of the deck at ``path`` on nested mesh ``level``."""
     from pybmodes.models import RotatingBlade, Tower
 
-    from bladefem.io.bmodes import read_bmodes
-    from bladefem.io.bmodes_writer import write_bmodes
+    from bladefem.formats.bmodes import read_bmodes
+    from bladefem.formats.bmodes_writer import write_bmodes
     deck = read_bmodes(path)
     el_loc = nested_mesh(deck, level)
     refined = replace(deck, el_loc=el_loc)
@@ -124,7 +124,7 @@ def extrapolate(levels: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray, 
 
 def converged(path: Path, known: dict[str, list[float]] | None = None) -> dict[str, object]:
     """The reference entry of a deck; ``known`` levels (as stored) are not solved again."""
-    from bladefem.io.bmodes import read_bmodes
+    from bladefem.formats.bmodes import read_bmodes
     known = known or {}
     deck = read_bmodes(path)
     levels = {level: np.array(known[str(level)]) if str(level) in known else pybmodes_frequencies(path, level)
@@ -158,7 +158,7 @@ def causes(elements: int = 160) -> str:
     stored modes)."""
     from bmodes_physics import NAMES, frequencies
 
-    from bladefem.io.bmodes import read_bmodes
+    from bladefem.formats.bmodes import read_bmodes
     decks, reference = reference_decks(), load()
     rows = [f"| deck | bladefem | all switched | {' | '.join(NAMES)} |", "|---" * (len(NAMES) + 3) + "|"]
     for name, entry in reference.items():

@@ -15,7 +15,7 @@ import pytest
 
 from bladefem.aero import BEMOptions, Polar, Rotor, pack_polars, rotor_performance
 from bladefem.aero.bem import NODE_OUTPUTS, residual, solve_nodes
-from bladefem.io.openfast_fst import read_openfast_deck
+from bladefem.builders.openfast_fst import read_openfast_deck
 
 ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
@@ -143,7 +143,7 @@ def test_guaranteed_convergence():
 def test_pure_python_path_matches_compiled(deck):
     """Without numba (BLADEFEM_NO_NUMBA) the same kernels run as Python and give the same rotor loads to
     rounding."""
-    code = ("import json; from bladefem.io.openfast_fst import read_openfast_deck; "
+    code = ("import json; from bladefem.builders.openfast_fst import read_openfast_deck; "
             "from bladefem.aero import rotor_performance; from bladefem.aero._jit import COMPILED; "
             f"r = rotor_performance(read_openfast_deck({str(DECK)!r}), 11.4, 12.1, 0.0, azimuths=2); "
             "print(json.dumps([COMPILED, r.thrust, r.torque]))")

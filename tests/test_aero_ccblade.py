@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from bladefem.aero import BEMOptions, Rotor, rotor_performance
-from bladefem.io.openfast_fst import read_openfast_deck
+from bladefem.builders.openfast_fst import read_openfast_deck
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = json.loads((ROOT / "tests" / "data" / "ccblade" / "nrel5mw_ccblade.json").read_text())

@@ -28,7 +28,7 @@ import pytest
 
 from bladefem.aero import Rotor, rotor_performance
 from bladefem.aero.performance import line_load_resultant
-from bladefem.io.openfast_fst import read_openfast_deck
+from bladefem.builders.openfast_fst import read_openfast_deck
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = json.loads((ROOT / "tests" / "data" / "openfast" / "rigid_rotor_bem.json").read_text())

@@ -11,7 +11,7 @@ import pytest
 from bladefem.aero import BEMOptions, Inflow, Rotor, rotor_performance
 from bladefem.aero.kinematics import rigid_rotor
 from bladefem.aero.options import PITT_PETERS_FACTOR
-from bladefem.io.openfast_fst import read_openfast_deck
+from bladefem.builders.openfast_fst import read_openfast_deck
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -19,10 +19,10 @@ import numpy as np
 import pytest
 
 from bladefem.aero.rotor import Inflow
-from bladefem.io.aerodyn_rotor import aerodyn_rotor
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
-from bladefem.io.openfast_fst import read_openfast_deck
-from bladefem.io.turbine_elastodyn import blade_beam_from_modes, turbine_from_elastodyn
+from bladefem.builders.aerodyn_rotor import aerodyn_rotor
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.builders.openfast_fst import read_openfast_deck
+from bladefem.builders.turbine_elastodyn import blade_beam_from_modes, turbine_from_elastodyn
 from bladefem.modal import blade_matrices, solve_modes
 from bladefem.modal.quadratic import quadratic_problem, ritz_pairs
 from bladefem.models.blade_aero import aero_matrices, operating_point

@@ -11,7 +11,7 @@ import pytest
 
 from bladefem.cli import main
 from bladefem.errors import InputError
-from bladefem.io.schedule import read_schedule
+from bladefem.formats.schedule import read_schedule
 
 ROOT = Path(__file__).resolve().parents[1]
 CASE = ROOT / "cases" / "nrel5mw"

@@ -37,8 +37,8 @@ from pathlib import Path
 
 import pytest
 
-from bladefem.io.openfast_fst import read_openfast_deck
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.openfast_fst import read_openfast_deck
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel, select_dofs
 from bladefem.models.turbine.aero import TurbineAero
 from bladefem.models.turbine.aeroelastic import linearize_at

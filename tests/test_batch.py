@@ -19,7 +19,7 @@ from bladefem.batch.cases import apply_inputs  # noqa: E402
 from bladefem.batch.plan import correlated_normals  # noqa: E402
 from bladefem.batch.runner import WORKER_TRIM_THRESHOLD  # noqa: E402
 from bladefem.cli import main  # noqa: E402
-from bladefem.io.case import read_case  # noqa: E402
+from bladefem.builders.case import read_case  # noqa: E402
 from bladefem.modal import modes  # noqa: E402
 
 CASES = Path(__file__).resolve().parents[1] / "cases"

@@ -24,8 +24,8 @@ from bladefem.aero.polars import pack_polars
 from bladefem.assembly import assemble_blade
 from bladefem.cli import main
 from bladefem.elements import skew
-from bladefem.io.aerodyn_rotor import aerodyn_rotor
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.builders.aerodyn_rotor import aerodyn_rotor
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
 from bladefem.modal.quadratic import solve_quadratic_modes
 from bladefem.models.blade_aero import aero_matrices, operating_point, section_matrices
 from bladefem.sections import Blade, uniform_sections

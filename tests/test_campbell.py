@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from bladefem.assembly import assemble_blade
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.modal import campbell_sweep, converged_matrices, solve_modes
 from bladefem.sections import Blade, uniform_sections
 

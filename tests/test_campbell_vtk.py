@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from bladefem.cli import main
-from bladefem.io.vtk import read_vtk
+from bladefem.outputs.vtk import read_vtk
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 

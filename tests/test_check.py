@@ -15,7 +15,7 @@ from bladefem.check import read_spec, run_check
 from bladefem.check.margins import harmonic_margin
 from bladefem.check.schema import SPEC_SCHEMA
 from bladefem.cli import main
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.modal import campbell
 
 CASES = Path(__file__).resolve().parents[1] / "cases"

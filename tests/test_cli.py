@@ -47,7 +47,7 @@ def test_elastodyn_blade_with_geometry_options(capsys):
     # AdjBlMs applied; the same blade from the case file (mass factor 1) scaled by the factor gives the same answer
     code, out, _ = run(capsys, "modes", ELASTODYN_BLADE, "--tip-radius", "63", "--hub-radius", "1.5",
                        "--precone-deg", "-2.5", "--n-modes", "2", "--json")
-    from bladefem.io.case import read_case
+    from bladefem.builders.case import read_case
     from bladefem.modal import modes
     blade = read_case(NREL)
     reference = modes(blade.with_(sections=blade.sections.scaled(mass=1.04536)), 0.0, 2)

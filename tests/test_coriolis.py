@@ -206,7 +206,7 @@ def test_hinged_blade_at_rest_reports_its_rigid_modes_once():
 
 @pytest.fixture(scope="module")
 def nrel5mw_blade():
-    from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+    from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
     return blade_from_elastodyn_main(MAIN)
 
 
@@ -215,7 +215,7 @@ def kane_case(nrel5mw_blade):
     """The ElastoDyn 5MW blade (precone -2.5 deg) at 12.1 rpm: the FE (converged mesh), its flap 1, edge 1, flap 2
     modes as the Kane model's assumed modes, and the Kane model's frequencies and damping ratios with only that
     blade free (gravity and structural damping off)."""
-    from bladefem.io.turbine_elastodyn import (
+    from bladefem.builders.turbine_elastodyn import (
         blade_beam_from_modes,
         turbine_from_elastodyn,
     )

@@ -77,5 +77,5 @@ def test_coriolis_refused_where_it_does_not_apply(capsys, argv):
 
 
 def blade_of(path: Path) -> Blade:
-    from bladefem.io.detect import read_model
+    from bladefem.builders.detect import read_model
     return read_model(str(path))

@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main, read_elastodyn_blade
-from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main, read_elastodyn_blade
+from bladefem.builders.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
 from bladefem.modal.elastodyn_fit import (
     blade_coefficients,
     centrifugal_load,
@@ -283,7 +283,7 @@ def test_elastodyn_frequency_is_that_of_elastodyns_equations_of_motion():
     twisted shapes carry the mass): equal to the ElastoDyn-compatible Kane model (checked against OpenFAST) with
     that one mode free, at rest without gravity, to 1e-6; the untwisted estimate ElastoDyn prints (FreqBF) is
     0.5 % higher for the 5MW's first flap mode."""
-    from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+    from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
     from bladefem.modal.elastodyn_fit import BeamIntegrals
     from bladefem.models.turbine import TurbineModel, select_dofs
     from bladefem.models.turbine.linearize import linearize

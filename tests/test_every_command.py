@@ -38,7 +38,7 @@ INPUTS = shipped_inputs()
 def is_model(path: Path) -> bool:
     """True for a file that describes a blade or tower (or a turbine): not a spec, a plan, an airfoil table..."""
     from bladefem.errors import InputError
-    from bladefem.io.detect import detect_format
+    from bladefem.builders.detect import detect_format
     try:
         detect_format(path)
     except InputError:

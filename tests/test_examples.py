@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.case import read_case
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.builders.case import read_case
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
 from bladefem.modal import campbell
 from bladefem.models.galerkin import galerkin_modes
 

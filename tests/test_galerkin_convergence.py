@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
 from bladefem.models.galerkin import galerkin_modes, galerkin_system
 from bladefem.sections import Blade, SectionTable
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
 from bladefem.modal import modes
 from bladefem.models.galerkin import PAPER_TERMS, galerkin_modes, galerkin_system, solve
 from bladefem.models.galerkin_seed import (

@@ -16,9 +16,9 @@ from cpu_watchdog import cpu_limit
 
 from bladefem.cli import main
 from bladefem.errors import InputError
-from bladefem.io.case import read_case
-from bladefem.io.windio import read_windio
-from bladefem.io.yamlnodes import MAX_DEPTH, parse_yaml
+from bladefem.builders.case import read_case
+from bladefem.formats.windio import read_windio
+from bladefem.formats.yamlnodes import MAX_DEPTH, parse_yaml
 
 ROOT = Path(__file__).parent.parent
 DATA = Path(__file__).parent / "data"

@@ -13,9 +13,9 @@ import pytest
 
 from bladefem.cli import main
 from bladefem.errors import InputError
-from bladefem.io.bmodes import read_bmodes, read_bmodes_sections
-from bladefem.io.bmodes_model import blade_from_bmodes, bmodes_sections, file_columns
-from bladefem.io.bmodes_writer import write_bmodes
+from bladefem.formats.bmodes import read_bmodes, read_bmodes_sections
+from bladefem.builders.bmodes_model import blade_from_bmodes, bmodes_sections, file_columns
+from bladefem.formats.bmodes_writer import write_bmodes
 from bladefem.modal import modes
 from bladefem.sections import extension_bending_stiffness, mass_moments
 

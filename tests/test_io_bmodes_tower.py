@@ -12,8 +12,8 @@ import pytest
 
 from bladefem.elements import projected_inertia
 from bladefem.errors import InputError
-from bladefem.io.bmodes import BModesWires, read_bmodes
-from bladefem.io.bmodes_tower import tower_from_bmodes
+from bladefem.formats.bmodes import BModesWires, read_bmodes
+from bladefem.builders.bmodes_tower import tower_from_bmodes
 from bladefem.modal import modes
 from bladefem.models.tower import tower_modes
 from bladefem.sections.tower import Platform

@@ -11,8 +11,8 @@ import pytest
 from bladefem.cli import Parser
 from bladefem.cli import elastodyn as command
 from bladefem.errors import InputError
-from bladefem.io.elastodyn_blade import read_elastodyn_blade
-from bladefem.io.elastodyn_tower import read_elastodyn_tower
+from bladefem.builders.elastodyn_blade import read_elastodyn_blade
+from bladefem.builders.elastodyn_tower import read_elastodyn_tower
 
 DATA = Path(__file__).parent / "data"
 NAMES = ("NRELOffshrBsline5MW_Onshore_ElastoDyn.dat", "NRELOffshrBsline5MW_Blade.dat",
@@ -110,8 +110,8 @@ def test_too_few_modes_is_a_user_error(capsys):
 
 
 def test_read_model_dispatches_every_format():
-    from bladefem.io.detect import detect_format, read_model
-    from bladefem.io.tower import Tower
+    from bladefem.builders.detect import detect_format, read_model
+    from bladefem.builders.tower import Tower
     from bladefem.sections import Blade
     expected = {"NRELOffshrBsline5MW_Onshore_ElastoDyn.dat": "elastodyn-main",
                 "NRELOffshrBsline5MW_Blade.dat": "elastodyn-blade",

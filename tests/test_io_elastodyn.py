@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 
 from bladefem.errors import InputError
-from bladefem.io.elastodyn_blade import (
+from bladefem.builders.elastodyn_blade import (
     blade_from_elastodyn,
     blade_from_elastodyn_main,
     blade_with_mode_shapes,
     read_elastodyn_blade,
     write_elastodyn_blade,
 )
-from bladefem.io.elastodyn_main import read_elastodyn_main, write_elastodyn_main
+from bladefem.formats.elastodyn_main import read_elastodyn_main, write_elastodyn_main
 
 DATA = Path(__file__).parent / "data"
 BLADE = DATA / "NRELOffshrBsline5MW_Blade.dat"
@@ -168,7 +168,7 @@ def test_in_place_update_changes_only_coefficient_lines():
 def test_written_coefficients_add_up_to_one_in_decimal():
     from decimal import Decimal
 
-    from bladefem.io._modeshape_blocks import decimal_texts
+    from bladefem.formats._modeshape_blocks import decimal_texts
     coefficients = np.array([-70.53191234567, -63.7623456789, 289.7371111111, -176.5130987654, 0.0])
     coefficients[-1] = 1 - coefficients[:-1].sum()
     texts = decimal_texts(coefficients)
@@ -245,7 +245,7 @@ TOWER = DATA / "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"
 
 
 def test_tower_file_matches_the_published_table():
-    from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
+    from bladefem.builders.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
     tower_file = read_elastodyn_tower(TOWER)
     assert tower_file.stations == 11 and tower_file.station_lines == tuple(range(20, 31))
     assert tower_file.mass[0] == 5590.87 and tower_file.fa_stiffness[-1] == 1.1582e11
@@ -257,7 +257,7 @@ def test_tower_file_matches_the_published_table():
 
 
 def test_tower_round_trip_and_in_place_update(tmp_path):
-    from bladefem.io.elastodyn_tower import (
+    from bladefem.builders.elastodyn_tower import (
         read_elastodyn_tower,
         tower_with_mode_shapes,
         write_elastodyn_tower,
@@ -284,7 +284,7 @@ def test_tower_round_trip_and_in_place_update(tmp_path):
     (18, "  HtFract       TMassDen         TwFAStif", "TwSSStif"),
 ])
 def test_malformed_tower_file(tmp_path, line, new, field):
-    from bladefem.io.elastodyn_tower import read_elastodyn_tower
+    from bladefem.builders.elastodyn_tower import read_elastodyn_tower
     path = edited(tmp_path, TOWER, line, new)
     with pytest.raises(InputError) as info:
         read_elastodyn_tower(path)

@@ -34,11 +34,11 @@ import yaml
 
 from bladefem.cli import main
 from bladefem.errors import InputError
-from bladefem.io.bmodes import ANGLE_COLUMNS, SECTION_COLUMNS, read_bmodes
-from bladefem.io.elastodyn_blade import read_elastodyn_blade
-from bladefem.io.elastodyn_main import SCALARS, read_elastodyn_main
-from bladefem.io.elastodyn_tower import read_elastodyn_tower
-from bladefem.io.windio import read_windio
+from bladefem.formats.bmodes import ANGLE_COLUMNS, SECTION_COLUMNS, read_bmodes
+from bladefem.builders.elastodyn_blade import read_elastodyn_blade
+from bladefem.formats.elastodyn_main import SCALARS, read_elastodyn_main
+from bladefem.builders.elastodyn_tower import read_elastodyn_tower
+from bladefem.formats.windio import read_windio
 from bladefem.modal.results import MAX_RESIDUAL, RIGID_HZ
 
 ROOT = Path(__file__).parent.parent

@@ -13,13 +13,13 @@ import pytest
 
 from bladefem.aero.options import PITT_PETERS_FACTOR
 from bladefem.errors import InputError
-from bladefem.io._fast_format import FastText
-from bladefem.io.aerodyn import read_aerodyn_blade
-from bladefem.io.aerodyn_primary import read_aerodyn_primary
-from bladefem.io.airfoil_polars import read_airfoil
-from bladefem.io.inflowwind import read_inflowwind
-from bladefem.io.openfast_fst import read_openfast_deck
-from bladefem.io.servodyn import read_servodyn
+from bladefem.formats._fast_format import FastText
+from bladefem.builders.aerodyn import read_aerodyn_blade
+from bladefem.builders.aerodyn_primary import read_aerodyn_primary
+from bladefem.builders.airfoil_polars import read_airfoil
+from bladefem.builders.inflowwind import read_inflowwind
+from bladefem.builders.openfast_fst import read_openfast_deck
+from bladefem.builders.servodyn import read_servodyn
 
 ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "cases" / "nrel5mw"

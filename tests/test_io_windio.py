@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from bladefem.errors import InputError
-from bladefem.io.windio import Distribution, arc_length, read_windio
-from bladefem.io.windio_model import blade_from_windio, tower_from_windio, write_windio
+from bladefem.formats.windio import Distribution, arc_length, read_windio
+from bladefem.builders.windio_model import blade_from_windio, tower_from_windio, write_windio
 from bladefem.modal import modes
 
 DATA = Path(__file__).parent / "data"

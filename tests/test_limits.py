@@ -17,7 +17,7 @@ import bladefem
 
 from bladefem.cli import main
 from bladefem.errors import SolveError
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.limits import MAX_ELEMENTS, MAX_MODES, MAX_RPM, MAX_SPEEDS, sweep_bytes
 from bladefem.modal import campbell, modes
 from bladefem.modal.results import MAX_RESIDUAL, ModalResult, Mode, check_modes

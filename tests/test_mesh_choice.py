@@ -19,7 +19,7 @@ from bladefem.assembly import (
     subdivide,
 )
 from bladefem.assembly.mesh import PROPERTY_RATIO, SHORTEST_ELEMENT, mesh_stations
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.modal import MESH_RTOL, SolverError, converged_mesh, solve_modes
 from bladefem.modal import solve as solve_module
 from bladefem.modal.estimate import frequency_errors
@@ -196,7 +196,7 @@ def test_reference_decks_converge_without_notes():
     # pybmodes' eleven reference blade decks (tip intervals where EI falls up to 6000-fold, BModes element nodes
     # 4 mm from section stations): the automatic mesh ends without a note, below 300 elements, and within the
     # tolerance of the 4x finer mesh
-    from bladefem.io.detect import read_model
+    from bladefem.builders.detect import read_model
 
     for deck in reference_blade_decks():
         blade = read_model(deck)

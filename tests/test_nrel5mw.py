@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.modal import modes
 from bladefem.models.galerkin import galerkin_modes
 

@@ -76,8 +76,9 @@ def test_the_command_reports_the_one_version(capsys):
     assert capsys.readouterr().out.strip() == f"bladefem {bladefem.__version__}"
 
 
-PUBLIC = ["bladefem", "bladefem.cli", "bladefem.errors", "bladefem.modal", "bladefem.sections", "bladefem.io",
-          "bladefem.io.results", "bladefem.io.vtk", "bladefem.models", "bladefem.models.galerkin_converged",
+PUBLIC = ["bladefem", "bladefem.cli", "bladefem.errors", "bladefem.modal", "bladefem.sections", "bladefem.formats",
+          "bladefem.builders", "bladefem.outputs",
+          "bladefem.outputs.results", "bladefem.outputs.vtk", "bladefem.models", "bladefem.models.galerkin_converged",
           "bladefem.models.tower_campbell", "bladefem.plots", "bladefem.plots.campbell", "bladefem.plots.camera",
           "bladefem.plots.modes3d", "bladefem.plots.tower_campbell", "bladefem.plots.turbine_campbell",
           "bladefem.report", "bladefem.report_tower", "bladefem.verify"]

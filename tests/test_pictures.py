@@ -15,7 +15,7 @@ from matplotlib.colors import to_rgba
 matplotlib.use("Agg")
 
 from bladefem.cli import main  # noqa: E402
-from bladefem.io.tower_case import read_tower_case  # noqa: E402
+from bladefem.builders.tower_case import read_tower_case  # noqa: E402
 from bladefem.models.tower_campbell import tower_campbell  # noqa: E402
 from bladefem.models.turbine.campbell import TurbineCampbell  # noqa: E402
 from bladefem.plots.campbell import campbell_figure, crossings  # noqa: E402

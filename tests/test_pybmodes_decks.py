@@ -20,9 +20,9 @@ from bmodes_physics import NAMES, frequencies  # noqa: E402
 from pybmodes_reference import CERTTEST, load, reference_decks  # noqa: E402
 
 from bladefem.cli import main  # noqa: E402
-from bladefem.io.bmodes import read_bmodes  # noqa: E402
+from bladefem.formats.bmodes import read_bmodes  # noqa: E402
 from bladefem.modal import modes  # noqa: E402
-from bladefem.io.bmodes_model import blade_from_bmodes  # noqa: E402
+from bladefem.builders.bmodes_model import blade_from_bmodes  # noqa: E402
 
 REFERENCE = load()
 DECKS = reference_decks()
@@ -134,7 +134,7 @@ def test_floating_tower_modes_are_named_by_what_they_strain(name):
     # the platform's coordinates; every other mode strains the tower (99-102 %: the first bending pair, platform
     # pitch and roll coupled in, carries 75 % of its kinetic energy in the massive platform) and is named after the
     # tower's motion, so the soft-stiff chart's first bending mode is the tower's
-    from bladefem.io.bmodes_tower import tower_from_bmodes
+    from bladefem.builders.bmodes_tower import tower_from_bmodes
     from bladefem.models.tower import tower_modes
     result = tower_modes(tower_from_bmodes(read_bmodes(DECKS[name])), 12, elements=60)
     kinds = [m.kind for m in result.modes]

@@ -156,7 +156,7 @@ def test_the_tip_mass_is_drawn_where_it_moves():
 
 
 def test_a_tower_stands_upright_with_its_top_mass_and_its_own_labels():
-    from bladefem.io.tower_case import read_tower_case
+    from bladefem.builders.tower_case import read_tower_case
     from bladefem.models.tower import tower_modes
     from pathlib import Path
     tower = read_tower_case(str(Path(__file__).resolve().parents[1] / "cases" / "uniform_tower.yaml"))

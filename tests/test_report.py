@@ -17,7 +17,7 @@ from bladefem.cli import Parser
 from bladefem.cli import export as export_cli
 from bladefem.cli import report as report_cli
 from bladefem.errors import InputError
-from bladefem.io.case import read_case
+from bladefem.builders.case import read_case
 from bladefem.models.galerkin import fields_at, galerkin_modes, galerkin_system, solve
 from bladefem.report import (
     Table,

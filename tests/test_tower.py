@@ -118,7 +118,7 @@ def test_buckling_factor_is_the_dense_generalised_eigenvalue(deck):
 
     import scipy.linalg as la
 
-    from bladefem.io.detect import read_model
+    from bladefem.builders.detect import read_model
     matrices = assemble_tower(read_model(Path(__file__).parent / "data" / "bmodes_certtest" / f"{deck}.bmi"), 40)
     K, _ = matrices.reduced(0.0)
     K_g = (matrices.Z.T @ matrices.K_gravity @ matrices.Z).toarray()

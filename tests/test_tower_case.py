@@ -12,10 +12,10 @@ from scipy.optimize import brentq
 from bladefem.cli import main
 from bladefem.cli.tower import is_tower_input
 from bladefem.errors import InputError
-from bladefem.io.elastodyn_main import read_elastodyn_main
-from bladefem.io.elastodyn_tower import read_elastodyn_tower
-from bladefem.io.tower_case import read_tower_case
-from bladefem.io.tower_elastodyn import elastodyn_top_mass
+from bladefem.formats.elastodyn_main import read_elastodyn_main
+from bladefem.builders.elastodyn_tower import read_elastodyn_tower
+from bladefem.builders.tower_case import read_tower_case
+from bladefem.builders.tower_elastodyn import elastodyn_top_mass
 from bladefem.models.tower import tower_modes
 
 CASES = Path(__file__).parent.parent / "cases"

@@ -17,7 +17,7 @@ import pytest
 
 import bladefem
 from bladefem.cli import main
-from bladefem.io.tower_case import read_tower_case
+from bladefem.builders.tower_case import read_tower_case
 from bladefem.models.tower_campbell import MARGIN, tower_campbell
 
 ROOT = Path(__file__).resolve().parents[1]

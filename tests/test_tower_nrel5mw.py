@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 import scipy.linalg as la
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
-from bladefem.io.elastodyn_main import read_elastodyn_main
-from bladefem.io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
-from bladefem.io.tower_elastodyn import elastodyn_top_mass, elastodyn_tower
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
+from bladefem.formats.elastodyn_main import read_elastodyn_main
+from bladefem.builders.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn_main
+from bladefem.builders.tower_elastodyn import elastodyn_top_mass, elastodyn_tower
 from bladefem.modal.elastodyn_fit import polynomial
 from bladefem.models.tower import tower_modes
 

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from bladefem.aero.performance import performance_at
-from bladefem.io.openfast_fst import read_openfast_deck
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.openfast_fst import read_openfast_deck
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel
 from bladefem.models.turbine.aero import (
     TurbineAero,

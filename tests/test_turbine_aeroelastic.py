@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.turbine_deck import read_turbine_deck
+from bladefem.builders.turbine_deck import read_turbine_deck
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
 from bladefem.models.turbine.initial import free_from_switches, initial_state
 from bladefem.models.turbine.outputs import LOAD_COLUMNS

@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
-from bladefem.io.turbine_elastodyn import (
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.builders.turbine_elastodyn import (
     blade_beam_from_modes,
     fe_tower_beam,
     read_elastodyn_tower,

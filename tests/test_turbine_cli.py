@@ -14,7 +14,7 @@ import pytest
 from bladefem.cli import Parser
 from bladefem.cli import turbine as turbine_cli
 from bladefem.errors import InputError
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel
 from bladefem.models.turbine.linearize import linearize
 

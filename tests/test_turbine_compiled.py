@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import FreeSystem, TurbineModel, select_dofs
 from bladefem.models.turbine.compiled import compiled_equations
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from bladefem.io.servodyn import read_servodyn
+from bladefem.builders.servodyn import read_servodyn
 from bladefem.models.turbine.control import Generator
 
 ROOT = Path(__file__).resolve().parents[1]

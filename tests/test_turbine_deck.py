@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from bladefem.errors import InputError
-from bladefem.io.elastodyn_main import read_elastodyn_main, write_elastodyn_main
-from bladefem.io.turbine_elastodyn import deck_conditions, turbine_from_elastodyn
+from bladefem.formats.elastodyn_main import read_elastodyn_main, write_elastodyn_main
+from bladefem.builders.turbine_elastodyn import deck_conditions, turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel, select_dofs
 from bladefem.models.turbine.initial import (
     InitialConditions,

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import FreeSystem, TurbineModel
 from bladefem.models.turbine.simulate import simulate
 

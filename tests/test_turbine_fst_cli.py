@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from bladefem.cli import main
-from bladefem.io._fast_format import FastText
+from bladefem.formats._fast_format import FastText
 
 ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "cases" / "nrel5mw"

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.turbine_elastodyn import turbine_from_elastodyn
+from bladefem.builders.turbine_elastodyn import turbine_from_elastodyn
 from bladefem.models.turbine import TurbineModel, select_dofs
 from bladefem.models.turbine.linearize import linearize
 
@@ -259,7 +259,7 @@ def test_a_sextic_is_a_stiffer_ritz_shape_than_the_fe_mode_of_the_5mw_blade():
 
     import scipy.linalg
 
-    from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
+    from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
     from bladefem.modal import modes
     from bladefem.modal.elastodyn_fit import BeamIntegrals
     from bladefem.sections import Blade, uniform_sections

@@ -14,9 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.case import read_case
-from bladefem.io.vtk import read_vtk, write_vtk
-from bladefem.io.vtk_geometry import chord_edges, mode_displacement, surface_positions
+from bladefem.builders.case import read_case
+from bladefem.outputs.vtk import read_vtk, write_vtk
+from bladefem.outputs.vtk_geometry import chord_edges, mode_displacement, surface_positions
 from bladefem.modal import KINDS, campbell, modes
 from bladefem.sections import Blade, uniform_sections
 
@@ -197,7 +197,7 @@ def test_array_names_carry_mode_kind_and_frequency_and_files_state_the_normalisa
 
 
 def test_a_tower_is_written_in_its_frame_with_tower_kinds(tmp_path):
-    from bladefem.io.tower_case import read_tower_case
+    from bladefem.builders.tower_case import read_tower_case
     from bladefem.models.tower import TOWER_KINDS, tower_modes
     tower = read_tower_case(str(CASES / "uniform_tower.yaml"))           # a str path works too
     result = tower_modes(tower, 3, elements=16)

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from bladefem.errors import InputError
-from bladefem.io.aerodyn import read_aerodyn_blade, with_planform
-from bladefem.io.elastodyn_blade import blade_from_elastodyn_main
-from bladefem.io.vtk import write_vtk
+from bladefem.builders.aerodyn import read_aerodyn_blade, with_planform
+from bladefem.builders.elastodyn_blade import blade_from_elastodyn_main
+from bladefem.outputs.vtk import write_vtk
 from bladefem.modal import modes
 
 DATA = Path(__file__).parent / "data"

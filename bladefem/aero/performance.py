@@ -88,7 +88,7 @@ def rotor_performance(source, wind_speed: float | None = None, rpm: float = 0.0,
     """Steady loads of a rigid rotor.
 
     source : a :class:`Rotor`, or an object with ``rotor()`` (and optionally ``inflow``, an :class:`Inflow`), such
-        as :class:`bladefem.io.openfast_fst.OpenFASTDeck`
+        as :class:`bladefem.builders.openfast_fst.OpenFASTDeck`
     wind_speed : horizontal wind speed at the reference height (the hub height unless the deck's InflowWind says
         otherwise), m/s; default the deck's
     rpm : rotor speed; pitch_deg : blade pitch (positive to feather); yaw_deg : nacelle yaw

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..io.yamlnodes import load_yaml
+from ..formats.yamlnodes import load_yaml
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
 
 ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize")

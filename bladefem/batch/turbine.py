@@ -31,13 +31,13 @@ def operating_inputs(case: Any) -> tuple[float | None, float | None, float | Non
 
 @lru_cache(maxsize=8)
 def _deck(path: str, digest: str, wind_speed: float | None, pitch_deg: float | None, rpm: float | None) -> Any:
-    from ..io.turbine_deck import read_turbine_deck
+    from ..builders.turbine_deck import read_turbine_deck
     return read_turbine_deck(path, wind_speed=wind_speed, pitch=None if pitch_deg is None else math.radians(pitch_deg),
                              blade_shapes="fe", rpm=rpm, gauss_points=2)
 
 
 def turbine_deck(case: Any) -> Any:
-    """The case's deck (:class:`~bladefem.io.turbine_deck.TurbineDeck`), read once per worker and operating point."""
+    """The case's deck (:class:`~bladefem.builders.turbine_deck.TurbineDeck`), read once per worker and operating point."""
     from .cases import file_digest
     model = case.inputs.get("file", case.model)
     wind_speed, rpm, pitch_deg = operating_inputs(case)
@@ -80,8 +80,8 @@ def linearize_rows(case: Any) -> list[dict[str, Any]]:
     """The aeroelastic modes at the case's operating point (``bladefem turbine DECK.fst --linearize --wind-speed U
     [--rpm R] [--pitch-deg P] [--induction I]`` with its defaults): one row per mode with its name, frequency (Hz)
     and damping ratio, and the operating point's rotor speed (rpm) and pitch (deg)."""
-    from ..io.openfast_fst import read_openfast_deck
-    from ..io.turbine_elastodyn import (
+    from ..builders.openfast_fst import read_openfast_deck
+    from ..builders.turbine_elastodyn import (
         NREL5MW_YAW_DAMPING,
         NREL5MW_YAW_STIFFNESS,
         deck_conditions,

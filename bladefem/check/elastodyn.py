@@ -6,10 +6,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
-from ..io.detect import detect_format
-from ..io.elastodyn_blade import read_elastodyn_blade
-from ..io.elastodyn_main import read_elastodyn_main
-from ..io.elastodyn_tower import read_elastodyn_tower
+from ..builders.detect import detect_format
+from ..builders.elastodyn_blade import read_elastodyn_blade
+from ..formats.elastodyn_main import read_elastodyn_main
+from ..builders.elastodyn_tower import read_elastodyn_tower
 from .models import ModelRun
 from .spec import Requirement
 

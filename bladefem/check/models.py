@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..io.detect import Geometry, detect_format, read_model
-from ..io.tower_case import is_tower_case, read_tower_case
-from ..io.tower_elastodyn import elastodyn_tower
+from ..builders.detect import Geometry, detect_format, read_model
+from ..builders.tower_case import is_tower_case, read_tower_case
+from ..builders.tower_elastodyn import elastodyn_tower
 from ..modal.results import ModalResult, Mode
 from ..sections import Blade
 from .spec import ModelSpec

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from ..io.yamlnodes import load_yaml
+from ..formats.yamlnodes import load_yaml
 from .schema import KINDS, SPEC_SCHEMA
 
 DEFAULT_RPM_POINTS = 16

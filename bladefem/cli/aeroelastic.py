@@ -68,8 +68,8 @@ def wind_speeds(text: str) -> tuple[float, ...]:
 def wants_aeroelastic(args: argparse.Namespace) -> bool:
     """True for --linearize or --campbell with aerodynamics: --wind-speed given (:func:`read_deck` refuses a deck
     without them), or a .fst whose AeroDyn is on, unless --no-aero."""
-    from ..io.openfast_fst import read_openfast_deck
-    from ..io.turbine_deck import is_openfast_deck
+    from ..builders.openfast_fst import read_openfast_deck
+    from ..builders.turbine_deck import is_openfast_deck
 
     if args.simulate is not None or args.no_aero:
         return False
@@ -109,8 +109,8 @@ def check_aeroelastic_options(args: argparse.Namespace) -> None:
 
 def read_deck(path: str):
     """The OpenFAST deck (with aerodynamics) of ``path``."""
-    from ..io._labels import Labels
-    from ..io.openfast_fst import read_openfast_deck
+    from ..formats._labels import Labels
+    from ..builders.openfast_fst import read_openfast_deck
 
     if Path(path).is_file() and not Labels.read(path).has("CompElast"):
         raise InputError("aerodynamics come from an OpenFAST main file (.fst) naming ElastoDyn, AeroDyn and "
@@ -123,7 +123,7 @@ def read_deck(path: str):
 
 def run_aeroelastic(args: argparse.Namespace) -> int:
     """The aeroelastic ``--linearize`` or ``--campbell`` of an OpenFAST deck."""
-    from ..io.turbine_elastodyn import deck_conditions
+    from ..builders.turbine_elastodyn import deck_conditions
     from ..models.turbine.aeroelastic_campbell import AeroelasticTurbine
     from ..models.turbine.control import Generator
     from ..models.turbine.initial import free_from_switches
@@ -153,7 +153,7 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
 def structure_builder(deck, args: argparse.Namespace, notes: list[str]):
     """``pitch (rad) -> TurbineModel`` of the deck's ElastoDyn structure with the command's options; the notes of
     the first build go to ``notes``."""
-    from ..io.turbine_elastodyn import (
+    from ..builders.turbine_elastodyn import (
         NREL5MW_YAW_DAMPING,
         NREL5MW_YAW_STIFFNESS,
         turbine_from_elastodyn,
@@ -185,7 +185,7 @@ def structure_builder(deck, args: argparse.Namespace, notes: list[str]):
 def operating_requests(args: argparse.Namespace, deck, conditions, free, dofs, generator, notes: list[str]):
     """An :class:`OperatingRequest` per wind speed (module description; ``conditions`` the deck's initial ones);
     locks the generator azimuth in ``free`` when the rotor speed is imposed."""
-    from ..io.schedule import read_schedule
+    from ..formats.schedule import read_schedule
     from ..models.turbine.aeroelastic_campbell import OperatingRequest, rotor_speed
 
     gen = dofs.index("generator_azimuth")

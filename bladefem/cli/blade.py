@@ -110,7 +110,7 @@ def run_modes(args: argparse.Namespace) -> int:
         raise InputError("--terms sets the Galerkin model's terms; add --method galerkin", field="--terms")
     result = compute_modes(model, args)
     if args.json:
-        from ..io.results import dumps, modal_to_dict
+        from ..outputs.results import dumps, modal_to_dict
         print(dumps({"input": args.input, "structure": "blade", **modal_to_dict(result, args.method)}))
     else:
         from .tables import modes_table
@@ -150,7 +150,7 @@ def run_campbell(args: argparse.Namespace) -> int:
         save_campbell_plot(result, args.plot, title=model.name, operating_rpm=operating)
     write_vtk_folder(model, result, args)
     if args.json:
-        from ..io.results import campbell_to_dict, dumps
+        from ..outputs.results import campbell_to_dict, dumps
         print(dumps({"input": args.input, "structure": "blade", **campbell_to_dict(result)}))
     else:
         from .tables import campbell_table
@@ -171,7 +171,7 @@ def tower_campbell_command(args: argparse.Namespace, tower) -> int:
         save_tower_campbell_plot(chart, args.plot)
     write_vtk_folder(tower, chart.modes, args)
     if args.json:
-        from ..io.results import dumps, tower_campbell_to_dict
+        from ..outputs.results import dumps, tower_campbell_to_dict
         print(dumps({"input": args.input, "structure": "tower", **tower_campbell_to_dict(chart)}))
     else:
         from .tables import tower_campbell_table
@@ -186,7 +186,7 @@ def write_vtk_folder(structure, result, args: argparse.Namespace) -> None:
     DIR (``campbell.pvd``, its VTU files and sidecar), the folder named on stderr."""
     if not args.vtk:
         return
-    from ..io.vtk import write_vtk
+    from ..outputs.vtk import write_vtk
     export = write_vtk(structure, result, args.vtk, "campbell")
     files = f"{len(export.meshes)} VTU file" + ("s" if len(export.meshes) != 1 else "")
     print(f"mode shapes for ParaView: {export.collection} ({files}, sidecar {export.sidecar.name})", file=sys.stderr)

@@ -64,7 +64,7 @@ def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     notes = blade.notes + matrices.notes
     damping = stiffness = None
     if args.aero is not None:
-        from ..io.aerodyn_rotor import aerodyn_rotor
+        from ..builders.aerodyn_rotor import aerodyn_rotor
         from ..models.blade_aero import aero_matrices, operating_point
         rotor = aerodyn_rotor(args.aero, blade, args.blades)
         point = operating_point(rotor, args.wind_speed, args.rpm * math.pi / 30.0, blade.pitch)

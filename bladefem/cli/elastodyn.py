@@ -96,7 +96,7 @@ def _check(args: argparse.Namespace) -> None:
 
 def _part(args: argparse.Namespace) -> str | None:
     """'blade' or 'tower' from --part or the --write target; None to let INPUT decide."""
-    from ..io.detect import detect_format
+    from ..builders.detect import detect_format
 
     if args.part:
         return args.part
@@ -115,9 +115,9 @@ def _main_file(args: argparse.Namespace, kind: str) -> str | None:
 
 def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | None, str | None]:
     """Coefficients already in the file to be written, or in the ElastoDyn file given as INPUT."""
-    from ..io.elastodyn_blade import read_elastodyn_blade
-    from ..io.elastodyn_main import read_elastodyn_main
-    from ..io.elastodyn_tower import read_elastodyn_tower
+    from ..builders.elastodyn_blade import read_elastodyn_blade
+    from ..formats.elastodyn_main import read_elastodyn_main
+    from ..builders.elastodyn_tower import read_elastodyn_tower
 
     source = args.write
     if source is None:
@@ -134,8 +134,8 @@ def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | Non
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io.detect import Geometry, detect_format, read_model
-    from ..io.elastodyn_main import read_elastodyn_main
+    from ..builders.detect import Geometry, detect_format, read_model
+    from ..formats.elastodyn_main import read_elastodyn_main
     from ..sections import Blade
 
     _check(args)
@@ -229,16 +229,16 @@ def _rpm(args: argparse.Namespace, kind: str, main) -> float:
     if main is not None:
         return main.rotor_speed_rpm
     if kind == "bmodes":
-        from ..io.bmodes import read_bmodes
+        from ..formats.bmodes import read_bmodes
         return read_bmodes(args.input).rotor_speed_rpm
     raise InputError("give the rotor speed with --rpm R (rpm)", file=args.input, field="--rpm")
 
 
 def report(name: str, result: Any, shipped_from: str | None = None) -> str:
     """The quality table, the warnings and the coefficient blocks as ElastoDyn lines."""
-    from ..io._modeshape_blocks import block_lines, decimal_texts
-    from ..io.elastodyn_blade import BLADE_BLOCKS
-    from ..io.elastodyn_tower import TOWER_BLOCKS
+    from ..formats._modeshape_blocks import block_lines, decimal_texts
+    from ..builders.elastodyn_blade import BLADE_BLOCKS
+    from ..builders.elastodyn_tower import TOWER_BLOCKS
 
     speed = "tower (non-rotating)" if result.tower else f"rotor speed {result.rpm:g} rpm"
     lines = [f"# {name}: FE modes, {speed}; ElastoDyn frequencies from its own integrals over {result.nodes} nodes"]
@@ -270,9 +270,9 @@ def _table(title: str, fits: dict) -> list[str]:
 
 def _update(path: str, result: Any, dry_run: bool, backup: bool = False) -> None:
     from ..files import write_atomic
-    from ..io._fast_format import text_encoding
-    from ..io.elastodyn_blade import blade_with_mode_shapes
-    from ..io.elastodyn_tower import tower_with_mode_shapes
+    from ..formats._fast_format import text_encoding
+    from ..builders.elastodyn_blade import blade_with_mode_shapes
+    from ..builders.elastodyn_tower import tower_with_mode_shapes
 
     updater = tower_with_mode_shapes if result.tower else blade_with_mode_shapes
     old, new = updater(path, result.coefficients)

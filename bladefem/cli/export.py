@@ -36,7 +36,7 @@ def read_drawn_structure(args: argparse.Namespace) -> object:
     if args.aerodyn:
         if not is_blade(model):
             raise InputError("--aerodyn draws a blade's planform; INPUT describes a tower", field="--aerodyn")
-        from ..io.aerodyn import read_aerodyn_blade, with_planform
+        from ..builders.aerodyn import read_aerodyn_blade, with_planform
         model = with_planform(model, read_aerodyn_blade(args.aerodyn))
     return model
 
@@ -93,7 +93,7 @@ def run_export(args: argparse.Namespace) -> int:
         result, written = tower_modes(model, args.n_modes, args.elements), []
         written += pictures(model, result, out, args)
     if vtk:
-        from ..io.vtk import write_vtk
+        from ..outputs.vtk import write_vtk
         from ..report import progress_bar
         export = write_vtk(model, result, out, args.stem, args.n_modes, progress_bar("VTK files", args.quiet))
         written += [*export.meshes, export.collection, export.sidecar]

@@ -100,11 +100,11 @@ def deck_settings(path: str) -> tuple[float | None, int | None]:
     """(rotor speed in rpm, number of modes) that INPUT carries: a BModes deck's ``rot_rpm x rpm_mult`` (0 for a
     tower) and ``modepr``; (None, None) for other inputs or when the file cannot be read (the reader then says
     why)."""
-    from ..io.detect import detect_format
+    from ..builders.detect import detect_format
     try:
         if detect_format(path) != "bmodes":
             return None, None
-        from ..io.bmodes import read_bmodes
+        from ..formats.bmodes import read_bmodes
         deck = read_bmodes(path)
     except InputError:
         return None, None
@@ -124,7 +124,7 @@ def apply_deck_settings(args: argparse.Namespace, n_modes: bool = False) -> None
 def read_structure(args: argparse.Namespace) -> object:
     """The blade (:class:`bladefem.sections.Blade`) or tower (:class:`bladefem.sections.tower.Tower`) described by
     INPUT and the options; ``--part`` chooses for inputs that hold both."""
-    from ..io.detect import Geometry, read_model
+    from ..builders.detect import Geometry, read_model
     from ..sections import Blade
     from ..sections.tower import as_tower
     from .tower import is_tower_input, read_tower

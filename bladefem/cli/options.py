@@ -122,7 +122,7 @@ def check_applicable(args: argparse.Namespace, tower: bool) -> None:
     if not tower and getattr(args, "rotor_azimuth_deg", 0.0):
         given.append("--rotor-azimuth-deg")
     if tower and getattr(args, "tip_mass", None) is not None:
-        from ..io.detect import detect_format
+        from ..builders.detect import detect_format
         kind = detect_format(args.input)
         if not (kind == "windio" or (kind == "elastodyn-tower" and not getattr(args, "elastodyn_main", None))):
             given.append("--tip-mass")

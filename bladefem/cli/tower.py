@@ -19,8 +19,8 @@ FIT_MODES = 8
 
 def is_tower_input(path: str | Path) -> bool:
     """True if INPUT describes only a tower: a YAML case with ``kind: tower`` or an ElastoDyn tower file."""
-    from ..io.detect import detect_format
-    from ..io.tower_case import is_tower_case
+    from ..builders.detect import detect_format
+    from ..builders.tower_case import is_tower_case
 
     try:
         found = detect_format(path)
@@ -31,9 +31,9 @@ def is_tower_input(path: str | Path) -> bool:
 
 def read_tower(args: argparse.Namespace) -> Any:
     """The tower described by INPUT and the options (a :class:`bladefem.sections.tower.Tower`)."""
-    from ..io.detect import Geometry, detect_format, read_model
-    from ..io.tower_case import is_tower_case, read_tower_case
-    from ..io.tower_elastodyn import elastodyn_tower
+    from ..builders.detect import Geometry, detect_format, read_model
+    from ..builders.tower_case import is_tower_case, read_tower_case
+    from ..builders.tower_elastodyn import elastodyn_tower
     from ..sections import Blade
     from ..sections.tower import as_tower
 
@@ -53,14 +53,14 @@ def read_tower(args: argparse.Namespace) -> Any:
 
 
 def _is_tower_of(main_path: str, tower_path: str) -> bool:
-    from ..io.elastodyn_main import read_elastodyn_main
+    from ..formats.elastodyn_main import read_elastodyn_main
     return Path(read_elastodyn_main(main_path).tower_file).resolve() == Path(tower_path).resolve()
 
 
 def _bare_tower(path: Path, args: argparse.Namespace, main_path: str | None) -> Any:
     """An ElastoDyn tower file with its height from --tower-height (or the main file) and a point top mass."""
-    from ..io.elastodyn_main import read_elastodyn_main
-    from ..io.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
+    from ..formats.elastodyn_main import read_elastodyn_main
+    from ..builders.elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
     from ..sections.tower import TopMass, Tower
 
     height = getattr(args, "tower_height", None)
@@ -112,7 +112,7 @@ def tower_table(tower: Any, result: Any) -> str:
 
 def tower_modes_command(args: argparse.Namespace, tower: Any) -> int:
     """``bladefem modes TOWER_INPUT``: print the tower's modes as a table or JSON; returns the exit code."""
-    from ..io.results import dumps, modal_to_dict
+    from ..outputs.results import dumps, modal_to_dict
     from ..models.tower import tower_modes
 
     if args.rpm != 0:

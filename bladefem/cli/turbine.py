@@ -208,8 +208,8 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
 
 
 def build_model(args: argparse.Namespace):
-    """The deck's turbine (:class:`~bladefem.io.turbine_deck.TurbineDeck`) and its model, with the options."""
-    from ..io.turbine_deck import read_turbine_deck
+    """The deck's turbine (:class:`~bladefem.builders.turbine_deck.TurbineDeck`) and its model, with the options."""
+    from ..builders.turbine_deck import read_turbine_deck
     from ..models.turbine import TurbineModel
 
     shapes = args.shapes or ("polynomial" if args.elastodyn_compatible else "fe")

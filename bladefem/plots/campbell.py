@@ -71,6 +71,8 @@ def family_labels(result: CampbellResult) -> list[str]:
     return kind_labels(family.kind for family in result.families)
 
 
+#: the gid of the "nP" labels beside crossing circles (inside the axes, unlike the nP lines' labels)
+CROSSING_LABEL = "crossing-label"
 #: where a crossing's "nP" may go, points from the circle: below right first, then around it
 LABEL_OFFSETS = ((4, -9), (4, 3), (-15, -9), (-15, 3), (4, -17), (-15, 10), (10, -3), (-21, -3))
 
@@ -88,6 +90,7 @@ def label_crossings(ax, marks: Sequence[tuple[float, float, int]]) -> None:
             label = ax.annotate(f"{harmonic}P", (rpm, frequency), xytext=offset, textcoords="offset points",
                                 fontsize=6.5, color="black", zorder=5)
             label.set_in_layout(False)
+            label.set_gid(CROSSING_LABEL)
             box = label.get_window_extent(renderer)
             if not any(box.overlaps(other) for other in taken):
                 taken.append(box)

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..files import write_atomic
-from ..io.vtk_geometry import (
+from ..outputs.vtk_geometry import (
     ModeDisplacement,
     axis_positions,
     blade_to_rotor,

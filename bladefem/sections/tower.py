@@ -358,7 +358,7 @@ class Tower:
 
 def as_tower(data: object) -> Tower:
     """A :class:`Tower` from any object with ``sections`` and optionally ``base_height``, ``top_mass``, ``name``,
-    ``notes`` (e.g. the readers' :class:`bladefem.io.tower.Tower`): clamped base, standard gravity."""
+    ``notes`` (e.g. the readers' :class:`bladefem.builders.tower.Tower`): clamped base, standard gravity."""
     if isinstance(data, Tower):
         return data
     return Tower(sections=data.sections, base_height=getattr(data, "base_height", 0.0),  # type: ignore[attr-defined]

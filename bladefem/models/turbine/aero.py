@@ -107,7 +107,7 @@ class TurbineAero:
     @classmethod
     def from_deck(cls, deck, params, wind_speed: float | None = None, shear_exponent: float | None = None,
                   pitch: float | None = None) -> TurbineAero:
-        """The aerodynamics of an OpenFAST deck (:class:`bladefem.io.openfast_fst.OpenFASTDeck`, or anything with
+        """The aerodynamics of an OpenFAST deck (:class:`bladefem.builders.openfast_fst.OpenFASTDeck`, or anything with
         ``rotor()`` and ``inflow``) on the turbine ``params`` (:class:`TurbineParameters`); ``wind_speed`` (m/s)
         and ``shear_exponent`` override InflowWind's, ``pitch`` (rad) the structural model's."""
         inflow = deck.inflow

@@ -46,7 +46,7 @@ class Generator:
 
     @classmethod
     def from_servodyn(cls, servo) -> Generator:
-        """The generator of a ServoDyn file (:class:`bladefem.io.servodyn.ServoDyn`)."""
+        """The generator of a ServoDyn file (:class:`bladefem.builders.servodyn.ServoDyn`)."""
         if servo.torque_control != 1:
             return cls(efficiency=servo.efficiency)
         return cls(True, servo.rated_generator_speed, servo.rated_torque, servo.region2_constant, servo.slip,

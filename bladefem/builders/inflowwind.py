@@ -11,7 +11,7 @@ import math
 import os
 
 from ..aero.rotor import Inflow
-from ._labels import Labels
+from ..formats._labels import Labels
 
 WIND_TYPES = {1: "steady", 2: "uniform time series", 3: "TurbSim full field", 4: "Bladed full field",
               5: "HAWC full field", 6: "user-defined", 7: "native Bladed full field", 8: "4D external"}

@@ -17,7 +17,7 @@ from ..sections.tower import (
     openfast_vector,
 )
 from .elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
-from .elastodyn_main import ElastoDynMain, read_elastodyn_main
+from ..formats.elastodyn_main import ElastoDynMain, read_elastodyn_main
 from .elastodyn_tower import read_elastodyn_tower, tower_from_elastodyn
 
 # -- the tower-top body of an ElastoDyn turbine --------------------------------------------------------------

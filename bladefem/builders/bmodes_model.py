@@ -18,7 +18,7 @@ The section table is mapped so that bladefem's equations reproduce BModes' where
 - tip mass: a rigid body with its centre of mass ``cm_axial`` beyond the tip along the span and ``cm_loc`` along the
   tip section's chord (toward the trailing edge), inertias about its centre of mass in the tip section frame
   (x flapwise, y toward the trailing edge, z along the span), the products ``ixy_tip`` .. ``iyz_tip`` being
-  inertia-tensor entries as BModes' mass matrix uses them. Towers: see :mod:`bladefem.io.bmodes_tower`.
+  inertia-tensor entries as BModes' mass matrix uses them. Towers: see :mod:`bladefem.builders.bmodes_tower`.
 - ``el_loc``: BModes' own mesh is not used. bladefem meshes from the stations and refines until converged; BModes'
   element boundaries often lie within millimetres of a station (rounded fractions), and such sliver elements ruin
   the conditioning.
@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..sections import Blade, SectionTable, TipMass
-from .bmodes import BModesInput
+from ..formats.bmodes import BModesInput
 
 #: BModes chordwise quantities are positive toward the trailing edge; bladefem's toward the leading edge.
 CHORDWISE_SIGN = -1.0

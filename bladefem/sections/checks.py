@@ -15,7 +15,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..limits import MAX_MAGNITUDE
-from ..sections import SectionTable
+from .table import SectionTable
 
 #: Smallest flexible length (tip radius - hub radius), m
 MIN_LENGTH = 1e-3

@@ -21,11 +21,11 @@ import numpy as np
 from ..aero.polars import Polar
 from ..aero.rotor import Inflow, Rotor
 from ..errors import InputError
-from ._labels import Labels
+from ..formats._labels import Labels
 from .aerodyn import AeroDynBlade, read_aerodyn_blade
 from .aerodyn_primary import AeroDynPrimary, Unmodelled, default_air_density, read_aerodyn_primary
 from .airfoil_polars import read_airfoil
-from .elastodyn_main import ElastoDynMain, read_elastodyn_main
+from ..formats.elastodyn_main import ElastoDynMain, read_elastodyn_main
 from .inflowwind import read_inflowwind
 from .servodyn import ServoDyn, read_servodyn
 

@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import InputError
 from ..files import read_input
 from ..sections import Blade, TipMass
-from .checks import body_problem, check_section_values, length_problem, precone_problem
+from ..sections.checks import body_problem, check_section_values, length_problem, precone_problem
 from .tower import Tower
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -97,7 +97,7 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         _refuse(geometry, TOWER_OPTIONS, "a blade", path)
         return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry, path)
     if kind == "bmodes":
-        from .bmodes import read_bmodes
+        from ..formats.bmodes import read_bmodes
         from .bmodes_model import blade_from_bmodes
         from .bmodes_tower import tower_from_bmodes
         deck = read_bmodes(path)
@@ -122,7 +122,7 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
                              field="tip_mass")
         return _overrides(blade, geometry, path)
     if kind == "windio":
-        from .windio import read_windio
+        from ..formats.windio import read_windio
         from .windio_model import blade_from_windio, tower_from_windio
         turbine = read_windio(path)
         if part == "tower" or turbine.blade is None:
@@ -200,7 +200,7 @@ def _overrides(blade: Blade, geometry: Geometry, path: str | Path) -> Blade:
 
 def _elastodyn_blade(path: Path, kind: str, g: Geometry) -> Blade:
     from .elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
-    from .elastodyn_main import read_elastodyn_main
+    from ..formats.elastodyn_main import read_elastodyn_main
     main = read_elastodyn_main(path if kind == "elastodyn-main" else g.elastodyn_main) if (
         kind == "elastodyn-main" or g.elastodyn_main) else None
     blade_path = main.blade_files[0] if kind == "elastodyn-main" else path

@@ -47,7 +47,7 @@ from ..sections.tower import (
     Tower,
     Wires,
 )
-from .bmodes import BModesInput, BModesPlatform
+from ..formats.bmodes import BModesInput, BModesPlatform
 from .bmodes_model import bmodes_sections, common_notes, file_columns, rigid_tip, scaled_columns
 
 #: base coordinates held fixed for each hub_conn that lets the base move

@@ -11,7 +11,7 @@ import numpy as np
 from ..aero.rotor import Rotor
 from ..errors import InputError
 from ..sections import Blade
-from ._labels import Labels
+from ..formats._labels import Labels
 from .aerodyn import SPAN_RTOL, read_aerodyn_blade
 from .aerodyn_primary import default_air_density, read_aerodyn_primary
 from .airfoil_polars import read_airfoil

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..aero.polars import CUBIC, LINEAR, Polar
-from ._fast_format import KEY_LINE, FastText, to_float, to_int
+from ..formats._fast_format import KEY_LINE, FastText, to_float, to_int
 
 
 @dataclass(frozen=True)

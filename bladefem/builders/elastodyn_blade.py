@@ -23,10 +23,10 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..files import write_atomic
 from ..sections import Blade, SectionTable, TipMass
-from ._fast_format import FastText, degrees_exact, format_number
-from ._modeshape_blocks import block_lines, block_values, read_block
-from .checks import check_section_values
-from .elastodyn_main import read_elastodyn_main
+from ..formats._fast_format import FastText, degrees_exact, format_number
+from ..formats._modeshape_blocks import block_lines, block_values, read_block
+from ..sections.checks import check_section_values
+from ..formats.elastodyn_main import read_elastodyn_main
 
 #: Mode name -> ElastoDyn block prefix.
 BLADE_BLOCKS = {"flap1": "BldFl1Sh", "flap2": "BldFl2Sh", "edge1": "BldEdgSh"}

@@ -30,8 +30,8 @@ import numpy as np
 from ..errors import InputError, shown
 from ..limits import MAX_MAGNITUDE
 from ..sections import ROOTS, Blade, SectionTable, tip_mass_at_section
-from .checks import body_problem, check_section_values, length_problem, precone_problem
-from .yamlnodes import Key, load_yaml
+from ..sections.checks import body_problem, check_section_values, length_problem, precone_problem
+from ..formats.yamlnodes import Key, load_yaml
 
 #: case-file column -> (SectionTable field, factor to SI)
 COLUMNS: dict[str, tuple[str, float]] = {

@@ -22,7 +22,7 @@ from ..models.turbine.shapes import (
 )
 from ..sections import Blade, SectionTable, bending_stiffness, total_angle
 from .elastodyn_blade import blade_from_elastodyn, read_elastodyn_blade
-from .elastodyn_main import read_elastodyn_main
+from ..formats.elastodyn_main import read_elastodyn_main
 from .elastodyn_tower import (
     ElastoDynTowerFile,
     read_elastodyn_tower,

@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..sections import Blade
-from ._fast_format import FastText
+from ..formats._fast_format import FastText
 
 COLUMNS = ("BlSpn", "BlCrvAC", "BlSwpAC", "BlCrvAng", "BlTwist", "BlChord", "BlAFID")
 #: relative shortfall of the AeroDyn span against the blade length that is still accepted (rounding in files)

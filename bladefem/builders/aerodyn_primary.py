@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..aero.options import PITT_PETERS_FACTOR, BEMOptions
-from ._labels import Labels
+from ..formats._labels import Labels
 from .airfoil_polars import PolarColumns
 
 #: (label, value bladefem models, what the other values would add)

@@ -48,8 +48,8 @@ from ..sections.tower import (
     Wires,
 )
 from .case import CaseFile
-from .checks import body_problem, check_section_values
-from .yamlnodes import Key, load_yaml
+from ..sections.checks import body_problem, check_section_values
+from ..formats.yamlnodes import Key, load_yaml
 
 #: case-file column -> SectionTable field
 COLUMNS: dict[str, str] = {

@@ -1,7 +1,7 @@
 """The tower-support block of a BModes tower deck: tension wires and the platform (or monopile) block.
 
 The block starts at ``tow_support``; which layout follows is found from the content: a ``draft`` entry on the next
-line starts the platform block (see :mod:`bladefem.io.bmodes`).
+line starts the platform block (see :mod:`bladefem.formats.bmodes`).
 Matrices are read row by row from the lines after their labels, arrays from the line that ends with their key
 (``0. 10.  : z_distr_m ...``), each with exactly the number of values the layout says.
 """

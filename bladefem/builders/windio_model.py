@@ -22,10 +22,10 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..files import write_atomic
 from ..sections import Blade, SectionTable, TipMass
-from ._fast_format import degrees_exact
-from .checks import check_section_values
+from ..formats._fast_format import degrees_exact
+from ..sections.checks import check_section_values
 from .tower import Tower
-from .windio import WindIOBeam, WindIOTurbine
+from ..formats.windio import WindIOBeam, WindIOTurbine
 
 #: Couplings smaller than this fraction of sqrt(K_ii K_jj) are not mentioned in the notes.
 COUPLING_NOTE = 0.01

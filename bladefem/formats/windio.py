@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError, shown
 from ..limits import MAX_MAGNITUDE
-from .checks import MAX_JUMP, MAX_REACH, MAX_TWIST, precone_problem
+from ..sections.checks import MAX_JUMP, MAX_REACH, MAX_TWIST, precone_problem
 from .yamlnodes import Key, load_yaml
 
 STIFFNESS_KEYS = tuple(f"K{i}{j}" for i in range(1, 7) for j in range(i, 7))
@@ -290,7 +290,7 @@ def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
 
 
 def _check_reach(r: _Reader, key: Key, inertia: dict[str, NDArray], reach: float) -> None:
-    """Centre-of-mass offsets and radii of gyration within :data:`~bladefem.io.checks.MAX_REACH` beam lengths."""
+    """Centre-of-mass offsets and radii of gyration within :data:`~bladefem.sections.checks.MAX_REACH` beam lengths."""
     for name, values in inertia.items():
         gyration = name.startswith("i_")
         far = values > inertia["mass"] * reach**2 if gyration else np.abs(values) > reach

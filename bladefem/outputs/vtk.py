@@ -20,7 +20,7 @@ frequencies back into each VTU as float64 field data, and the ``.pvd`` and a JSO
 
 For a Campbell sweep, mode ``KK`` at every speed is the mode family ``KK`` tracked by MAC. A tower is written in
 its own frame (x up, y side-side, z fore-aft) with its kinds (fore-aft, side-side, ...). Coordinates and frame:
-:mod:`bladefem.io.vtk_geometry`.
+:mod:`bladefem.outputs.vtk_geometry`.
 """
 
 from __future__ import annotations

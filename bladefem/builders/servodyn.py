@@ -14,7 +14,7 @@ import math
 import os
 from dataclasses import dataclass
 
-from ._labels import Labels
+from ..formats._labels import Labels
 from .aerodyn_primary import Unmodelled
 
 RPM = math.pi / 30.0

@@ -17,11 +17,11 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..files import write_atomic
 from ..sections import SectionTable, TipMass
-from ._fast_format import FastText, format_number
-from ._modeshape_blocks import block_lines, block_values, read_block
-from .checks import check_section_values
+from ..formats._fast_format import FastText, format_number
+from ..formats._modeshape_blocks import block_lines, block_values, read_block
+from ..sections.checks import check_section_values
 from .elastodyn_blade import _check_stations, blade_from_elastodyn, read_elastodyn_blade
-from .elastodyn_main import read_elastodyn_main
+from ..formats.elastodyn_main import read_elastodyn_main
 from .tower import Tower
 
 #: Mode name -> ElastoDyn block prefix.
