@@ -1,0 +1,152 @@
+"""The input files of a case, carried to the worker that runs it.
+
+A worker of a real cluster runs in another folder, often on another machine: the paths of the plan mean nothing
+there. So the client reads each distinct input once (the base model, a deck with every file it references, a check
+spec) while recording which files the readers open, and ships their bytes as a :class:`Bundle`; the worker writes
+them into a private mirror of the client's absolute paths (so relative references between the files resolve as
+they did on the client) and runs the case on those copies. A case thus runs on exactly the bytes its hash names.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+import tempfile
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError
+from ..files import read_input
+
+#: files the readers opened while recording (None when not recording)
+_opened: ContextVar[list[str] | None] = ContextVar("bladefem_batch_opened", default=None)
+_CODE_SUFFIXES = (".py", ".pyc", ".so", ".pyd")
+
+
+def _audit(event: str, args: tuple) -> None:
+    if event != "open":
+        return
+    opened = _opened.get()
+    if opened is None:
+        return
+    path, mode = args[0], args[1]
+    if isinstance(mode, str) and "r" in mode and "+" not in mode and isinstance(path, str | bytes | os.PathLike):
+        opened.append(os.fsdecode(path))
+
+
+_hook_installed = False
+
+
+@contextmanager
+def recording() -> Iterator[list[str]]:
+    """The paths of the files opened for reading inside the block (Python's 'open' audit event)."""
+    global _hook_installed
+    if not _hook_installed:
+        sys.addaudithook(_audit)
+        _hook_installed = True
+    opened: list[str] = []
+    token = _opened.set(opened)
+    try:
+        yield opened
+    finally:
+        _opened.reset(token)
+
+
+def _is_code(path: str) -> bool:
+    """Python's own files (a module imported while reading), not inputs."""
+    if path.endswith(_CODE_SUFFIXES):
+        return True
+    package = str(Path(__file__).resolve().parents[1])
+    prefixes = {sys.prefix, sys.base_prefix, sys.exec_prefix, package}
+    return any(path.startswith(prefix.rstrip(os.sep) + os.sep) for prefix in prefixes)
+
+
+@dataclass(frozen=True)
+class Bundle:
+    """Input files by absolute path on the client, with their bytes; ``digest`` names the whole set."""
+
+    files: tuple[tuple[str, bytes], ...]
+    digest: str
+
+    @classmethod
+    def of(cls, paths: Iterable[str | os.PathLike]) -> Bundle:
+        files = {}
+        for path in paths:
+            absolute = os.path.abspath(path)
+            if absolute not in files and os.path.isfile(absolute) and not _is_code(absolute):
+                files[absolute] = read_input(absolute)
+        items = tuple(sorted(files.items()))
+        key = hashlib.sha256()
+        for path, data in items:
+            key.update(path.encode() + b"\0" + hashlib.sha256(data).digest())
+        return cls(items, key.hexdigest())
+
+    @property
+    def content(self) -> str:
+        """Digest of the files' bytes alone (not their paths): the same inputs in another folder are the same."""
+        return hashlib.sha256(b"".join(sorted(hashlib.sha256(data).digest() for _, data in self.files))).hexdigest()
+
+    @property
+    def paths(self) -> list[Path]:
+        return [Path(path) for path, _ in self.files]
+
+
+def bundle_of(read: Callable[[], Any], named: Iterable[Path]) -> Bundle:
+    """The files ``read()`` opens (a reader of the case's inputs, run once here), and the ``named`` ones. A reader
+    that fails keeps what it opened: the case then fails on the worker with the reader's own message."""
+    with recording() as opened:
+        try:
+            read()
+        except Exception:                        # reported by the case itself, on the worker
+            pass
+    return Bundle.of([*named, *opened])
+
+
+def mirror_root(bundle: Bundle) -> Path:
+    """Where this worker keeps its copy of ``bundle`` (written once per worker machine and bundle)."""
+    user = os.getuid() if hasattr(os, "getuid") else "user"
+    return Path(tempfile.gettempdir()) / f"bladefem-batch-{user}" / bundle.digest
+
+
+def mirrored(root: Path, path: str | os.PathLike) -> Path:
+    """The copy under ``root`` of the client's ``path``."""
+    path = Path(os.path.abspath(path))
+    return root / path.anchor.strip("/\\:") / path.relative_to(path.anchor)
+
+
+def materialize(bundle: Bundle) -> Path:
+    """Write the bundle's files under :func:`mirror_root` (each whole: temporary file, then rename) unless a
+    complete copy is there already; returns the root."""
+    root = mirror_root(bundle)
+    complete = root / ".complete"
+    if complete.exists():
+        return root
+    for path, data in bundle.files:
+        target = mirrored(root, path)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".part")
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(data)
+        os.replace(temporary, target)
+    complete.touch()
+    return root
+
+
+def check_results_folder(results: str | os.PathLike, inputs: Iterable[str | os.PathLike]) -> None:
+    """An InputError when the results folder is, or holds, one of the ``inputs`` (the plan, a model, a file a
+    deck references): its part files and temporaries would sit among (and could replace) the inputs."""
+    folder = Path(os.path.realpath(results))
+    for path in inputs:
+        real = Path(os.path.realpath(path))
+        if real == folder or folder in real.parents:
+            what = "is" if real == folder else "holds"
+            raise InputError(f"the results folder {what} an input of the batch ({path}): give a folder of its own",
+                             file=str(results), field="-o")
+
+
+__all__ = ["Bundle", "bundle_of", "check_results_folder", "materialize", "mirror_root", "mirrored", "recording"]
