@@ -107,10 +107,18 @@ def bundle_of(read: Callable[[], Any], named: Iterable[Path]) -> Bundle:
     return Bundle.of([*named, *opened])
 
 
+#: environment variable of a worker: the folder for its copies of the cases' input files (default: a folder
+#: ``bladefem-batch-<uid>`` in the temporary folder); each set of files is written once per machine
+INPUTS_FOLDER = "BLADEFEM_BATCH_INPUTS"
+
+
 def mirror_root(bundle: Bundle) -> Path:
     """Where this worker keeps its copy of ``bundle`` (written once per worker machine and bundle)."""
-    user = os.getuid() if hasattr(os, "getuid") else "user"
-    return Path(tempfile.gettempdir()) / f"bladefem-batch-{user}" / bundle.digest
+    folder = os.environ.get(INPUTS_FOLDER)
+    if not folder:
+        user = os.getuid() if hasattr(os, "getuid") else "user"
+        folder = os.path.join(tempfile.gettempdir(), f"bladefem-batch-{user}")
+    return Path(folder) / bundle.digest
 
 
 def mirrored(root: Path, path: str | os.PathLike) -> Path:
@@ -126,14 +134,19 @@ def materialize(bundle: Bundle) -> Path:
     complete = root / ".complete"
     if complete.exists():
         return root
-    for path, data in bundle.files:
-        target = mirrored(root, path)
-        target.parent.mkdir(parents=True, exist_ok=True)
-        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".part")
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(data)
-        os.replace(temporary, target)
-    complete.touch()
+    try:
+        for path, data in bundle.files:
+            target = mirrored(root, path)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".part")
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(data)
+            os.replace(temporary, target)
+        complete.touch()
+    except OSError as error:
+        import socket
+        raise OSError(f"cannot write the case's input files on the worker {socket.gethostname()} under {root} "
+                      f"({error.strerror or error}): set {INPUTS_FOLDER} to a writable folder there") from None
     return root
 
 
@@ -149,4 +162,4 @@ def check_results_folder(results: str | os.PathLike, inputs: Iterable[str | os.P
                              file=str(results), field="-o")
 
 
-__all__ = ["Bundle", "bundle_of", "check_results_folder", "materialize", "mirror_root", "mirrored", "recording"]
+__all__ = ["INPUTS_FOLDER", "Bundle", "bundle_of", "check_results_folder", "materialize", "mirror_root", "mirrored", "recording"]

@@ -53,8 +53,8 @@ class BatchRun:
 def check_output(plan: Plan, results: str | Path, resume: bool) -> ResultStore:
     """The results store, refused (InputError, before anything runs or is printed) when ``results`` is a file, is
     or holds an input of the plan, or already holds results and ``resume`` is not given."""
-    store = ResultStore(results)
     check_results_folder(results, plan.inputs())
+    store = ResultStore(results)
     if store.parts() and not resume:
         raise InputError("already holds batch results: add --resume to finish that batch, or choose another "
                          "folder", file=str(store.path), field="-o")
