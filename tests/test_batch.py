@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import signal
 from pathlib import Path
 
@@ -12,9 +13,9 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dask.distributed")
-pytest.importorskip("pyarrow")
+pa = pytest.importorskip("pyarrow")
 
-from bladefem.batch import ResultStore, read_plan, run_batch, run_case, summarize  # noqa: E402
+from bladefem.batch import ResultStore, format_summary, read_plan, run_batch, run_case, summarize  # noqa: E402
 from bladefem.batch.cases import apply_inputs  # noqa: E402
 from bladefem.batch.plan import correlated_normals  # noqa: E402
 from bladefem.batch.runner import WORKER_TRIM_THRESHOLD  # noqa: E402
@@ -170,8 +171,11 @@ grid: {{flap_stiffness_scale: [1.0]}}
 analysis: {{type: check, spec: spec.yaml, spec_model: blade}}
 grid: {{flap_stiffness_scale: [0.8, 1.0]}}
 """))
-    verdicts = [run_case(case)[0]["passed"] for case in plan.cases]
-    assert verdicts == [False, True]                 # x 0.8 takes flap 1 within 15 % of 3P (see test_check.py)
+    results = [run_case(case)[0] for case in plan.cases]
+    assert [row["passed"] for row in results] == [False, True]   # x 0.8: flap 1 within 15 % of 3P (test_check.py)
+    assert {row["unit"] for row in results} == {"%"}             # the check's own unit: its margin is in percent
+    summary = format_summary(summarize(pa.Table.from_pylist(results)))
+    assert re.search(r"^3P / flap 1 vs 3P\s+%\s+2\s", summary, re.MULTILINE), summary
 
 
 def test_cli_batch_and_summary(tmp_path, capsys):

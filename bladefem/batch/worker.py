@@ -106,7 +106,7 @@ def _check_rows(case: Case, structure: Any) -> list[dict[str, Any]]:
     for req in spec.requirements:
         if req.model == model.name and req.kind != "baseline":
             rows += [{"requirement": o.requirement, "check": o.check, "passed": o.passed, "measured": o.measured,
-                      "margin": o.margin} for o in evaluate_requirement(run, req)]
+                      "margin": o.margin, "unit": o.unit} for o in evaluate_requirement(run, req)]
     return rows
 
 

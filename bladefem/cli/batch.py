@@ -92,7 +92,7 @@ def run_summary_command(args: argparse.Namespace) -> int:
     summary = summarize(store.table())
     print(format_summary(summary))
     if args.plot:
-        for path in plot_summary(summary, args.plot):
+        for path in plot_summary(summary, args.plot, title=Path(args.results).name or str(args.results)):
             print(f"# wrote {path}")
     return 0
 
