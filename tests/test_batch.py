@@ -110,7 +110,7 @@ grid: {{flap_stiffness_scale: [0.8, 0.9, 1.0, 1.1, 1.2, 1.3], tip_mass_kg: [0, 1
     assert sorted(r["case_index"] for r in rows) == sorted(c.index for c in plan.cases for _ in range(2))
 
 
-def test_a_failing_case_records_its_error_and_the_batch_goes_on(tmp_path):
+def test_a_failing_case_records_its_error_and_the_batch_goes_on(tmp_path, monkeypatch):
     bad = tmp_path / "bad.yaml"
     bad.write_text(UNIFORM.read_text().replace("kind: blade", "kind: blade\nunknown_key: 1"))
     plan = read_plan(write_plan(tmp_path, f"""files: [{UNIFORM}, {bad}]
@@ -121,6 +121,9 @@ analysis: {{type: modes, n_modes: 2, elements: 10}}
     assert rows[1] == [{"case_index": 1, "case_hash": plan.cases[1].hash, "file": str(bad), "status": "error",
                         "error": rows[1][0]["error"]}]
     assert "unknown_key" in rows[1][0]["error"] and "bad.yaml" in rows[1][0]["error"]
+    monkeypatch.setenv("BLADEFEM_BATCH_INPUTS", str(tmp_path / "worker"))
+    carried = [run_case(case, plan.bundles[case.bundle]) for case in plan.cases]   # as on a worker: the same rows,
+    assert carried == rows                                                        # messages with the client's paths
 
 
 def test_monte_carlo_of_a_lognormal_stiffness_matches_the_closed_form(tmp_path):
@@ -156,7 +159,7 @@ def test_correlated_factors_follow_the_exponential_kernel():
     assert np.all(shared == shared[0])
 
 
-def test_campbell_and_check_analyses(tmp_path):
+def test_campbell_and_check_analyses(tmp_path, monkeypatch):
     plan = read_plan(write_plan(tmp_path, f"""model: {BLADE}
 analysis: {{type: campbell, rpm: [0, 12, 4], n_modes: 3, elements: 60}}
 grid: {{flap_stiffness_scale: [1.0]}}
@@ -176,6 +179,9 @@ grid: {{flap_stiffness_scale: [0.8, 1.0]}}
     assert {row["unit"] for row in results} == {"%"}             # the check's own unit: its margin is in percent
     summary = format_summary(summarize(pa.Table.from_pylist(results)))
     assert re.search(r"^3P / flap 1 vs 3P\s+%\s+2\s", summary, re.MULTILINE), summary
+    monkeypatch.setenv("BLADEFEM_BATCH_INPUTS", str(tmp_path / "worker"))
+    assert {Path(path).name for path in plan.bundles[plan.cases[0].bundle].paths} == {"spec.yaml", BLADE.name}
+    assert [run_case(case, plan.bundles[case.bundle])[0] for case in plan.cases] == results    # the spec carried
 
 
 def test_cli_batch_and_summary(tmp_path, capsys):

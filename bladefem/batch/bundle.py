@@ -129,10 +129,11 @@ def mirrored(root: Path, path: str | os.PathLike) -> Path:
 
 def materialize(bundle: Bundle) -> Path:
     """Write the bundle's files under :func:`mirror_root` (each whole: temporary file, then rename) unless a
-    complete copy is there already; returns the root."""
+    complete copy is there already (every file present: a cleaner of temporary folders may have removed some);
+    returns the root."""
     root = mirror_root(bundle)
     complete = root / ".complete"
-    if complete.exists():
+    if complete.exists() and all(mirrored(root, path).is_file() for path, _ in bundle.files):
         return root
     try:
         for path, data in bundle.files:
@@ -162,4 +163,5 @@ def check_results_folder(results: str | os.PathLike, inputs: Iterable[str | os.P
                              file=str(results), field="-o")
 
 
-__all__ = ["INPUTS_FOLDER", "Bundle", "bundle_of", "check_results_folder", "materialize", "mirror_root", "mirrored", "recording"]
+__all__ = ["INPUTS_FOLDER", "Bundle", "bundle_of", "check_results_folder", "materialize", "mirror_root", "mirrored",
+           "recording"]

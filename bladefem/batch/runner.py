@@ -13,6 +13,7 @@ another folder or on another machine runs on the very bytes the client read.
 from __future__ import annotations
 
 import logging
+import tempfile
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -21,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from .bundle import Bundle, check_results_folder
+from .bundle import INPUTS_FOLDER, Bundle, check_results_folder
 from .cases import Case
 from .plan import Plan
 from .store import ResultStore
@@ -68,7 +69,8 @@ def _bundle_data(bundle: Bundle) -> Bundle:
 @contextmanager
 def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Any]:
     """A client of the cluster at ``scheduler`` (e.g. tcp://host:8786), or of a new local cluster of ``workers``
-    single-threaded worker processes (default: one per core)."""
+    single-threaded worker processes (default: one per core) whose copies of the inputs go to a temporary folder
+    removed with the cluster."""
     from dask.distributed import Client, LocalCluster
     if scheduler:
         try:
@@ -80,11 +82,13 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         return
     import dask
     environment = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": WORKER_TRIM_THRESHOLD}
-    with dask.config.set(environment):
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                               silence_logs=logging.ERROR, env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
-    with cluster, Client(cluster) as client:
-        yield client
+    with tempfile.TemporaryDirectory(prefix="bladefem-batch-") as inputs:   # the workers' copies, removed after
+        with dask.config.set(environment):
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                   silence_logs=logging.ERROR, env={"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
+                                                                    INPUTS_FOLDER: inputs})
+        with cluster, Client(cluster) as client:
+            yield client
 
 
 def dashboard_address(client: Any) -> str | None:
