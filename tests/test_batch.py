@@ -240,3 +240,14 @@ grid: {{rpm: [0, 6, 12], tip_mass_kg: [0, 100]}}
         serial = modes(apply_inputs(blade, {"tip_mass_kg": case.inputs["tip_mass_kg"]}), rpm=case.inputs["rpm"],
                        n_modes=3, elements=60)
         assert [row["frequency_hz"] for row in found] == list(serial.frequencies_hz)
+
+
+def test_a_repeated_case_runs_once_and_the_count_says_so(tmp_path, capsys):
+    plan = write_plan(tmp_path, f"""model: {UNIFORM}
+analysis: {{type: modes, n_modes: 2, elements: 10}}
+grid: {{rpm: [0, 5, 0]}}
+""")
+    assert main(["batch", str(plan), "-o", str(tmp_path / "out"), "--workers", "1", "--quiet"]) == 0
+    assert "3 cases, 1 repeating an earlier case (run once): 0 already in" in capsys.readouterr().out
+    rows = ResultStore(tmp_path / "out").table().to_pylist()
+    assert sorted((row["case_index"], row["mode"]) for row in rows) == [(0, 1), (0, 2), (1, 1), (1, 2)]

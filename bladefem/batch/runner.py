@@ -40,7 +40,8 @@ WORKER_TRIM_THRESHOLD = 2**27
 @dataclass(frozen=True)
 class BatchRun:
     """What a batch run did: cases in the plan, skipped (finished in an earlier run), run, failed (with the first
-    failure's message); wall time, s; ``retried``: failed cases of an earlier run that this one ran again."""
+    failure's message); wall time, s; ``retried``: failed cases of an earlier run that this one ran again;
+    ``repeated``: cases identical to an earlier one of the plan (same files, inputs and analysis), not run again."""
 
     total: int
     skipped: int
@@ -49,6 +50,7 @@ class BatchRun:
     seconds: float
     first_error: str | None = None
     retried: int = 0
+    repeated: int = 0
 
 
 def check_output(plan: Plan, results: str | Path, resume: bool) -> ResultStore:
@@ -127,7 +129,8 @@ def run_batch(plan: Plan, results: str | Path, *, scheduler: str | None = None, 
     store = check_output(plan, results, resume)
     retried = store.drop_failed() if resume else 0
     done = store.done_hashes() if resume else set()
-    todo = [case for case in plan.cases if case.hash not in done]
+    unique = list({case.hash: case for case in reversed(plan.cases)}.values())[::-1]   # a repeated case runs once
+    todo = [case for case in unique if case.hash not in done]
     start = time.perf_counter()
     written: set[str] = set()
     buffer: list[dict[str, Any]] = []
@@ -177,5 +180,5 @@ def run_batch(plan: Plan, results: str | Path, *, scheduler: str | None = None, 
             flush()
             for future in [*futures, *inputs.values()]:
                 future.cancel()
-    return BatchRun(len(plan.cases), len(plan.cases) - len(todo), len(written), failed,
-                    time.perf_counter() - start, first_error, retried)
+    return BatchRun(len(plan.cases), len(unique) - len(todo), len(written), failed,
+                    time.perf_counter() - start, first_error, retried, len(plan.cases) - len(unique))

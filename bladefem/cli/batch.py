@@ -53,7 +53,7 @@ def run_batch_command(args: argparse.Namespace) -> int:
     from ..batch.runner import check_output, dashboard_address
     plan = read_plan(args.plan)
     check_output(plan, args.output, args.resume)          # before any output: the bar is not drawn for an error
-    bar = None if args.quiet else _ProgressBar(len(plan.cases))
+    bar = None if args.quiet else _ProgressBar(len({case.hash for case in plan.cases}))
     first = {"shown": False}
 
     def on_result(client, case) -> None:
@@ -70,7 +70,8 @@ def run_batch_command(args: argparse.Namespace) -> int:
         if bar is not None:
             bar.close()
     retried = f", {run.retried} failed before and run again" if run.retried else ""
-    print(f"# {run.total} cases: {run.skipped} already in {args.output}, {run.finished} run "
+    repeated = f", {run.repeated} repeating an earlier case (run once)" if run.repeated else ""
+    print(f"# {run.total} cases{repeated}: {run.skipped} already in {args.output}, {run.finished} run "
           f"({run.failed} failed{retried}) in {run.seconds:.1f} s; results in {args.output}")
     if run.failed:
         import sys
