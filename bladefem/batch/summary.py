@@ -169,7 +169,7 @@ def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6, title
         for quantile in (s["q05"], s["q95"]):
             axis.axvline(quantile, color="#c44e52", linewidth=1, linestyle="--",
                          label="5 and 95 % quantiles" if quantile == s["q05"] else None)
-        axis.set_title(f"{q.label}: {q.meaning}", fontsize=9)
+        axis.set_title(q.label, fontsize=9)
         axis.set_xlabel(_axis_label(q))
         axis.set_ylabel("cases")
         axis.yaxis.set_major_locator(MaxNLocator(integer=True))
@@ -192,7 +192,7 @@ def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6, title
             axis.barh(order, [q.swing[n] for n in order], color=["#c44e52" if q.swing[n] < 0 else "#55a868"
                                                                   for n in order])
             axis.axvline(0, color="black", linewidth=0.8)
-            axis.set_title(f"{q.label}: {q.meaning}", fontsize=9)
+            axis.set_title(q.label, fontsize=9)
             axis.set_xlabel(f"swing over the input's 5-95 % range ({q.unit})" if q.unit else
                             "swing over the input's 5-95 % range")
             axis.xaxis.set_major_locator(MaxNLocator(nbins=5))
