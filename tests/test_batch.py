@@ -251,3 +251,15 @@ grid: {{rpm: [0, 5, 0]}}
     assert "3 cases, 1 repeating an earlier case (run once): 0 already in" in capsys.readouterr().out
     rows = ResultStore(tmp_path / "out").table().to_pylist()
     assert sorted((row["case_index"], row["mode"]) for row in rows) == [(0, 1), (0, 2), (1, 1), (1, 2)]
+
+
+def test_resume_drops_the_failed_rows_and_keeps_the_finished_ones(tmp_path):
+    store = ResultStore(tmp_path / "out")
+    store.append([{"case_index": 0, "case_hash": "a", "status": "ok", "error": None, "mode": 1},
+                  {"case_index": 0, "case_hash": "a", "status": "ok", "error": None, "mode": 2},
+                  {"case_index": 1, "case_hash": "b", "status": "error", "error": "InputError: x"}])
+    store.append([{"case_index": 2, "case_hash": "c", "status": "error", "error": "KilledWorker: y"}])
+    assert store.drop_failed() == 2
+    assert len(store.parts()) == 1                               # the part with only a failure is gone
+    assert [(row["case_hash"], row["mode"]) for row in store.table().to_pylist()] == [("a", 1), ("a", 2)]
+    assert store.done_hashes() == {"a"} and store.drop_failed() == 0
