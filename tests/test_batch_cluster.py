@@ -18,6 +18,8 @@ import pytest
 
 pytest.importorskip("dask.distributed")
 pytest.importorskip("pyarrow")
+if not hasattr(os, "killpg"):
+    pytest.skip("process groups (POSIX) tear the cluster down", allow_module_level=True)
 
 from bladefem.batch import ResultStore  # noqa: E402
 from bladefem.batch.bundle import INPUTS_FOLDER  # noqa: E402

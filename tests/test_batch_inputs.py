@@ -39,6 +39,7 @@ def one_line_error(capsys) -> str:
     return lines[0]
 
 
+@pytest.mark.skipif(not Path("/dev/zero").exists(), reason="no /dev/zero here")
 def test_a_device_as_the_model_is_refused_before_reading(tmp_path, capsys):
     plan = write_plan(tmp_path, """model: /dev/zero
 analysis: {type: turbine_simulate, seconds: 1}
@@ -63,6 +64,7 @@ files:
     assert f"{plan}:4:" in error and "field 'files.1'" in error and "huge.yaml" in error and "too large" in error
 
 
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs here")
 def test_a_fifo_as_the_model_is_refused_without_blocking(tmp_path):
     fifo = tmp_path / "model.fifo"
     os.mkfifo(fifo)
