@@ -14,7 +14,7 @@ import pytest
 pytest.importorskip("dask.distributed")
 pytest.importorskip("pyarrow")
 
-from bladefem.batch import read_plan  # noqa: E402
+from bladefem.batch import read_plan, run_case  # noqa: E402
 from bladefem.batch.bundle import Bundle, materialize, mirrored  # noqa: E402
 from bladefem.cli import main  # noqa: E402
 from bladefem.files import MAX_INPUT_BYTES  # noqa: E402
@@ -131,3 +131,24 @@ grid: {{wind_speed_m_s: [8, 11.4]}}
     assert root.parent == tmp_path / "copies"
     assert all(mirrored(root, path).read_bytes() == path.read_bytes() for path in referenced)
     assert Bundle.of(mirrored(root, path) for path in referenced).content == bundle.content
+
+
+def test_a_deck_the_client_cannot_read_fails_its_case_with_the_readers_message(tmp_path, monkeypatch):
+    """An empty airfoil file stops the client's reader half way: the bundle holds the files read until then, and
+    the case reports the reader's message (not 'not found' for the airfoils the worker never received)."""
+    deck = tmp_path / "deck"
+    for path in DECK_FOLDER.rglob("*"):
+        if path.is_file():
+            copy = deck / path.relative_to(DECK_FOLDER)
+            copy.parent.mkdir(parents=True, exist_ok=True)
+            copy.write_bytes(path.read_bytes())
+    (deck / "Airfoils" / "DU21_A17.dat").write_text("")
+    plan = read_plan(write_plan(tmp_path, f"""files: [deck/{DECK.name}]
+analysis: {{type: turbine_linearize, rpm: 12.1, wind_speed_m_s: 8}}
+"""))
+    monkeypatch.setenv("BLADEFEM_BATCH_INPUTS", str(tmp_path / "worker"))
+    case = plan.cases[0]
+    carried = run_case(case, plan.bundles[case.bundle])[0]
+    in_place = run_case(case)[0]
+    assert carried["status"] == in_place["status"] == "error"
+    assert carried["error"] == in_place["error"] == f"InputError: {deck / 'Airfoils' / 'DU21_A17.dat'}: file is empty"

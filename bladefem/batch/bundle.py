@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from ..files import read_input
+from ..files import check_input
 
 #: files the readers opened while recording (None when not recording)
 _opened: ContextVar[list[str] | None] = ContextVar("bladefem_batch_opened", default=None)
@@ -68,23 +68,30 @@ def _is_code(path: str) -> bool:
 
 @dataclass(frozen=True)
 class Bundle:
-    """Input files by absolute path on the client, with their bytes; ``digest`` names the whole set."""
+    """Input files by absolute path on the client, with their bytes; ``digest`` names the whole set; ``error``: the
+    message of the client's reader when it failed (the files it had opened by then are all the bundle holds, so a
+    case that fails on the worker reports this message, not what the missing files made of it)."""
 
     files: tuple[tuple[str, bytes], ...]
     digest: str
+    error: str | None = None
 
     @classmethod
-    def of(cls, paths: Iterable[str | os.PathLike]) -> Bundle:
+    def of(cls, paths: Iterable[str | os.PathLike], error: str | None = None) -> Bundle:
         files = {}
         for path in paths:
             absolute = os.path.abspath(path)
-            if absolute not in files and os.path.isfile(absolute) and not _is_code(absolute):
-                files[absolute] = read_input(absolute)
+            if absolute in files or _is_code(absolute):
+                continue
+            try:                         # as the reader saw it (an empty file too: the case reports it)
+                files[absolute] = check_input(absolute).read_bytes()
+            except (InputError, OSError):  # the reader could not read it either: the case reports that
+                continue
         items = tuple(sorted(files.items()))
         key = hashlib.sha256()
         for path, data in items:
             key.update(path.encode() + b"\0" + hashlib.sha256(data).digest())
-        return cls(items, key.hexdigest())
+        return cls(items, key.hexdigest(), error)
 
     @property
     def content(self) -> str:
@@ -98,13 +105,14 @@ class Bundle:
 
 def bundle_of(read: Callable[[], Any], named: Iterable[Path]) -> Bundle:
     """The files ``read()`` opens (a reader of the case's inputs, run once here), and the ``named`` ones. A reader
-    that fails keeps what it opened: the case then fails on the worker with the reader's own message."""
+    that fails keeps what it opened and its message: a case that then fails on the worker reports it."""
+    error = None
     with recording() as opened:
         try:
             read()
-        except Exception:                        # reported by the case itself, on the worker
-            pass
-    return Bundle.of([*named, *opened])
+        except Exception as failure:             # reported by the cases, on the worker
+            error = f"{type(failure).__name__}: {failure}"
+    return Bundle.of([*named, *opened], error)
 
 
 #: environment variable of a worker: the folder for its copies of the cases' input files (default: a folder

@@ -158,5 +158,7 @@ def run_case(case: Case, bundle: Bundle | None = None) -> list[dict[str, Any]]:
         message = f"{type(error).__name__}: {error}"
         if root is not None:
             message = message.replace(str(root), "")
+        if bundle is not None and bundle.error is not None:     # the client's reader failed: its message is the cause
+            message = bundle.error
         return [{**head, "status": "error", "error": message}]
     return [{**head, "status": "ok", "error": None, **row} for row in rows]
