@@ -57,13 +57,19 @@ def recording() -> Iterator[list[str]]:
         _opened.reset(token)
 
 
+def _code_folders() -> tuple[str, ...]:
+    """Where Python's own files live: the standard library, installed packages, bladefem itself."""
+    import sysconfig
+    folders = {path for name, path in sysconfig.get_paths().items() if name in ("stdlib", "platstdlib", "purelib",
+                                                                               "platlib")}
+    folders |= {path for path in sys.path if path.endswith(("site-packages", "dist-packages"))}
+    folders.add(str(Path(__file__).resolve().parents[1]))
+    return tuple(folder.rstrip(os.sep) + os.sep for folder in folders if folder)
+
+
 def _is_code(path: str) -> bool:
-    """Python's own files (a module imported while reading), not inputs."""
-    if path.endswith(_CODE_SUFFIXES):
-        return True
-    package = str(Path(__file__).resolve().parents[1])
-    prefixes = {sys.prefix, sys.base_prefix, sys.exec_prefix, package}
-    return any(path.startswith(prefix.rstrip(os.sep) + os.sep) for prefix in prefixes)
+    """A module or package data file opened while reading (an import, a packaged schema), not an input."""
+    return path.endswith(_CODE_SUFFIXES) or path.startswith(_code_folders())
 
 
 @dataclass(frozen=True)
@@ -77,11 +83,14 @@ class Bundle:
     error: str | None = None
 
     @classmethod
-    def of(cls, paths: Iterable[str | os.PathLike], error: str | None = None) -> Bundle:
+    def of(cls, paths: Iterable[str | os.PathLike], error: str | None = None,
+           opened: Iterable[str | os.PathLike] = ()) -> Bundle:
+        """The bundle of the files ``paths`` (each one) and ``opened`` (less Python's own files, see
+        :func:`_is_code`)."""
         files = {}
-        for path in paths:
-            absolute = os.path.abspath(path)
-            if absolute in files or _is_code(absolute):
+        named = [os.path.abspath(path) for path in paths]
+        for absolute in [*named, *(a for a in map(os.path.abspath, opened) if not _is_code(a))]:
+            if absolute in files:
                 continue
             try:                         # as the reader saw it (an empty file too: the case reports it)
                 files[absolute] = check_input(absolute).read_bytes()
@@ -112,7 +121,7 @@ def bundle_of(read: Callable[[], Any], named: Iterable[Path]) -> Bundle:
             read()
         except Exception as failure:             # reported by the cases, on the worker
             error = f"{type(failure).__name__}: {failure}"
-    return Bundle.of([*named, *opened], error)
+    return Bundle.of(named, error, opened)
 
 
 #: environment variable of a worker: the folder for its copies of the cases' input files (default: a folder
