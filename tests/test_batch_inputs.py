@@ -152,3 +152,26 @@ analysis: {{type: turbine_linearize, rpm: 12.1, wind_speed_m_s: 8}}
     in_place = run_case(case)[0]
     assert carried["status"] == in_place["status"] == "error"
     assert carried["error"] == in_place["error"] == f"InputError: {deck / 'Airfoils' / 'DU21_A17.dat'}: file is empty"
+
+
+def test_case_hashes_follow_the_bytes_not_the_folder(tmp_path):
+    """A project moved to another folder has the same case hashes (--resume finds its cases); a changed byte in a
+    file a deck references (an airfoil) changes them."""
+    hashes = []
+    for name, change in (("here", False), ("moved", False), ("changed", True)):
+        deck = tmp_path / name / "deck"
+        for path in DECK_FOLDER.rglob("*"):
+            if path.is_file():
+                copy = deck / path.relative_to(DECK_FOLDER)
+                copy.parent.mkdir(parents=True, exist_ok=True)
+                copy.write_bytes(path.read_bytes())
+        if change:
+            polar = deck / "Airfoils" / "DU21_A17.dat"
+            polar.write_text(polar.read_text() + "\n")
+        plan = read_plan(write_plan(tmp_path / name, f"""model: deck/{DECK.name}
+analysis: {{type: turbine_linearize, rpm: 12.1}}
+grid: {{wind_speed_m_s: [8, 11.4]}}
+"""))
+        hashes.append([case.hash for case in plan.cases])
+    assert hashes[0] == hashes[1] and len(set(hashes[0])) == 2
+    assert not set(hashes[2]) & set(hashes[0])
