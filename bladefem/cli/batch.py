@@ -75,8 +75,9 @@ def run_batch_command(args: argparse.Namespace) -> int:
           f"({run.failed} failed{retried}) in {run.seconds:.1f} s; results in {args.output}")
     if run.failed:
         import sys
-        print(f"bladefem: error: {run.failed} of {run.finished} cases failed (first: {run.first_error}); their messages are "
-              f"in {args.output} (status 'error'); fix the cause and run again with --resume", file=sys.stderr)
+        print(f"bladefem: error: {run.failed} of {run.finished} cases failed (first: {run.first_error}); their "
+              f"messages are in {args.output} (status 'error'); fix the cause and run again with --resume",
+              file=sys.stderr)
         return 1
     return 0
 
