@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import signal
 from pathlib import Path
 
@@ -12,9 +13,9 @@ import numpy as np
 import pytest
 
 pytest.importorskip("dask.distributed")
-pytest.importorskip("pyarrow")
+pa = pytest.importorskip("pyarrow")
 
-from bladefem.batch import ResultStore, read_plan, run_batch, run_case, summarize  # noqa: E402
+from bladefem.batch import ResultStore, format_summary, read_plan, run_batch, run_case, summarize  # noqa: E402
 from bladefem.batch.cases import apply_inputs  # noqa: E402
 from bladefem.batch.plan import correlated_normals  # noqa: E402
 from bladefem.batch.runner import WORKER_TRIM_THRESHOLD  # noqa: E402
@@ -109,7 +110,7 @@ grid: {{flap_stiffness_scale: [0.8, 0.9, 1.0, 1.1, 1.2, 1.3], tip_mass_kg: [0, 1
     assert sorted(r["case_index"] for r in rows) == sorted(c.index for c in plan.cases for _ in range(2))
 
 
-def test_a_failing_case_records_its_error_and_the_batch_goes_on(tmp_path):
+def test_a_failing_case_records_its_error_and_the_batch_goes_on(tmp_path, monkeypatch):
     bad = tmp_path / "bad.yaml"
     bad.write_text(UNIFORM.read_text().replace("kind: blade", "kind: blade\nunknown_key: 1"))
     plan = read_plan(write_plan(tmp_path, f"""files: [{UNIFORM}, {bad}]
@@ -120,6 +121,9 @@ analysis: {{type: modes, n_modes: 2, elements: 10}}
     assert rows[1] == [{"case_index": 1, "case_hash": plan.cases[1].hash, "file": str(bad), "status": "error",
                         "error": rows[1][0]["error"]}]
     assert "unknown_key" in rows[1][0]["error"] and "bad.yaml" in rows[1][0]["error"]
+    monkeypatch.setenv("BLADEFEM_BATCH_INPUTS", str(tmp_path / "worker"))
+    carried = [run_case(case, plan.bundles[case.bundle]) for case in plan.cases]   # as on a worker: the same rows,
+    assert carried == rows                                                        # messages with the client's paths
 
 
 def test_monte_carlo_of_a_lognormal_stiffness_matches_the_closed_form(tmp_path):
@@ -155,7 +159,7 @@ def test_correlated_factors_follow_the_exponential_kernel():
     assert np.all(shared == shared[0])
 
 
-def test_campbell_and_check_analyses(tmp_path):
+def test_campbell_and_check_analyses(tmp_path, monkeypatch):
     plan = read_plan(write_plan(tmp_path, f"""model: {BLADE}
 analysis: {{type: campbell, rpm: [0, 12, 4], n_modes: 3, elements: 60}}
 grid: {{flap_stiffness_scale: [1.0]}}
@@ -170,8 +174,14 @@ grid: {{flap_stiffness_scale: [1.0]}}
 analysis: {{type: check, spec: spec.yaml, spec_model: blade}}
 grid: {{flap_stiffness_scale: [0.8, 1.0]}}
 """))
-    verdicts = [run_case(case)[0]["passed"] for case in plan.cases]
-    assert verdicts == [False, True]                 # x 0.8 takes flap 1 within 15 % of 3P (see test_check.py)
+    results = [run_case(case)[0] for case in plan.cases]
+    assert [row["passed"] for row in results] == [False, True]   # x 0.8: flap 1 within 15 % of 3P (test_check.py)
+    assert {row["unit"] for row in results} == {"%"}             # the check's own unit: its margin is in percent
+    summary = format_summary(summarize(pa.Table.from_pylist(results)))
+    assert re.search(r"^3P / flap 1 vs 3P\s+%\s+2\s", summary, re.MULTILINE), summary
+    monkeypatch.setenv("BLADEFEM_BATCH_INPUTS", str(tmp_path / "worker"))
+    assert {Path(path).name for path in plan.bundles[plan.cases[0].bundle].paths} == {"spec.yaml", BLADE.name}
+    assert [run_case(case, plan.bundles[case.bundle])[0] for case in plan.cases] == results    # the spec carried
 
 
 def test_cli_batch_and_summary(tmp_path, capsys):
@@ -230,3 +240,26 @@ grid: {{rpm: [0, 6, 12], tip_mass_kg: [0, 100]}}
         serial = modes(apply_inputs(blade, {"tip_mass_kg": case.inputs["tip_mass_kg"]}), rpm=case.inputs["rpm"],
                        n_modes=3, elements=60)
         assert [row["frequency_hz"] for row in found] == list(serial.frequencies_hz)
+
+
+def test_a_repeated_case_runs_once_and_the_count_says_so(tmp_path, capsys):
+    plan = write_plan(tmp_path, f"""model: {UNIFORM}
+analysis: {{type: modes, n_modes: 2, elements: 10}}
+grid: {{rpm: [0, 5, 0]}}
+""")
+    assert main(["batch", str(plan), "-o", str(tmp_path / "out"), "--workers", "1", "--quiet"]) == 0
+    assert "3 cases, 1 repeating an earlier case (run once): 0 already in" in capsys.readouterr().out
+    rows = ResultStore(tmp_path / "out").table().to_pylist()
+    assert sorted((row["case_index"], row["mode"]) for row in rows) == [(0, 1), (0, 2), (1, 1), (1, 2)]
+
+
+def test_resume_drops_the_failed_rows_and_keeps_the_finished_ones(tmp_path):
+    store = ResultStore(tmp_path / "out")
+    store.append([{"case_index": 0, "case_hash": "a", "status": "ok", "error": None, "mode": 1},
+                  {"case_index": 0, "case_hash": "a", "status": "ok", "error": None, "mode": 2},
+                  {"case_index": 1, "case_hash": "b", "status": "error", "error": "InputError: x"}])
+    store.append([{"case_index": 2, "case_hash": "c", "status": "error", "error": "KilledWorker: y"}])
+    assert store.drop_failed() == 2
+    assert len(store.parts()) == 1                               # the part with only a failure is gone
+    assert [(row["case_hash"], row["mode"]) for row in store.table().to_pylist()] == [("a", 1), ("a", 2)]
+    assert store.done_hashes() == {"a"} and store.drop_failed() == 0

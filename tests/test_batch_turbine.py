@@ -111,3 +111,26 @@ grid: {{mass_scale: [1.1]}}
 """))
     rows = run_case(plan.cases[0])
     assert rows[0]["status"] == "error" and "mass_scale" in rows[0]["error"]
+
+
+def test_a_deck_case_runs_on_the_worker_from_its_carried_files_alone(tmp_path, monkeypatch):
+    """A worker with none of the deck's files (the copy it was read from is gone) runs the case from the bundle the
+    client carried, with the same modes as the deck read in place (without the bundle: file not found)."""
+    import shutil
+    shutil.copytree(DECK.parent, tmp_path / "deck")
+    plan = read_plan(write_plan(tmp_path, f"""model: deck/{DECK.name}
+analysis: {{type: turbine_linearize, rpm: 12.1, pitch_deg: 0}}
+grid: {{wind_speed_m_s: [11.4]}}
+"""))
+    shutil.rmtree(tmp_path / "deck")
+    monkeypatch.setenv("BLADEFEM_BATCH_INPUTS", str(tmp_path / "worker"))
+    case = plan.cases[0]
+    carried = run_case(case, plan.bundles[case.bundle])
+    assert all(row["status"] == "ok" for row in carried), carried[0].get("error")
+    in_place = run_case(read_plan(write_plan(tmp_path, f"""model: {DECK}
+analysis: {{type: turbine_linearize, rpm: 12.1, pitch_deg: 0}}
+grid: {{wind_speed_m_s: [11.4]}}
+""")).cases[0])
+    assert [(r["name"], r["frequency_hz"], r["damping_ratio"]) for r in carried] == \
+        [(r["name"], r["frequency_hz"], r["damping_ratio"]) for r in in_place]
+    assert run_case(case)[0]["error"].count(str(tmp_path / "deck" / DECK.name)) == 1     # without it: not found

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..files import check_input, read_input
 
 #: section-table columns a plan may scale (``<name>_scale``); 'stiffness' scales every stiffness column at once
 SCALES = ("mass", "flap_stiffness", "edge_stiffness", "torsion_stiffness", "axial_stiffness", "flap_inertia",
@@ -26,8 +27,9 @@ COLUMNS = ("tip_mass_kg", "precone_deg", "pitch_deg", "rpm", "wind_speed_m_s")
 @dataclass(frozen=True)
 class Case:
     """A case: ``index`` in the plan, ``model`` input file, ``inputs`` varied (``<column>_scale`` as a number or
-    a list over the stations, ``tip_mass_kg``, ``precone_deg``, ``pitch_deg``, ``rpm``, or ``file``), the analysis
-    and the case's ``hash``."""
+    a list over the stations, ``tip_mass_kg``, ``precone_deg``, ``pitch_deg``, ``rpm``, or ``file``), the analysis,
+    the case's ``hash`` and the digest of its ``bundle`` (the input files carried to the worker, see
+    :mod:`bladefem.batch.bundle`; None: the worker reads the paths as they are)."""
 
     index: int
     model: Path
@@ -35,20 +37,19 @@ class Case:
     inputs: dict[str, Any]
     analysis: Any
     hash: str
+    bundle: str | None = None
 
 
 @lru_cache(maxsize=64)
 def _digest(path: str, stamp: tuple[int, int]) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    return hashlib.sha256(read_input(path)).hexdigest()
 
 
 def file_digest(path: Path) -> str:
-    """SHA-256 of a file's bytes (cached per modification time); InputError if unreadable."""
-    try:
-        stat = Path(path).stat()
-        return _digest(str(path), (stat.st_mtime_ns, stat.st_size))
-    except OSError as error:
-        raise InputError(f"cannot read file ({error.strerror or error})", file=str(path)) from None
+    """SHA-256 of a file's bytes (cached per modification time); InputError if it is not a readable regular file
+    of at most :data:`bladefem.files.MAX_INPUT_BYTES` (checked before reading: a device or pipe is never read)."""
+    stat = check_input(path).stat()
+    return _digest(str(path), (stat.st_mtime_ns, stat.st_size))
 
 
 def _plain(value: Any) -> Any:
@@ -57,10 +58,11 @@ def _plain(value: Any) -> Any:
     return value
 
 
-def case_hash(model: Path, main: Path | None, inputs: dict[str, Any], analysis: dict[str, Any]) -> str:
-    """Identity of a case: the input files' bytes, the varied inputs and the analysis."""
-    key = {"model": file_digest(model), "main": None if main is None else file_digest(main),
-           "inputs": {k: _plain(v) for k, v in sorted(inputs.items()) if k != "file"}, "analysis": analysis}
+def case_hash(content: str, inputs: dict[str, Any], analysis: dict[str, Any]) -> str:
+    """Identity of a case: the ``content`` digest of its input files' bytes (every file it reads, see
+    :attr:`bladefem.batch.bundle.Bundle.content`), the varied inputs and the analysis."""
+    key = {"files": content, "inputs": {k: _plain(v) for k, v in sorted(inputs.items()) if k != "file"},
+           "analysis": analysis}
     return hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:24]
 
 

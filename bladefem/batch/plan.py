@@ -21,7 +21,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..files import check_input
 from ..formats.yamlnodes import load_yaml
+from .bundle import Bundle, bundle_of
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
 
 ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize")
@@ -132,6 +134,11 @@ class Plan:
     analysis: Analysis
     cases: list[Case] = field(repr=False)
     varied: tuple[str, ...] = ()
+    bundles: dict[str, Bundle] = field(default_factory=dict, repr=False)
+
+    def inputs(self) -> list[Path]:
+        """Every file the batch reads: the plan and each case's input files."""
+        return [self.path, *(path for bundle in self.bundles.values() for path in bundle.paths)]
 
 
 def _validate(data: Any, path: Path, lines: dict) -> None:
@@ -203,8 +210,39 @@ def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> A
     if kind == "check" and (spec is None or "spec_model" not in entry):
         raise InputError("a check analysis needs spec (a check spec file) and spec_model (its model)",
                          file=str(path), line=_line(lines, ("analysis",)), field="analysis")
-    return Analysis(kind, float(rpm), sweep, int(entry.get("n_modes", 6)), entry.get("elements"),
-                    None if spec is None else folder / spec, entry.get("spec_model"))
+    if spec is not None:
+        spec = _input_file(spec, folder, path, lines, ("analysis", "spec"))
+    return Analysis(kind, float(rpm), sweep, int(entry.get("n_modes", 6)), entry.get("elements"), spec,
+                    entry.get("spec_model"))
+
+
+def _input_file(name: str, folder: Path, plan: Path, lines: dict, where: tuple) -> Path:
+    """The file a plan field names (relative to the plan), made absolute (a worker runs in another folder) and
+    checked before anything reads it: a readable regular file of a sane size (a device such as /dev/zero or a FIFO
+    is never opened)."""
+    path = (folder / name).absolute()
+    try:
+        check_input(path)
+    except InputError as error:
+        raise InputError(f"{path}: {error.message}", file=str(plan), line=_line(lines, where),
+                         field=".".join(map(str, where))) from None
+    return path
+
+
+def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
+    """The files a case of ``model`` reads, found by reading them once here (see :mod:`bladefem.batch.bundle`)."""
+    named = [model] + [p for p in (main, analysis.spec) if p is not None]
+    if analysis.type in TURBINE_ANALYSES:
+        from ..builders.turbine_deck import read_turbine_deck
+        return bundle_of(lambda: read_turbine_deck(model), named)
+    from ..check.models import read_structure
+
+    def read() -> None:
+        if analysis.spec is not None:
+            from ..check import read_spec
+            read_spec(analysis.spec)
+        read_structure(model, main)
+    return bundle_of(read, named)
 
 
 def correlated_normals(rng: np.random.Generator, stations: np.ndarray, length: float | None) -> np.ndarray:
@@ -251,15 +289,16 @@ def read_plan(path: str | Path) -> Plan:
     folder = path.parent
     analysis = _analysis(data["analysis"], folder, path, lines)
     main = data.get("elastodyn_main")
-    main = None if main is None else folder / main
+    main = None if main is None else _input_file(main, folder, path, lines, ("elastodyn_main",))
     if "files" in data:
-        variants = [{"file": str(folder / name)} for name in data["files"]]
+        variants = [{"file": str(_input_file(name, folder, path, lines, ("files", i)))}
+                    for i, name in enumerate(data["files"])]
         base = None
     else:
         if "model" not in data:
             raise InputError("a grid or samples plan needs 'model' (the base input)", file=str(path), line=1,
                              field="model")
-        base = folder / data["model"]
+        base = _input_file(data["model"], folder, path, lines, ("model",))
         if analysis.type in TURBINE_ANALYSES and "samples" in data:
             raise InputError("samples scatter blade section properties: a turbine analysis varies wind_speed_m_s, "
                              "rpm and pitch_deg in a grid, or decks in files", file=str(path),
@@ -276,12 +315,17 @@ def read_plan(path: str | Path) -> Plan:
         raise InputError(f"{len(variants)} cases: at most {MAX_CASES}", file=str(path), field="grid")
     varied = tuple(variants[0])
     cases = []
+    bundles: dict[Path, Bundle] = {}
     for index, inputs in enumerate(variants):
         model = Path(inputs["file"]) if "file" in inputs else base
+        if model not in bundles:
+            bundles[model] = _bundle(analysis, model, main)
+        bundle = bundles[model]
         cases.append(Case(index=index, model=model, elastodyn_main=main, inputs=inputs, analysis=analysis,
-                          hash=case_hash(model, main, inputs, analysis.key())))
+                          hash=case_hash(bundle.content, inputs, analysis.key()), bundle=bundle.digest))
     return Plan(path=path, analysis=analysis, cases=cases, varied=tuple(v for v in varied if v in COLUMNS or
-                                                                        v == "file" or v.endswith("_scale")))
+                                                                        v == "file" or v.endswith("_scale")),
+                bundles={bundle.digest: bundle for bundle in bundles.values()})
 
 
 __all__ = ["ANALYSES", "TURBINE_ANALYSES", "Analysis", "PLAN_SCHEMA", "Plan", "correlated_normals", "factors", "read_plan"]

@@ -41,6 +41,26 @@ class ResultStore:
         return {h for part in self.parts() for h in pq.read_table(part, columns=["case_hash"])["case_hash"]
                 .to_pylist()}
 
+    def drop_failed(self) -> int:
+        """Remove the rows of failed cases (each part rewritten whole, or removed when nothing is left), so that a
+        resumed batch runs them again; returns how many cases were dropped."""
+        import pyarrow.compute as pc
+        import pyarrow.parquet as pq
+        dropped: set[str] = set()
+        for part in self.parts():
+            table = pq.read_table(part)
+            failed = pc.not_equal(table["status"], "ok")
+            if not pc.any(failed).as_py():
+                continue
+            dropped.update(table.filter(failed)["case_hash"].to_pylist())
+            kept = table.filter(pc.invert(failed))
+            if kept.num_rows:
+                with atomic_path(part) as temporary:
+                    pq.write_table(kept, temporary)
+            else:
+                part.unlink()
+        return len(dropped)
+
     def append(self, rows: Iterable[dict[str, Any]]) -> Path | None:
         """Write the rows as the next part file, whole or not at all."""
         import pyarrow as pa

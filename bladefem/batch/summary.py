@@ -19,13 +19,15 @@ RESULT_COLUMNS = {"case_index", "case_hash", "status", "error", "mode", "name", 
 @dataclass(frozen=True)
 class Quantity:
     """One summarised quantity over the cases: its label, unit, values (by case), and per input the correlation
-    and the linear swing (value change over the input's 5-95 % range, same unit as the values)."""
+    and the linear swing (value change over the input's 5-95 % range, same unit as the values); ``meaning`` says
+    what the values are (a frequency, a channel's mean over the window, a check's measured value)."""
 
     label: str
     unit: str
     values: NDArray[np.float64]
     correlation: dict[str, float]
     swing: dict[str, float]
+    meaning: str = "value"
 
     @property
     def statistics(self) -> dict[str, float]:
@@ -81,11 +83,16 @@ def summarize(table: Any) -> BatchSummary:
     if channels:                                  # turbine simulations: each channel's mean over the window
         labels = [f"{c} mean" for c in data["channel"]]
         units = {f"{c} mean": u for c, u in zip(data["channel"], data["unit"]) if c is not None}
-    elif checks:
+        meaning = "mean over the window"
+    elif checks:                                  # the unit of each check's measured value (older results: none)
         labels = [f"{r} / {c}" for r, c in zip(data["requirement"], data["check"])]
-    elif _rpm_is_sweep(data, ok):
-        labels = [f"{n} at {r:g} rpm" for n, r in zip(data["name"], data["rpm"])]
+        units = {label: u for label, u in zip(labels, data.get("unit", [None] * len(labels))) if u is not None}
+        meaning = "measured value"
     else:
+        meaning = "frequency"
+    if not channels and not checks and _rpm_is_sweep(data, ok):
+        labels = [f"{n} at {r:g} rpm" for n, r in zip(data["name"], data["rpm"])]
+    elif not channels and not checks:
         labels = list(data.get("name", []))
     quantities = []
     for label in dict.fromkeys(label for label, good in zip(labels, ok) if good):
@@ -95,8 +102,8 @@ def summarize(table: Any) -> BatchSummary:
         for name in inputs:
             x = np.array(data[name], dtype=float)[rows]
             correlation[name], swing[name] = _sensitivity(x, y)
-        unit = units.get(label, "") if channels else "" if checks else "Hz"
-        quantities.append(Quantity(label, unit, y, correlation, swing))
+        unit = units.get(label, "") if channels or checks else "Hz"
+        quantities.append(Quantity(label, unit, y, correlation, swing, meaning))
     return BatchSummary(len(set(hashes)), failed, tuple(inputs), quantities)
 
 
@@ -113,12 +120,14 @@ def _rpm_is_sweep(data: dict[str, list], ok: NDArray[np.bool_]) -> bool:
 
 def format_summary(summary: BatchSummary) -> str:
     """Statistics per quantity, then the correlation of each with each varied input."""
+    meanings = ", ".join(dict.fromkeys(q.meaning for q in summary.quantities)) or "-"
     lines = [f"# {summary.cases} cases, {summary.failed} failed; varied inputs: {', '.join(summary.inputs) or '-'}",
-             f"{'quantity':<28} {'n':>5} {'mean':>12} {'std':>11} {'q05':>12} {'q95':>12}"]
+             f"# statistics over the cases of each quantity ({meanings}), in its unit",
+             f"{'quantity':<28} {'unit':<8} {'n':>5} {'mean':>12} {'std':>11} {'q05':>12} {'q95':>12}"]
     for q in summary.quantities:
         s = q.statistics
-        lines.append(f"{q.label:<28} {s['count']:>5d} {s['mean']:>12.6g} {s['std']:>11.4g} {s['q05']:>12.6g} "
-                     f"{s['q95']:>12.6g}")
+        lines.append(f"{q.label:<28} {q.unit or '-':<8} {s['count']:>5d} {s['mean']:>12.6g} {s['std']:>11.4g} "
+                     f"{s['q05']:>12.6g} {s['q95']:>12.6g}")
     if summary.inputs:
         lines += ["", "# correlation with each varied input (linear swing over its 5-95 % range in brackets)",
                   f"{'quantity':<28} " + " ".join(f"{name:>26}" for name in summary.inputs)]
@@ -128,12 +137,18 @@ def format_summary(summary: BatchSummary) -> str:
     return "\n".join(lines)
 
 
-def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6) -> list[Path]:
-    """``histograms.png`` (one panel per quantity) and, when inputs vary, ``tornado.png`` (per quantity the
-    linear swing of each input, largest first); written whole or not at all. Returns the files written."""
+def _axis_label(q: Quantity) -> str:
+    return f"{q.meaning} ({q.unit})" if q.unit else q.meaning
+
+
+def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6, title: str | None = None) -> list[Path]:
+    """``histograms.png`` (one panel per quantity: how many cases gave each value, with the mean and the 5/95 %
+    quantiles) and, when inputs vary, ``tornado.png`` (per quantity the linear swing of each input, largest first);
+    written whole or not at all; ``title`` names the batch (e.g. its results folder). Returns the files written."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
 
     from ..files import atomic_path
     folder = Path(folder)
@@ -141,16 +156,30 @@ def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6) -> li
     written = []
     columns = min(3, len(shown)) or 1
     rows = (len(shown) + columns - 1) // columns or 1
-    figure, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3 * rows), squeeze=False)
+    batch = f"{title}: " if title else ""
+    failed = f", {summary.failed} failed" if summary.failed else ""
+    more = f"; the first {len(shown)} of {len(summary.quantities)} quantities" if len(summary.quantities) > most else ""
+    figure, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3 * rows + 0.5), squeeze=False)
     for axis, q in zip(axes.flat, shown):
         values = np.asarray(q.values, dtype=float)
         spread = np.ptp(values) > 1e-9 * np.max(np.abs(values))     # else constant but for round-off: one bin
         axis.hist(values, bins="auto" if spread else 1, color="#4c72b0", edgecolor="white")
+        s = q.statistics
+        axis.axvline(s["mean"], color="black", linewidth=1.2, label="mean")
+        for quantile in (s["q05"], s["q95"]):
+            axis.axvline(quantile, color="#c44e52", linewidth=1, linestyle="--",
+                         label="5 and 95 % quantiles" if quantile == s["q05"] else None)
         axis.set_title(q.label, fontsize=9)
-        axis.set_xlabel(f"value ({q.unit})" if q.unit else "value")
+        axis.set_xlabel(_axis_label(q))
+        axis.set_ylabel("cases")
+        axis.yaxis.set_major_locator(MaxNLocator(integer=True))
+    handles, names = axes.flat[0].get_legend_handles_labels()
+    figure.legend(handles, names, loc="upper right", ncol=2, fontsize=8, frameon=False)
     for axis in list(axes.flat)[len(shown):]:
         axis.set_visible(False)
-    figure.tight_layout()
+    figure.suptitle(f"{batch}each quantity over {summary.cases} cases{failed}{more}", fontsize=11, x=0.01,
+                    ha="left")
+    figure.tight_layout(rect=(0, 0, 1, 0.97))
     with atomic_path(folder / "histograms.png") as temporary:
         figure.savefig(temporary, dpi=120)
     written.append(folder / "histograms.png")
@@ -164,10 +193,14 @@ def plot_summary(summary: BatchSummary, folder: str | Path, most: int = 6) -> li
                                                                   for n in order])
             axis.axvline(0, color="black", linewidth=0.8)
             axis.set_title(q.label, fontsize=9)
-            axis.set_xlabel(f"swing over the input's 5-95 % range ({q.unit})")
+            axis.set_xlabel(f"swing over the input's 5-95 % range ({q.unit})" if q.unit else
+                            "swing over the input's 5-95 % range")
+            axis.xaxis.set_major_locator(MaxNLocator(nbins=5))
         for axis in list(axes.flat)[len(shown):]:
             axis.set_visible(False)
-        figure.tight_layout()
+        figure.suptitle(f"{batch}sensitivity of each quantity to each varied input ({summary.cases} cases{failed}"
+                        f"{more})", fontsize=11, x=0.01, ha="left")
+        figure.tight_layout(rect=(0, 0, 1, 0.95))
         with atomic_path(folder / "tornado.png") as temporary:
             figure.savefig(temporary, dpi=120)
         written.append(folder / "tornado.png")

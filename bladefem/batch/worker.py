@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .bundle import Bundle, materialize
 from .cases import Case, apply_inputs, file_digest
 from .turbine import TURBINE_ANALYSES, check_turbine_case
 
@@ -105,7 +106,7 @@ def _check_rows(case: Case, structure: Any) -> list[dict[str, Any]]:
     for req in spec.requirements:
         if req.model == model.name and req.kind != "baseline":
             rows += [{"requirement": o.requirement, "check": o.check, "passed": o.passed, "measured": o.measured,
-                      "margin": o.margin} for o in evaluate_requirement(run, req)]
+                      "margin": o.margin, "unit": o.unit} for o in evaluate_requirement(run, req)]
     return rows
 
 
@@ -124,15 +125,40 @@ def input_columns(case: Case) -> dict[str, Any]:
     return columns
 
 
-def run_case(case: Case) -> list[dict[str, Any]]:
-    """The result rows of one case; a failure gives one row with status 'error' and its message."""
+def localized(case: Case, root: Path) -> Case:
+    """The case with its input paths moved to the worker's copy of its bundle under ``root``."""
+    from dataclasses import replace
+
+    from .bundle import mirrored
+    inputs = {**case.inputs, "file": str(mirrored(root, case.inputs["file"]))} if "file" in case.inputs \
+        else case.inputs
+    analysis = case.analysis if case.analysis.spec is None else \
+        replace(case.analysis, spec=mirrored(root, case.analysis.spec))
+    return replace(case, model=mirrored(root, case.model), inputs=inputs, analysis=analysis,
+                   elastodyn_main=None if case.elastodyn_main is None else mirrored(root, case.elastodyn_main))
+
+
+def run_case(case: Case, bundle: Bundle | None = None) -> list[dict[str, Any]]:
+    """The result rows of one case; a failure gives one row with status 'error' and its message. With its
+    ``bundle`` the case runs on the worker's copy of its input files (messages name the client's paths)."""
     head = {"case_index": case.index, "case_hash": case.hash, **input_columns(case)}
+    root = None
     try:
+        if bundle is not None:
+            if bundle.digest != case.bundle:
+                raise ValueError(f"case {case.index} was given the input files of another case")
+            root = materialize(bundle)
+            case = localized(case, root)
         if case.analysis.type in TURBINE_ANALYSES:
             check_turbine_case(case)
             rows = TURBINE_ANALYSES[case.analysis.type](case)
         else:
             rows = ANALYSES[case.analysis.type](case, structure_of(case))
     except Exception as error:                               # recorded, and the batch goes on
-        return [{**head, "status": "error", "error": f"{type(error).__name__}: {error}"}]
+        message = f"{type(error).__name__}: {error}"
+        if root is not None:
+            message = message.replace(str(root), "")
+        if bundle is not None and bundle.error is not None:     # the client's reader failed: its message is the cause
+            message = bundle.error
+        return [{**head, "status": "error", "error": message}]
     return [{**head, "status": "ok", "error": None, **row} for row in rows]

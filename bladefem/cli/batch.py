@@ -20,7 +20,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                        help="address of a running Dask scheduler (e.g. tcp://host:8786); default a local cluster")
     batch.add_argument("--workers", type=int, metavar="N", help="worker processes of the local cluster "
                                                                "(default one per core)")
-    batch.add_argument("--resume", action="store_true", help="skip the cases already in RESULTS")
+    batch.add_argument("--resume", action="store_true",
+                       help="keep the cases that finished in RESULTS and run the rest, failed ones again")
     batch.add_argument("--quiet", action="store_true", help="no progress bar")
     batch.set_defaults(run=run_batch_command)
 
@@ -49,15 +50,17 @@ def run_batch_command(args: argparse.Namespace) -> int:
         raise InputError(f"need 1 to 256 worker processes, got {args.workers}", field="--workers")
     _needs_distributed()
     from ..batch import read_plan, run_batch
-    from ..batch.runner import dashboard_address
+    from ..batch.runner import check_output, dashboard_address
     plan = read_plan(args.plan)
-    bar = None if args.quiet else _ProgressBar(len(plan.cases))
+    check_output(plan, args.output, args.resume)          # before any output: the bar is not drawn for an error
+    bar = None if args.quiet else _ProgressBar(len({case.hash for case in plan.cases}))
     first = {"shown": False}
 
     def on_result(client, case) -> None:
         if not first["shown"] and not args.quiet:
             address = dashboard_address(client)
-            bar.note(f"Dask dashboard: {address}" if address else "Dask dashboard: not running (pip install bokeh)")
+            if address:
+                bar.note(f"Dask dashboard: {address}")
             first["shown"] = True
 
     try:
@@ -66,8 +69,16 @@ def run_batch_command(args: argparse.Namespace) -> int:
     finally:
         if bar is not None:
             bar.close()
-    print(f"# {run.total} cases: {run.skipped} already in {args.output}, {run.finished} run "
-          f"({run.failed} failed) in {run.seconds:.1f} s; results in {args.output}")
+    retried = f", {run.retried} failed before and run again" if run.retried else ""
+    repeated = f", {run.repeated} repeating an earlier case (run once)" if run.repeated else ""
+    print(f"# {run.total} cases{repeated}: {run.skipped} already in {args.output}, {run.finished} run "
+          f"({run.failed} failed{retried}) in {run.seconds:.1f} s; results in {args.output}")
+    if run.failed:
+        import sys
+        print(f"bladefem: error: {run.failed} of {run.finished} cases failed (first: {run.first_error}); their "
+              f"messages are in {args.output} (status 'error'); fix the cause and run again with --resume",
+              file=sys.stderr)
+        return 1
     return 0
 
 
@@ -83,7 +94,7 @@ def run_summary_command(args: argparse.Namespace) -> int:
     summary = summarize(store.table())
     print(format_summary(summary))
     if args.plot:
-        for path in plot_summary(summary, args.plot):
+        for path in plot_summary(summary, args.plot, title=Path(args.results).name or str(args.results)):
             print(f"# wrote {path}")
     return 0
 
