@@ -1,0 +1,85 @@
+"""A bladefem :class:`Blade` from a HAWC2 structural file (``.st``) and, for the twist and the reference axis, the
+``c2_def`` of the blade's main body in the ``.htc``.
+
+Axes (taken as fact from openfast_toolbox converters/hawc2ToBeamDyn.py and beamDynToHawc2.py): HAWC2's section
+``x``, ``y`` are BeamDyn's ``-y``, ``x`` (``x_BD = y_H2``, ``y_BD = -x_H2``), ``z`` the same; the c2_def twist is
+minus BeamDyn's (and bladefem's); the structural ``pitch`` turns the principal axes about +z in both. In the
+isotropic layout ``E I_y`` is the bending stiffness about BeamDyn's ``x`` (edgewise) and ``E I_x`` about ``y``
+(flapwise), ``k_y``, ``k_x`` the shear factors along BeamDyn's ``x``, ``y``; the radii of gyration ``ri_x``, ``ri_y``
+are about the centre of gravity in the axes turned by the pitch (``ri_y`` for rotation about BeamDyn's ``x``). The
+fully populated layout's 6x6 is given about the elastic centre ``(x_e, y_e)`` in the axes turned by the pitch
+(beamDyn2Hawc2FPM_raw writes it so); it is taken back to the half-chord reference point. The st file's sections sit
+on the half-chord line (c2_def); bladefem's reference axis is the pitch axis, the body's z axis, so each section is
+moved by c2_def's in-plane ``x`` (the prebend ``y`` is the axis's curvature, named in the notes, as for BeamDyn). Everything then goes through
+:mod:`bladefem.builders.section6x6`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..formats.hawc2_htc import MainBody
+from ..formats.hawc2_st import StSubset
+from ..sections import Blade
+from .beamdyn import curvature_note, key_point_arc_length
+from .section6x6 import about_reference, mass_matrix, section_table, stiffness_matrix
+
+#: HAWC2 section axes -> BeamDyn's, for vectors (forces, moments): (x, y, z)_BD = Q (x, y, z)_H2
+Q3 = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+Q = np.kron(np.eye(2), Q3)
+
+
+def sections_in_beamdyn_axes(subset: StSubset) -> tuple[np.ndarray, np.ndarray]:
+    """(n, 6, 6) stiffness and mass of a subset, about the half-chord point in BeamDyn's axes."""
+    c = subset.column
+    pitch = np.radians(c("pitch"))
+    m = c("m")
+    mass = mass_matrix(m, c("y_cg"), -c("x_cg"), m * c("ri_y") ** 2, m * c("ri_x") ** 2, pitch)
+    if subset.fpm:
+        stiffness_h2 = about_reference(subset.stiffness(), c("x_e"), c("y_e"), pitch)
+        stiffness = Q @ stiffness_h2 @ Q.T
+    else:
+        E, G, A = c("E"), c("G"), c("A")
+        stiffness = stiffness_matrix(E * A, E * c("I_y"), E * c("I_x"), G * c("I_p"), c("k_y") * G * A,
+                                     c("k_x") * G * A, (c("y_e"), -c("x_e")), (c("y_sh"), -c("x_sh")), pitch)
+    return stiffness, mass
+
+
+def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
+                     precone: float = 0.0, pitch: float = 0.0) -> Blade:
+    """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
+    named in the notes)."""
+    r = subset.column("r")
+    span = r - r[0]
+    notes = []
+    if body is not None:
+        points = body.c2_def
+        arc = key_point_arc_length(points)
+        if abs(arc[-1] - span[-1]) > 0.01 * arc[-1]:
+            raise InputError(f"the st file's r runs to {span[-1]:.6g} m but body '{body.name}''s c2_def is "
+                             f"{arc[-1]:.6g} m long: not this blade's st file?", file=st_path or None, field="r")
+        at = span / span[-1]
+        twist = -np.radians(np.interp(at, arc / arc[-1], points[:, 3]))
+        # the half-chord point's in-plane distance from the pitch axis (body z), toward the trailing edge in
+        # BeamDyn's axes, turned into the section axes (turned by -twist about +z)
+        chordwise = -np.interp(at, arc / arc[-1], points[:, 0])
+        offset = (-np.sin(twist) * chordwise, np.cos(twist) * chordwise)
+        notes.append(curvature_note(points[:, 1], -points[:, 0], f"HAWC2 blade (body '{body.name}', c2_def)")
+                     + "; sections moved from the half-chord line to the pitch axis (body z) by c2_def's x")
+    else:
+        twist = np.zeros_like(span)
+        notes.append("HAWC2 st file without its htc: untwisted (give the .htc with the blade's c2_def for the twist)")
+    stiffness, mass = sections_in_beamdyn_axes(subset)
+    if body is not None:
+        stiffness = about_reference(stiffness, *offset, np.zeros_like(span))
+        mass = about_reference(mass, *offset, np.zeros_like(span))
+    table, reduction = section_table(span, stiffness, mass, twist, source=st_path, lines=subset.lines)
+    layout = "fully populated (FPM)" if subset.fpm else "isotropic"
+    notes.insert(0, f"HAWC2 {layout} st file {Path(st_path).name or 'memory'}")
+    if hub_radius == 0.0:
+        notes.append("hub radius 0 (the st file does not give it: --hub-radius sets it)")
+    return Blade(sections=table, hub_radius=hub_radius, precone=precone, pitch=pitch,
+                 name=f"{body.name if body else 'HAWC2'} blade", notes=tuple(notes + reduction))
