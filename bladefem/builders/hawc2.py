@@ -67,7 +67,7 @@ def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "",
         # BeamDyn's axes, turned into the section axes (turned by -twist about +z)
         chordwise = -np.interp(at, arc / arc[-1], points[:, 0])
         offset = (-np.sin(twist) * chordwise, np.cos(twist) * chordwise)
-        notes.append(curvature_note(points[:, 1], -points[:, 0], f"HAWC2 blade (body '{body.name}', c2_def)")
+        notes.append(curvature_note(points[:, 1], np.zeros(len(points)), f"HAWC2 blade (body '{body.name}', c2_def)")
                      + "; sections moved from the half-chord line to the pitch axis (body z) by c2_def's x")
     else:
         twist = np.zeros_like(span)
