@@ -10,7 +10,9 @@ are about the centre of gravity in the axes turned by the pitch (``ri_y`` for ro
 fully populated layout's 6x6 is given about the elastic centre ``(x_e, y_e)`` in the axes turned by the pitch
 (beamDyn2Hawc2FPM_raw writes it so); it is taken back to the half-chord reference point. The st file's sections sit
 on the half-chord line (c2_def); bladefem's reference axis is the pitch axis, the body's z axis, so each section is
-moved by c2_def's in-plane ``x`` (the prebend ``y`` is the axis's curvature, named in the notes, as for BeamDyn). Everything then goes through
+moved along its chord by ``-x / cos(twist)`` (the half-chord point on the chord line through the pitch axis, whose
+in-plane projection is c2_def's ``x``; in the IEA-15MW files c2_def's ``y`` less the BeamDyn key points' prebend is
+that distance times ``sin(twist)``, as this assumes). The prebend is the axis's curvature, named in the notes. Everything then goes through
 :mod:`bladefem.builders.section6x6`.
 """
 
@@ -63,10 +65,10 @@ def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "",
                              f"{arc[-1]:.6g} m long: not this blade's st file?", file=st_path or None, field="r")
         at = span / span[-1]
         twist = -np.radians(np.interp(at, arc / arc[-1], points[:, 3]))
-        # the half-chord point's in-plane distance from the pitch axis (body z), toward the trailing edge in
-        # BeamDyn's axes, turned into the section axes (turned by -twist about +z)
-        chordwise = -np.interp(at, arc / arc[-1], points[:, 0])
-        offset = (-np.sin(twist) * chordwise, np.cos(twist) * chordwise)
+        # the half-chord point lies on the chord line through the pitch axis (body z): c2_def's in-plane x is the
+        # projection of its chordwise distance d, toward the trailing edge in BeamDyn's axes, -x = d cos(twist)
+        chordwise = -np.interp(at, arc / arc[-1], points[:, 0]) / np.cos(twist)
+        offset = (np.zeros_like(span), chordwise)
         notes.append(curvature_note(points[:, 1], np.zeros(len(points)), f"HAWC2 blade (body '{body.name}', c2_def)")
                      + "; sections moved from the half-chord line to the pitch axis (body z) by c2_def's x")
     else:
