@@ -253,3 +253,20 @@ def test_malformed_beamdyn_primary_and_hawc2_files_are_refused(tmp_path):
     with pytest.raises(InputError) as info:
         read_hawc2_bodies(path)
     assert info.value.field == "nsec"
+
+
+# -- command line ------------------------------------------------------------------------------------------------
+
+def test_modes_command_on_each_format(tmp_path, capsys):
+    from bladefem.cli import main
+    for argv in ([str(BD15_BLADE)], [str(FPM), "--htc", str(HTC)], [str(WINDIO1)]):
+        assert main(["modes", *argv, "--n-modes", "2", "--elements", "30"]) == 0
+        out = capsys.readouterr().out
+        assert out.splitlines()[-2].split()[2] == "flap", out
+    bad = edited(tmp_path, BD15_BLADE, 12, "6.7403759942007923e+09", "abc")
+    (tmp_path / BD15.name).write_text(BD15.read_text())
+    assert main(["modes", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{bad}:12: field 'station 1 stiffness row 1[1]'" in err
+    assert main(["modes", str(FPM), "--htc", str(HTC), "--tip-radius", "120"]) == 2
+    assert "--tip-radius" in capsys.readouterr().err
