@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import InputError
 from ..sections import SectionTable
 
 #: Couplings and offsets smaller than this (fraction of sqrt(K_ii K_jj), or m) are not mentioned in the notes.
@@ -137,11 +138,22 @@ def reduction_notes(reduced: Reduced) -> list[str]:
 
 
 def section_table(span: NDArray[np.float64], K: NDArray[np.float64], M: NDArray[np.float64],
-                  twist: NDArray[np.float64], source: str = "", lines: tuple[int, ...] | None = None
-                  ) -> tuple[SectionTable, list[str]]:
+                  twist: NDArray[np.float64], source: str = "", lines: tuple[int, ...] | None = None,
+                  field: str = "") -> tuple[SectionTable, list[str]]:
     """bladefem's section table from six-by-six sections (BeamDyn's axes) at arc lengths ``span`` (m) with the
-    chord's twist ``twist`` (rad, bladefem's sign: the leading edge upwind); and the notes on what is dropped."""
+    chord's twist ``twist`` (rad, bladefem's sign: the leading edge upwind); and the notes on what is dropped.
+    A section whose reduced bending stiffness or mass is not positive is an :class:`InputError` at its station's
+    line (``lines``) naming ``field`` (default the column)."""
     r = reduce(K, M)
+    for name, values, what in (("edge_stiffness", r.edge_stiffness, "edgewise EI about the tension centre"),
+                               ("flap_stiffness", r.flap_stiffness, "flapwise EI about the tension centre"),
+                               ("mass", r.mass, "mass per length")):
+        bad = np.flatnonzero(~(values > 0))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(f"station {i + 1} (span {span[i]:.6g} m): {what} is {values[i]:.6g}: the 6x6 section "
+                             "is not positive definite", file=source or None,
+                             line=lines[i] if lines else None, field=field or name)
     positive = np.all(r.axial_stiffness > 0)
     table = SectionTable(
         span=span, mass=r.mass, flap_stiffness=r.flap_stiffness, edge_stiffness=r.edge_stiffness,

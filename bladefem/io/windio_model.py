@@ -81,7 +81,12 @@ def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
     x = _stations(beam)
     K, M = six_by_six(beam, x)
     twist = np.interp(x, beam.twist.grid, beam.twist.values)
-    table, reduction = section_table(x * beam.length, K, M, twist, source=turbine.path)
+    key = ("components", "blade", "structure", "elastic_properties", "stiffness_matrix")
+    if key not in turbine.lines:
+        key = ("components", "blade", "elastic_properties_mb", "six_x_six", "stiff_matrix")
+    line = turbine.lines.get(key)
+    table, reduction = section_table(x * beam.length, K, M, twist, source=turbine.path,
+                                     lines=(line,) * len(x) if line else None, field=".".join(key))
     if beam.chord is not None:
         table = replace(table, chord=np.interp(x, beam.chord.grid, beam.chord.values))
     check_section_values(table)
