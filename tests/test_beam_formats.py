@@ -270,3 +270,25 @@ def test_modes_command_on_each_format(tmp_path, capsys):
     assert err.count("\n") == 1 and f"{bad}:12: field 'station 1 stiffness row 1[1]'" in err
     assert main(["modes", str(FPM), "--htc", str(HTC), "--tip-radius", "120"]) == 2
     assert "--tip-radius" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("source", [BD15, BD15_BLADE, FPM, NOFPM, HTC], ids=lambda p: p.name)
+def test_truncated_and_corrupted_files_read_or_fail_with_one_located_error(tmp_path, source):
+    # every truncation point (each 7th line) and a few corrupted tokens: a clean read or one InputError naming the
+    # file, never another exception
+    from bladefem.formats.hawc2_htc import read_hawc2_bodies as htc
+    read = {".dat": read_beamdyn_primary if source == BD15 else read_beamdyn_blade, ".st": read_hawc2_st,
+            ".htc": htc}[source.suffix]
+    lines = source.read_text().splitlines(keepends=True)
+    variants = [lines[:n] for n in range(0, len(lines), 7)]
+    for n in range(3, len(lines), max(1, len(lines) // 12)):
+        corrupted = list(lines)
+        corrupted[n] = corrupted[n].replace("e", "x", 1).replace("0", "nan", 1)
+        variants.append(corrupted)
+    path = tmp_path / source.name
+    for text in variants:
+        path.write_text("".join(text))
+        try:
+            read(path)
+        except InputError as error:
+            assert error.file == str(path)

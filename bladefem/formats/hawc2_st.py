@@ -60,12 +60,13 @@ class HAWC2St:
     subsets: dict[tuple[int, int], StSubset]
     comments: dict[tuple[int, int], tuple[str, ...]] = field(default_factory=dict)
     head: tuple[str, ...] = ()
+    tail: tuple[str, ...] = ()
     path: str = ""
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, HAWC2St):
             return NotImplemented
-        return (self.subsets.keys() == other.subsets.keys() and self.head == other.head
+        return (self.subsets.keys() == other.subsets.keys() and (self.head, self.tail) == (other.head, other.tail)
                 and self.comments == other.comments
                 and all(np.array_equal(self.subsets[k].data, other.subsets[k].data) for k in self.subsets))
 
@@ -128,7 +129,7 @@ def read_hawc2_st(path: str | Path) -> HAWC2St:
         i += 1
     if not subsets:
         raise InputError("no section table ('#set' then '$subset rows')", file=str(path), line=1, field="set")
-    return HAWC2St(subsets, comments, tuple(head + ([] if not pending else [])), str(path))
+    return HAWC2St(subsets, comments, tuple(head), tuple(pending), str(path))
 
 
 def _check(subset: StSubset, path: str | Path) -> None:
@@ -152,7 +153,7 @@ def hawc2_st_text(st: HAWC2St) -> str:
         out += list(st.comments.get(key, (f"#{key[0]}", f"${key[1]} {len(subset.data)}")))[:-1]
         out.append(f"${key[1]} {len(subset.data)}")
         out += ["\t".join(exact(v) for v in values) for values in subset.data]
-    return "\n".join(out) + "\n"
+    return "\n".join(out + list(st.tail)) + "\n"
 
 
 def write_hawc2_st(st: HAWC2St, path: str | Path) -> None:

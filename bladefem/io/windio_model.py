@@ -12,7 +12,9 @@ IEA-15MW), ``cm_x`` thickness-wise; ``i_edge``, ``i_flap``, ``i_cp``, ``i_plr`` 
 ``-M45``, ``M66``, about the reference axis (equal to the BeamDyn file's entries). The 6x6 stiffness and mass are
 built from them and reduced by :mod:`bladefem.builders.section6x6`, which names what bladefem's beam drops.
 
-Tower axes: ``x`` downwind, ``y`` lateral, ``z`` up, so fore-aft bending is ``K55`` and side-side bending ``K44``.
+Tower axes (turbine_schema.yaml, the tower's ``reference_axis``): ``x`` downwind, ``y`` lateral, ``z`` up, so
+fore-aft bending (about ``y``) is ``K55`` and side-side bending ``K44`` (the IEA towers are round, ``K44 = K55``: the
+data cannot tell, the schema does).
 The curvature of the reference axis (prebend, sweep) is not modelled: the beam is straight with the axis's arc length.
 """
 
