@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.builders.beamdyn import blade_from_beamdyn
-from bladefem.builders.hawc2 import blade_from_hawc2
+from bladefem.builders.beamdyn import beamdyn_sections, blade_from_beamdyn
+from bladefem.builders.hawc2 import blade_from_hawc2, hawc2_sections
 from bladefem.errors import InputError
 from bladefem.formats.beamdyn import (
     read_beamdyn_blade,
@@ -166,6 +166,13 @@ def test_hawc2_offsets_and_axes_match_beamdyn():
         assert np.max(np.abs(other - getattr(bd, name))[outer]) < tolerance, name
     for name in ("mass", "flap_stiffness", "edge_stiffness", "axial_stiffness", "torsion_stiffness"):
         np.testing.assert_allclose(getattr(h2, name)[:-1], getattr(bd, name)[:-1], rtol=5e-3, err_msg=name)
+    # the pitch axis found from c2_def (the half-chord point less its chordwise distance along the twisted chord)
+    # follows BeamDyn's key points: prebend within 1 cm of BeamDyn's kp_xr (which reaches -4 m)
+    primary = read_beamdyn_primary(BD15)
+    bd6 = beamdyn_sections(primary, read_beamdyn_blade(primary.blade_path()))
+    h6 = hawc2_sections(read_hawc2_st(FPM).subset(1, 1), read_hawc2_bodies(HTC).body("blade1"), str(FPM))
+    prebend = np.interp(bd6.span / bd6.span[-1], h6.span / h6.span[-1], h6.axis[:, 0])
+    assert np.max(np.abs(prebend - bd6.axis[:, 0])) < 0.01
 
 
 # -- every format: first mode flapwise; one source, one answer ----------------------------------------------------

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..formats.beamdyn import BeamDynBlade, BeamDynPrimary
 from ..sections import Blade
-from .section6x6 import section_table
+from .section6x6 import SixBySixBlade
 
 
 def key_point_arc_length(points: np.ndarray) -> np.ndarray:
@@ -24,21 +24,22 @@ def key_point_arc_length(points: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points[:, :3], axis=0), axis=1))])
 
 
-def curvature_note(x: np.ndarray, y: np.ndarray, what: str) -> str:
-    return (f"{what}: straight beam of the reference axis's arc length (prebend up to {np.max(np.abs(x)):.3g} m, "
-            f"sweep up to {np.max(np.abs(y)):.3g} m not modelled)")
+def beamdyn_sections(primary: BeamDynPrimary, blade: BeamDynBlade) -> SixBySixBlade:
+    """The six-by-six sections of a BeamDyn blade at its stations, with the key points' axis and twist."""
+    arc = key_point_arc_length(primary.key_points)
+    span = blade.eta * arc[-1]
+    axis = np.stack([np.interp(span, arc, primary.key_points[:, k]) for k in range(3)], axis=1)
+    twist = np.radians(np.interp(span, arc, primary.key_points[:, 3]))
+    return SixBySixBlade(span, blade.stiffness, blade.mass, twist, axis, source=blade.path, lines=blade.lines)
 
 
 def blade_from_beamdyn(primary: BeamDynPrimary, blade: BeamDynBlade, hub_radius: float = 0.0,
                        precone: float = 0.0, pitch: float = 0.0) -> Blade:
     """The blade of a BeamDyn primary and blade file; hub radius in m (BeamDyn has none), angles in rad."""
-    arc = key_point_arc_length(primary.key_points)
-    span = blade.eta * arc[-1]
-    twist = np.radians(np.interp(span, arc, primary.key_points[:, 3]))
-    table, notes = section_table(span, blade.stiffness, blade.mass, twist, source=blade.path, lines=blade.lines)
-    x, y = primary.key_points[:, 0], primary.key_points[:, 1]
-    notes = [curvature_note(x, y, f"BeamDyn blade from {Path(primary.path).name or 'memory'} and "
-                            f"{Path(blade.path).name or 'memory'}")] + notes
+    sections = beamdyn_sections(primary, blade)
+    table, notes = sections.table()
+    notes = [sections.curvature_note(f"BeamDyn blade from {Path(primary.path).name or 'memory'} and "
+                                     f"{Path(blade.path).name or 'memory'}")] + notes
     if hub_radius == 0.0:
         notes.append("hub radius 0 (BeamDyn files do not give it: --hub-radius sets it)")
     return Blade(sections=table, hub_radius=hub_radius, precone=precone, pitch=pitch,

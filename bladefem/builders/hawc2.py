@@ -26,8 +26,8 @@ from ..errors import InputError
 from ..formats.hawc2_htc import MainBody
 from ..formats.hawc2_st import StSubset
 from ..sections import Blade
-from .beamdyn import curvature_note, key_point_arc_length
-from .section6x6 import about_reference, mass_matrix, section_table, stiffness_matrix
+from .beamdyn import key_point_arc_length
+from .section6x6 import SixBySixBlade, about_reference, mass_matrix, stiffness_matrix
 
 #: HAWC2 section axes -> BeamDyn's, for vectors (forces, moments): (x, y, z)_BD = Q (x, y, z)_H2
 Q3 = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
@@ -50,13 +50,15 @@ def sections_in_beamdyn_axes(subset: StSubset) -> tuple[np.ndarray, np.ndarray]:
     return stiffness, mass
 
 
-def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
-                     precone: float = 0.0, pitch: float = 0.0) -> Blade:
-    """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
-    named in the notes)."""
+def hawc2_sections(subset: StSubset, body: MainBody | None, st_path: str = "") -> SixBySixBlade:
+    """The six-by-six sections of an st subset about the pitch axis (moved from the half chord by the body's c2_def;
+    without a body: about the half chord, untwisted, straight)."""
     r = subset.column("r")
     span = r - r[0]
-    notes = []
+    stiffness, mass = sections_in_beamdyn_axes(subset)
+    axis = np.zeros((len(span), 3))
+    axis[:, 2] = span
+    twist = np.zeros_like(span)
     if body is not None:
         points = body.c2_def
         arc = key_point_arc_length(points)
@@ -66,21 +68,30 @@ def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "",
         at = span / span[-1]
         twist = -np.radians(np.interp(at, arc / arc[-1], points[:, 3]))
         # the half-chord point lies on the chord line through the pitch axis (body z): c2_def's in-plane x is the
-        # projection of its chordwise distance d, toward the trailing edge in BeamDyn's axes, -x = d cos(twist)
+        # projection of its chordwise distance d toward the trailing edge (BeamDyn's y), -x = d cos(twist); the
+        # pitch axis is then at the c2 point less d along the chord, (y - d sin(twist), 0) in BeamDyn's root axes
         chordwise = -np.interp(at, arc / arc[-1], points[:, 0]) / np.cos(twist)
-        offset = (np.zeros_like(span), chordwise)
-        notes.append(curvature_note(points[:, 1], np.zeros(len(points)), f"HAWC2 blade (body '{body.name}', c2_def)")
-                     + "; sections moved from the half-chord line to the pitch axis (body z) by c2_def's x")
-    else:
-        twist = np.zeros_like(span)
-        notes.append("HAWC2 st file without its htc: untwisted (give the .htc with the blade's c2_def for the twist)")
-    stiffness, mass = sections_in_beamdyn_axes(subset)
-    if body is not None:
-        stiffness = about_reference(stiffness, *offset, np.zeros_like(span))
-        mass = about_reference(mass, *offset, np.zeros_like(span))
-    table, reduction = section_table(span, stiffness, mass, twist, source=st_path, lines=subset.lines)
+        zeros = np.zeros_like(span)
+        stiffness = about_reference(stiffness, zeros, chordwise, zeros)
+        mass = about_reference(mass, zeros, chordwise, zeros)
+        axis[:, 0] = np.interp(at, arc / arc[-1], points[:, 1]) - chordwise * np.sin(twist)
+        axis[:, 2] = np.interp(at, arc / arc[-1], points[:, 2])
+    return SixBySixBlade(span, stiffness, mass, twist, axis, source=st_path, lines=subset.lines)
+
+
+def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
+                     precone: float = 0.0, pitch: float = 0.0) -> Blade:
+    """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
+    named in the notes)."""
+    sections = hawc2_sections(subset, body, st_path)
+    table, reduction = sections.table()
     layout = "fully populated (FPM)" if subset.fpm else "isotropic"
-    notes.insert(0, f"HAWC2 {layout} st file {Path(st_path).name or 'memory'}")
+    notes = [f"HAWC2 {layout} st file {Path(st_path).name or 'memory'}"]
+    if body is not None:
+        notes.append(sections.curvature_note(f"HAWC2 blade (body '{body.name}', c2_def)")
+                     + "; sections moved along the chord from the half-chord line to the pitch axis (body z)")
+    else:
+        notes.append("HAWC2 st file without its htc: untwisted (give the .htc with the blade's c2_def for the twist)")
     if hub_radius == 0.0:
         notes.append("hub radius 0 (the st file does not give it: --hub-radius sets it)")
     return Blade(sections=table, hub_radius=hub_radius, precone=precone, pitch=pitch,

@@ -221,3 +221,35 @@ def mass_matrix(m, x_g, y_g, i_x, i_y, angle) -> NDArray[np.float64]:
     local[..., 0, 0] = local[..., 1, 1] = local[..., 2, 2] = m
     local[..., 3, 3], local[..., 4, 4], local[..., 5, 5] = i_x, i_y, np.asarray(i_x) + np.asarray(i_y)
     return about_reference(local, x_g, y_g, angle)
+
+
+@dataclass(frozen=True, eq=False)
+class SixBySixBlade:
+    """A blade as six-by-six sections in BeamDyn's axes, whichever file it came from (BeamDyn, HAWC2, windIO): what
+    a full six-by-six beam model needs, and what :meth:`table` reduces to today's beam.
+
+    span : (n,) station positions along the reference axis's arc length from the root, m
+    stiffness, mass : (n, 6, 6) about the reference (pitch) axis in the section axes turned by ``twist``
+    twist : (n,) the chord's twist, rad (bladefem's sign: positive turns the leading edge upwind)
+    axis : (n, 3) the reference axis at the stations in the blade-root axes: x toward the suction side (prebend,
+        negative upwind), y toward the trailing edge (sweep), z along the pitch axis, m
+    source, lines, field : where the sections were read, for error messages
+    """
+
+    span: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    mass: NDArray[np.float64]
+    twist: NDArray[np.float64]
+    axis: NDArray[np.float64]
+    source: str = ""
+    lines: tuple[int, ...] | None = None
+    field: str = ""
+
+    def table(self) -> tuple[SectionTable, list[str]]:
+        """bladefem's diagonal section table and the notes on what it drops (:func:`section_table`)."""
+        return section_table(self.span, self.stiffness, self.mass, self.twist, self.source, self.lines, self.field)
+
+    def curvature_note(self, what: str) -> str:
+        return (f"{what}: straight beam of the reference axis's arc length {self.span[-1]:.6g} m (prebend up to "
+                f"{np.max(np.abs(self.axis[:, 0])):.3g} m, sweep up to {np.max(np.abs(self.axis[:, 1])):.3g} m not "
+                "modelled)")

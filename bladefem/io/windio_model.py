@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..files import write_atomic
-from ..builders.section6x6 import section_table
+from ..builders.section6x6 import SixBySixBlade
 from ..sections import Blade, SectionTable, TipMass
 from ._fast_format import degrees_exact
 from .checks import check_section_values
@@ -72,8 +72,8 @@ def six_by_six(beam: WindIOBeam, x: NDArray) -> tuple[NDArray, NDArray]:
     return K, M
 
 
-def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
-    """A :class:`Blade` from the windIO blade; ``pitch`` in rad."""
+def windio_sections(turbine: WindIOTurbine) -> SixBySixBlade:
+    """The windIO blade as six-by-six sections in BeamDyn's axes on the union of its grids."""
     beam = turbine.blade
     if beam is None:
         if "blade" in turbine.problems:
@@ -83,19 +83,24 @@ def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
     x = _stations(beam)
     K, M = six_by_six(beam, x)
     twist = np.interp(x, beam.twist.grid, beam.twist.values)
+    axis = np.stack([np.interp(x, beam.reference_axis[c].grid, beam.reference_axis[c].values) for c in "xyz"], axis=1)
     key = ("components", "blade", "structure", "elastic_properties", "stiffness_matrix")
     if key not in turbine.lines:
         key = ("components", "blade", "elastic_properties_mb", "six_x_six", "stiff_matrix")
     line = turbine.lines.get(key)
-    table, reduction = section_table(x * beam.length, K, M, twist, source=turbine.path,
-                                     lines=(line,) * len(x) if line else None, field=".".join(key))
+    return SixBySixBlade(x * beam.length, K, M, twist, axis, source=turbine.path,
+                         lines=(line,) * len(x) if line else None, field=".".join(key))
+
+
+def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
+    """A :class:`Blade` from the windIO blade; ``pitch`` in rad."""
+    sections = windio_sections(turbine)
+    table, reduction = sections.table()
+    beam = turbine.blade
     if beam.chord is not None:
-        table = replace(table, chord=np.interp(x, beam.chord.grid, beam.chord.values))
+        table = replace(table, chord=np.interp(table.span / beam.length, beam.chord.grid, beam.chord.values))
     check_section_values(table)
-    axis = beam.reference_axis
-    notes = [f"windIO blade from {Path(turbine.path).name or 'memory'}: straight beam of the reference axis's arc "
-             f"length {beam.length:.6g} m (prebend up to {np.max(np.abs(axis['x'].values)):.3g} m, sweep up to "
-             f"{np.max(np.abs(axis['y'].values)):.3g} m not modelled)"] + reduction
+    notes = [sections.curvature_note(f"windIO blade from {Path(turbine.path).name or 'memory'}")] + reduction
     return Blade(sections=table, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
                  name=f"{turbine.name} blade", notes=tuple(notes))
 
