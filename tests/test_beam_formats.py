@@ -166,6 +166,13 @@ def test_hawc2_offsets_and_axes_match_beamdyn():
         assert np.max(np.abs(other - getattr(bd, name))[outer]) < tolerance, name
     for name in ("mass", "flap_stiffness", "edge_stiffness", "axial_stiffness", "torsion_stiffness"):
         np.testing.assert_allclose(getattr(h2, name)[:-1], getattr(bd, name)[:-1], rtol=5e-3, err_msg=name)
+    # the radii of gyration are about the centre of gravity (about the elastic centre they would be m d^2 off, 14 %
+    # at mid-span): the rotary inertias agree within 1 % from 30 to 95 % span. Inboard (7-20 %) HAWC2 holds them in
+    # the structural pitch's axes, which are not the inertia's: BeamDyn's products of inertia are lost there, up
+    # to 14 % in the flapwise inertia
+    mid = (fraction >= 0.3) & (fraction <= 0.95)
+    for name in ("edge_inertia", "flap_inertia"):
+        np.testing.assert_allclose(getattr(h2, name)[mid], getattr(bd, name)[mid], rtol=1e-2, err_msg=name)
     # the pitch axis found from c2_def (the half-chord point less its chordwise distance along the twisted chord)
     # follows BeamDyn's key points: prebend within 1 cm of BeamDyn's kp_xr (which reaches -4 m)
     primary = read_beamdyn_primary(BD15)

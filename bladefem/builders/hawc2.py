@@ -12,8 +12,8 @@ fully populated layout's 6x6 is given about the elastic centre ``(x_e, y_e)`` in
 on the half-chord line (c2_def); bladefem's reference axis is the pitch axis, the body's z axis, so each section is
 moved along its chord by ``-x / cos(twist)`` (the half-chord point on the chord line through the pitch axis, whose
 in-plane projection is c2_def's ``x``; in the IEA-15MW files c2_def's ``y`` less the BeamDyn key points' prebend is
-that distance times ``sin(twist)``, as this assumes). The prebend is the axis's curvature, named in the notes. Everything then goes through
-:mod:`bladefem.builders.section6x6`.
+that distance times ``sin(twist)``, as this assumes). The prebend is the axis's curvature, named in the notes.
+Everything then goes through :mod:`bladefem.builders.section6x6`.
 """
 
 from __future__ import annotations

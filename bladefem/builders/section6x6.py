@@ -22,6 +22,9 @@ The reduction (what today's beam can hold, per station):
 6. Shear centre (kept for reference in the table) from ``K[:3, :3]^-1 K[:3, 3:]`` (openfast_toolbox
    ``ComputeShearCenter``).
 
+:class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis), the
+record a full six-by-six beam model takes; its ``table()`` is this reduction.
+
 Dropped, and named with their size in :func:`reduction_notes`: the extension-twist and bend-twist couplings left in
 ``Kc`` (36, 46, 56 after the principal rotation), the thickness-wise tension-centre and centre-of-mass offsets
 ``x_C``, ``x_G``, the product of inertia, the shear flexibility, and any curvature of the reference axis.

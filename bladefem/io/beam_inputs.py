@@ -74,7 +74,8 @@ def hawc2_blade(kind: str, path: Path, htc: str | Path | None, hub_radius: float
         tries = [path.parent / body.st_file, path.parent.parent / body.st_file, path.parent / Path(body.st_file).name]
         found = [p for p in tries if p.is_file()]
         if not found:
-            raise InputError(f"st file '{body.st_file}' not found beside the htc, one folder up, or by its name beside the htc", file=str(path),
+            raise InputError(f"st file '{body.st_file}' not found beside the htc, one folder up, or by its name "
+                             "beside the htc", file=str(path),
                              line=body.line, field="filename")
         st_path = found[0]
         subset = read_hawc2_st(st_path).subset(*body.st_set)

@@ -18,7 +18,8 @@ Read (every other entry of the file is ignored):
 
 The blade and the tower are read independently: a part without beam properties (a 1.x tower, or a converted one,
 with a layup and no ``elastic_properties``) is None, its reason kept in ``problems`` and raised only when that part
-is asked for; a malformed value in a part that has them is an error at once. Every problem is an :class:`InputError` naming the file, the YAML line and the key path. When the
+is asked for; a malformed value in a part that has them is an error at once. Every problem is an
+:class:`InputError` naming the file, the YAML line and the key path. When the
 ``windio`` package and ``jsonschema`` are installed, the 2.x ``elastic_properties`` objects are also validated
 against windIO's own ``beam`` schema.
 """
