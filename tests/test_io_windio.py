@@ -154,3 +154,15 @@ def test_outer_shape_chord_gives_the_planform_and_round_trips(tmp_path):
     write_windio(turbine, copy)
     assert read_windio(copy) == turbine
     assert blade_from_windio(read_windio(SMALL)).sections.chord is None
+
+
+def test_tower_fore_aft_is_k55_and_side_side_k44(tmp_path):
+    # windIO's tower axes (turbine_schema.yaml, the tower's reference_axis): x downwind, y lateral, z up; bending
+    # about y (K55) moves the tower along x: fore-aft. A tower with K44 != K55 keeps them apart
+    text = SMALL.read_text()
+    start = text.index("  tower:")
+    tower = text[start:].replace("K44: [5.0e10, 5.0e10, 5.0e10]", "K44: [2.0e10, 2.0e10, 2.0e10]", 1)
+    path = tmp_path / "tower.yaml"
+    path.write_text(text[:start] + tower)
+    sections = tower_from_windio(read_windio(path)).sections
+    assert sections.flap_stiffness[0] == 5.0e10 and sections.edge_stiffness[0] == 2.0e10
