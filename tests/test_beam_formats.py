@@ -63,7 +63,10 @@ def elastodyn_table() -> np.ndarray:
 
 # -- read -> write -> read -----------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("path", [BD15, BD22])
+BD5 = DATA / "nrel5mw_beamdyn" / "bd_primary_nrel_5mw.inp"
+
+
+@pytest.mark.parametrize("path", [BD15, BD22, BD5])
 def test_beamdyn_files_read_back_after_writing(tmp_path, path):
     primary = read_beamdyn_primary(path)
     blade = read_beamdyn_blade(primary.blade_path())
@@ -84,6 +87,22 @@ def test_hawc2_files_read_back_after_writing(tmp_path):
     write_hawc2_bodies(bodies, tmp_path / "bodies.htc")
     assert read_hawc2_bodies(tmp_path / "bodies.htc") == bodies
     assert bodies.body("blade1").c2_def.shape == (34, 4)
+
+
+def test_beamdyn_v5_layout_with_modal_damping():
+    blade = read_beamdyn_blade(read_beamdyn_primary(BD5).blade_path())
+    assert blade.damping_type == 1 and blade.modal_zeta.tolist() == [0.01, 0.02, 0.03, 0.04]
+    assert blade.mu.tolist() == [1e-3, 1e-3, 1e-3, 0.0014, 0.0022, 0.0022] and len(blade.eta) == 49
+
+
+def test_nrel5mw_beamdyn_blade_against_the_elastodyn_blade():
+    # OpenFAST's NREL 5MW BeamDyn example holds the 5MW blade's distributed properties without ElastoDyn's mass
+    # factor AdjBlMs = 1.04536: its first flap and edge frequencies times sqrt(AdjBlMs) are bladefem's from the
+    # ElastoDyn files within 0.2 % (the BeamDyn file adds section rotary inertia, about 0.1 % on the edge mode)
+    beamdyn5 = modes(beamdyn(BD5), 0.0, 2, elements=60)
+    elastodyn = modes(read_model(DATA / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"), 0.0, 2, elements=60)
+    assert beamdyn5.kinds == elastodyn.kinds == ["flap", "edge"]
+    np.testing.assert_allclose(beamdyn5.frequencies_hz / math.sqrt(1.04536), elastodyn.frequencies_hz, rtol=2e-3)
 
 
 def test_windio_1_file_reads_back_as_windio_2(tmp_path):

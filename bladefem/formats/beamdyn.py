@@ -239,6 +239,8 @@ def read_beamdyn_blade(path: str | Path) -> BeamDynBlade:
         count = integer("n_modes")
         line = keys["n_modes"][0]
         rest = [(n, t) for n, t in lines if n > line and n < lines[start - 1][0] and _numbers(t) > 0]
+        if count and not rest:
+            raise InputError(f"n_modes is {count} but no zeta line follows", file=str(path), line=line, field="zeta")
         zeta = row(rest[0][1], count, path, rest[0][0], "zeta") if count else np.zeros(0)
     if total < 2:
         raise InputError(f"need at least two stations, got {total}", file=str(path), line=keys["station_total"][0],
