@@ -5,8 +5,12 @@ Axes (taken as fact from openfast_toolbox converters/hawc2ToBeamDyn.py and beamD
 ``x``, ``y`` are BeamDyn's ``-y``, ``x`` (``x_BD = y_H2``, ``y_BD = -x_H2``), ``z`` the same; the c2_def twist is
 minus BeamDyn's (and bladefem's); the structural ``pitch`` turns the principal axes about +z in both. In the
 isotropic layout ``E I_y`` is the bending stiffness about BeamDyn's ``x`` (edgewise) and ``E I_x`` about ``y``
-(flapwise), ``k_y``, ``k_x`` the shear factors along BeamDyn's ``x``, ``y``; the radii of gyration ``ri_x``, ``ri_y``
-are about the centre of gravity in the axes turned by the pitch (``ri_y`` for rotation about BeamDyn's ``x``). The
+(flapwise), ``k_y``, ``k_x`` the shear factors along BeamDyn's ``x``, ``y``. The radii of gyration ``ri_x``, ``ri_y``
+are about the elastic centre, for rotation about the principal bending axes ``x_e``, ``y_e`` (the st format as the
+DTU Wind Energy Toolbox, wetb, documents it; ``ri_y`` for rotation about BeamDyn's ``x``): they are moved to the
+centre of mass by the parallel-axis theorem. The IEA-22MW st file follows this (its rotary inertias then match
+windIO's); the IEA-15MW one holds them about the centre of gravity (openfast_toolbox's converters read and write
+them so), and is read as the format says: docs/formats.md gives the difference. The
 fully populated layout's 6x6 is given about the elastic centre ``(x_e, y_e)`` in the axes turned by the pitch
 (beamDyn2Hawc2FPM_raw writes it so); it is taken back to the half-chord reference point. The st file's sections sit
 on the half-chord line (c2_def); bladefem's reference axis is the pitch axis, the body's z axis, so each section is
@@ -34,12 +38,38 @@ Q3 = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 Q = np.kron(np.eye(2), Q3)
 
 
+def _inertia_about_centre_of_mass(subset: StSubset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Principal rotary inertias about the centre of mass (kg m) and their axes' angle (rad, about +z, BeamDyn's
+    axes) from the radii of gyration, which the format gives about the elastic centre in the principal bending axes
+    (``ri_y`` for rotation about BeamDyn's ``x``): turned to the section axes and moved to the centre of mass by the
+    parallel-axis theorem (which adds a product of inertia)."""
+    c = subset.column
+    m, pitch = c("m"), np.radians(c("pitch"))
+    cos, sin = np.cos(pitch), np.sin(pitch)
+    about_elastic = np.zeros((len(m), 2, 2))
+    about_elastic[:, 0, 0], about_elastic[:, 1, 1] = m * c("ri_y") ** 2, m * c("ri_x") ** 2
+    turn = np.zeros_like(about_elastic)
+    turn[:, 0, 0], turn[:, 0, 1], turn[:, 1, 0], turn[:, 1, 1] = cos, sin, -sin, cos
+    section = np.swapaxes(turn, 1, 2) @ about_elastic @ turn          # the mass matrix's rotary block about E
+    dx, dy = c("y_cg") - c("y_e"), -(c("x_cg") - c("x_e"))           # centre of mass from the elastic centre
+    section[:, 0, 0] -= m * dy**2
+    section[:, 1, 1] -= m * dx**2
+    section[:, 0, 1] += m * dx * dy
+    section[:, 1, 0] += m * dx * dy
+    difference = section[:, 0, 0] - section[:, 1, 1]
+    angle = 0.5 * np.arctan2(2 * section[:, 0, 1], np.abs(difference)) * np.where(difference < 0, -1.0, 1.0)
+    cos, sin = np.cos(angle), np.sin(angle)
+    i_x = cos**2 * section[:, 0, 0] + 2 * cos * sin * section[:, 0, 1] + sin**2 * section[:, 1, 1]
+    i_y = sin**2 * section[:, 0, 0] - 2 * cos * sin * section[:, 0, 1] + cos**2 * section[:, 1, 1]
+    return i_x, i_y, angle
+
+
 def sections_in_beamdyn_axes(subset: StSubset) -> tuple[np.ndarray, np.ndarray]:
     """(n, 6, 6) stiffness and mass of a subset, about the half-chord point in BeamDyn's axes."""
     c = subset.column
     pitch = np.radians(c("pitch"))
     m = c("m")
-    mass = mass_matrix(m, c("y_cg"), -c("x_cg"), m * c("ri_y") ** 2, m * c("ri_x") ** 2, pitch)
+    mass = mass_matrix(m, c("y_cg"), -c("x_cg"), *_inertia_about_centre_of_mass(subset))
     if subset.fpm:
         stiffness_h2 = about_reference(subset.stiffness(), c("x_e"), c("y_e"), pitch)
         stiffness = Q @ stiffness_h2 @ Q.T
