@@ -170,6 +170,19 @@ def test_windio_entries_are_the_beamdyn_matrix_entries():
     assert np.max(np.abs(windio.inertia["cm_y"])) > 0.8                  # chordwise: cm_y reaches 0.88 m
 
 
+def test_windio_1_matrices_read_as_the_windio_team_converted_them():
+    # the 1.x file's 6x6 mass entries, read by BeamDyn's mass-matrix form (cm_y = M34 / m, cm_x = -M35 / m,
+    # i_edge = M44, i_flap = M55, i_cp = -M45, i_plr = M66), give exactly the 2.x file that windIO ships for the
+    # same turbine (made by windIO's own v1-to-v2 converter), and the 21 stiffness entries its K11..K66
+    one, two = read_windio(WINDIO1).blade, read_windio(WINDIO2).blade
+    np.testing.assert_array_equal(one.stiffness_grid, two.stiffness_grid)
+    assert one.stiffness.keys() == two.stiffness.keys() and one.inertia.keys() == two.inertia.keys()
+    for name in one.stiffness:
+        np.testing.assert_array_equal(one.stiffness[name], two.stiffness[name], err_msg=name)
+    for name in one.inertia:
+        np.testing.assert_array_equal(one.inertia[name], two.inertia[name], err_msg=name)
+
+
 def test_hawc2_offsets_and_axes_match_beamdyn():
     # HAWC2's x_cg, x_e (half-chord frame, HAWC2's axes) and BeamDyn's M34, K34 (pitch-axis frame, BeamDyn's axes)
     # are independent descriptions of one blade: once mapped (x_BD = y_H2, y_BD = -x_H2) and moved from the half
