@@ -64,7 +64,13 @@ EXPECTED_ERRORS: dict[tuple[str, str], str] = {}
 for command in MODEL_COMMANDS:
     EXPECTED_ERRORS["NRELOffshrBsline5MW_Blade.dat", command] = "TipRad"
     EXPECTED_ERRORS["NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat", command] = "TowerHt"
-for name in ("uniform_blade.yaml", "nrel5mw_blade.yaml"):            # a case file carries no rotor speed
+for command in MODEL_COMMANDS:                                        # a bare ElastoDyn blade file lacks TipRad
+    EXPECTED_ERRORS["IEA-15-240-RWT_ElastoDyn_blade.dat", command] = ""
+for name in ("uniform_blade.yaml", "nrel5mw_blade.yaml",            # a case file carries no rotor speed, nor
+             "IEA-15-240-RWT_BeamDyn.dat", "IEA-15-240-RWT_BeamDyn_blade.dat",   # BeamDyn and windIO files
+             "IEA-22-280-RWT_BeamDyn.dat", "IEA-22-280-RWT_BeamDyn_Blade.dat",
+             "IEA-15-240-RWT_windio1.yaml", "IEA-15-240-RWT_windio2_blade.yaml",
+             "IEA-22-280-RWT_windio2_blade.yaml", "IEA-22MW_blade1_st.dat"):
     EXPECTED_ERRORS[name, "elastodyn"] = "--rpm"
 SPECS = [path.name for path in INPUTS if path.read_text(errors="replace").count("\nrequirements:")]
 PLANS = [path.name for path in INPUTS if path.read_text(errors="replace").count("\nanalysis:")]

@@ -88,9 +88,9 @@ def replaced(tmp_path: Path, old: str, new: str) -> Path:
 
 
 @pytest.mark.parametrize(("old", "new", "line", "field"), [
-    ("K44: [1.0e8, 1.0e8, 1.0e8]", "K44: [1.0e8, -1.0e8, 1.0e8]", 33,
+    ("K44: [4.0e8, 4.0e8, 4.0e8]", "K44: [4.0e8, -4.0e8, 4.0e8]", 33,
      "components.blade.structure.elastic_properties.stiffness_matrix.K44.1"),
-    ("K55: [4.0e8, 4.0e8, 4.0e8]", "K55: [4.0e8, 4.0e8]", 35,
+    ("K55: [1.0e8, 1.0e8, 1.0e8]", "K55: [1.0e8, 1.0e8]", 35,
      "components.blade.structure.elastic_properties.stiffness_matrix.K55"),
     ("grid: [0.0, 0.6, 1.0]", "grid: [0.0, 0.6, 0.5]", 38,
      "components.blade.structure.elastic_properties.inertia_matrix.grid"),
@@ -109,14 +109,32 @@ def test_malformed_file(tmp_path, old, new, line, field):
     assert info.value.file == str(path)
 
 
-def test_windio_1_layout_is_refused(tmp_path):
+def test_windio_1_blade_without_six_x_six_is_refused(tmp_path):
+    # windIO 1.x is read natively (tests/test_beam_formats.py reads the IEA-15MW's own WT_Ontology file); a 1.x
+    # blade whose elastic_properties_mb lacks its six_x_six matrices is refused at that key's line
     path = replaced(tmp_path, "    structure:\n      elastic_properties:\n        stiffness_matrix:\n"
                               "          grid: [0.0, 0.4, 1.0]",
                     "    elastic_properties_mb: {}\n    structure:\n      elastic_properties:\n"
                     "        stiffness_matrix:\n          grid: [0.0, 0.4, 1.0]")
     with pytest.raises(InputError) as info:
         read_windio(path)
-    assert "converter" in info.value.message and info.value.line == 25
+    assert "six_x_six" in info.value.message and info.value.line == 25
+
+
+def test_a_tower_without_elastic_properties_fails_alone(tmp_path):
+    # windIO's converter leaves a 1.x tower with its layup and no elastic_properties: the blade still reads, the
+    # tower is refused when asked for, naming its key
+    path = replaced(tmp_path, "  tower:\n    reference_axis:", "  tower:\n    layup_only: true\n    reference_axis:")
+    text = path.read_text()
+    start = text.index("  tower:")
+    path.write_text(text[:start] + text[start:].replace("    structure:\n      elastic_properties:",
+                                                        "    structure:\n      layers:", 1))
+    turbine = read_windio(path)
+    assert turbine.tower is None and blade_from_windio(turbine).sections.flap_stiffness[0] == 1e8
+    with pytest.raises(InputError) as info:
+        tower_from_windio(turbine)
+    assert "elastic_properties" in info.value.message
+    assert info.value.field == "components.tower.structure.elastic_properties"
 
 
 def test_outer_shape_chord_gives_the_planform_and_round_trips(tmp_path):
@@ -136,3 +154,15 @@ def test_outer_shape_chord_gives_the_planform_and_round_trips(tmp_path):
     write_windio(turbine, copy)
     assert read_windio(copy) == turbine
     assert blade_from_windio(read_windio(SMALL)).sections.chord is None
+
+
+def test_tower_fore_aft_is_k55_and_side_side_k44(tmp_path):
+    # windIO's tower axes (turbine_schema.yaml, the tower's reference_axis): x downwind, y lateral, z up; bending
+    # about y (K55) moves the tower along x: fore-aft. A tower with K44 != K55 keeps them apart
+    text = SMALL.read_text()
+    start = text.index("  tower:")
+    tower = text[start:].replace("K44: [5.0e10, 5.0e10, 5.0e10]", "K44: [2.0e10, 2.0e10, 2.0e10]", 1)
+    path = tmp_path / "tower.yaml"
+    path.write_text(text[:start] + tower)
+    sections = tower_from_windio(read_windio(path)).sections
+    assert sections.flap_stiffness[0] == 5.0e10 and sections.edge_stiffness[0] == 2.0e10

@@ -1,8 +1,10 @@
 """Choose the reader of an input file by its extension and content, and build the model it describes.
 
 Formats: bladefem case files (``.yaml``/``.yml`` without ``components``), windIO turbine files (YAML with
-``components``), BModes decks (``.bmi``, or any file with ``beam_type`` and ``sec_props_file``), and ElastoDyn main,
-blade and tower files (found by their keys ``NumBl``/``TipRad``, ``NBlInpSt``, ``NTwInpSt``).
+``components``, versions 1.x and 2.x), BModes decks (``.bmi``, or any file with ``beam_type`` and ``sec_props_file``),
+ElastoDyn main, blade and tower files (found by their keys ``NumBl``/``TipRad``, ``NBlInpSt``, ``NTwInpSt``), BeamDyn
+primary and blade files (``kp_total`` with ``BldFile``; ``station_total``), HAWC2 structural files (``.st``, or
+``#1`` then ``$1 rows``) and HAWC2 ``.htc`` files (the blade body's st file and c2_def).
 """
 
 from __future__ import annotations
@@ -20,7 +22,10 @@ from ..sections.checks import body_problem, check_section_values, length_problem
 from .tower import Tower
 
 YAML_SUFFIXES = (".yaml", ".yml")
-FORMATS = ("case", "windio", "bmodes", "elastodyn-main", "elastodyn-blade", "elastodyn-tower")
+FORMATS = ("case", "windio", "bmodes", "elastodyn-main", "elastodyn-blade", "elastodyn-tower", "beamdyn-primary",
+           "beamdyn-blade", "hawc2-st", "hawc2-htc")
+#: Formats that describe a blade by six-by-six sections
+BEAM_FORMATS = ("beamdyn-primary", "beamdyn-blade", "hawc2-st", "hawc2-htc")
 #: Lines read to recognise a text format.
 SNIFF_LINES = 400
 
@@ -38,6 +43,7 @@ class Geometry:
     elastodyn_main: str | Path | None = None
     tower_height: float | None = None
     top_mass: float | None = None
+    htc: str | Path | None = None
 
 
 def detect_format(path: str | Path) -> str:
@@ -59,6 +65,16 @@ def detect_format(path: str | Path) -> str:
         return "windio" if any(line.startswith("components:") for line in head) else "case"
     if path.suffix.lower() == ".bmi" or {"beam_type", "sec_props_file"} <= words:
         return "bmodes"
+    if path.suffix.lower() == ".htc":
+        return "hawc2-htc"
+    if "station_total" in words:
+        return "beamdyn-blade"
+    if {"kp_total", "BldFile"} <= words:
+        return "beamdyn-primary"
+    first = [line.split()[0] for line in head if line.split()]
+    if path.suffix.lower() == ".st" or (any(t[:1] == "#" and t[1:].isdigit() for t in first)
+                                        and any(t[:1] == "$" and t[1:].isdigit() for t in first)):
+        return "hawc2-st"
     if "NBlInpSt" in words:
         return "elastodyn-blade"
     if "NTwInpSt" in words:
@@ -69,7 +85,8 @@ def detect_format(path: str | Path) -> str:
         return "windio"
     raise InputError(f"unrecognised input format: not .yaml/.yml/.bmi, and none of its first {len(head)} lines "
                      "names the keys of an ElastoDyn main (NumBl, TipRad), blade (NBlInpSt) or tower (NTwInpSt) "
-                     "file or a BModes deck (beam_type, sec_props_file)", file=str(path), line=1)
+                     "file, a BModes deck (beam_type, sec_props_file), a BeamDyn primary (kp_total, BldFile) or blade "
+                     "(station_total) file or a HAWC2 st (#1, $1 rows) or .htc file", file=str(path), line=1)
 
 
 def read_model(path: str | Path, part: str | None = None, geometry: Geometry | None = None,
@@ -96,6 +113,19 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
     if kind in ("elastodyn-blade", "elastodyn-main"):
         _refuse(geometry, TOWER_OPTIONS, "a blade", path)
         return _overrides(_elastodyn_blade(Path(path), kind, geometry), geometry, path)
+    if kind != "hawc2-st" and geometry.htc is not None:
+        raise InputError("--htc applies to a HAWC2 st file only", file=str(path), field="--htc")
+    if kind in BEAM_FORMATS:
+        _refuse(geometry, TOWER_OPTIONS + ("elastodyn_main", "tip_radius"),
+                "a six-by-six blade (its reference axis fixes the length; --hub-radius moves the root)", path)
+        if part == "tower":
+            raise InputError("this input describes a blade, not a tower", file=str(path), field="--part")
+        from .beam_inputs import beamdyn_blade, hawc2_blade
+        hub = geometry.hub_radius or 0.0
+        blade = (beamdyn_blade(kind, Path(path), hub, 0.0) if kind.startswith("beamdyn")
+                 else hawc2_blade(kind, Path(path), geometry.htc, hub, 0.0))
+        check_section_values(blade.sections)
+        return _overrides(blade, geometry, path)
     if kind == "bmodes":
         from ..formats.bmodes import read_bmodes
         from .bmodes_model import blade_from_bmodes
@@ -152,7 +182,7 @@ TOWER_OPTIONS = ("tower_height", "top_mass")
 #: Geometry field -> command-line option
 OPTION_NAMES = {"tip_radius": "--tip-radius", "hub_radius": "--hub-radius", "precone": "--precone-deg",
                 "pitch": "--pitch-deg", "tip_mass": "--tip-mass", "elastodyn_main": "--elastodyn-main",
-                "tower_height": "--tower-height", "top_mass": "--top-mass"}
+                "tower_height": "--tower-height", "top_mass": "--top-mass", "htc": "--htc"}
 
 
 def _refuse(geometry: Geometry, names: tuple[str, ...], what: str, path: str | Path) -> None:

@@ -1,18 +1,26 @@
 """bladefem models from windIO data, and writing the windIO subset back.
 
-Conventions (windIO 2.x schema): blade section axes ``x`` toward the trailing edge, ``y`` toward the suction side,
-``z`` along the span; ``K44`` is the flapwise bending stiffness (about ``x``), ``K55`` the edgewise one (about
-``y``), ``K66`` torsion, ``K33`` axial, all in the frame turned by the twist. ``i_flap`` (about ``x``) and ``i_edge``
-(about ``y``) are taken about the centre of mass. Tower axes: ``x`` downwind, ``y`` lateral, ``z`` up, so fore-aft
-bending is ``K55`` and side-side bending ``K44``.
+Blade axes. windIO's reference axis is documented (turbine_schema.yaml, ``reference_axis``) with ``x`` toward the
+suction side and ``y`` toward the trailing edge, BeamDyn's blade axes (OpenFAST docs/source/user/beamdyn/
+input_files.rst). The same schema's ``K44``/``K55`` descriptions say the opposite (``x`` toward the trailing edge,
+``K44`` flapwise); the data settle it for BeamDyn's axes: in the IEA-15MW and IEA-22MW files ``K44`` equals the
+ElastoDyn blade file's edgewise stiffness (IEA-15MW at 50 % span 1.559e10 against EdgStff 1.570e10) and ``K55`` its
+flapwise one (4.893e9 against FlpStff 5.280e9), and every entry (``K``, ``mass``, ``cm_y``, ``i_edge``) equals the
+BeamDyn blade file's 6x6 at the same station (tests/test_beam_formats.py). So: ``K44`` bending about ``x`` is
+edgewise, ``K55`` about ``y`` flapwise; ``cm_y`` is chordwise (toward the trailing edge, reaching 0.88 m on the
+IEA-15MW), ``cm_x`` thickness-wise; ``i_edge``, ``i_flap``, ``i_cp``, ``i_plr`` are BeamDyn's ``M44``, ``M55``,
+``-M45``, ``M66``, about the reference axis (equal to the BeamDyn file's entries). The 6x6 stiffness and mass are
+built from them and reduced by :mod:`bladefem.builders.section6x6`, which names what bladefem's beam drops.
 
-What bladefem's beam does not represent is reported in the model's notes rather than silently dropped: the
-off-diagonal stiffness couplings (``K34``, ``K35``, ``K45``, ...), the thickness-wise centre-of-mass offset
-``cm_y``, and the curvature of the reference axis (prebend, sweep; the beam is straight with the axis's arc length).
+Tower axes (turbine_schema.yaml, the tower's ``reference_axis``): ``x`` downwind, ``y`` lateral, ``z`` up, so
+fore-aft bending (about ``y``) is ``K55`` and side-side bending ``K44`` (the IEA towers are round, ``K44 = K55``: the
+data cannot tell, the schema does).
+The curvature of the reference axis (prebend, sweep) is not modelled: the beam is straight with the axis's arc length.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -21,33 +29,17 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..files import write_atomic
+from ..builders.section6x6 import SixBySixBlade
 from ..sections import Blade, SectionTable, TipMass
 from ..formats._fast_format import degrees_exact
 from ..sections.checks import check_section_values
 from .tower import Tower
 from ..formats.windio import WindIOBeam, WindIOTurbine
 
-#: Couplings smaller than this fraction of sqrt(K_ii K_jj) are not mentioned in the notes.
-COUPLING_NOTE = 0.01
-
 
 def _stations(beam: WindIOBeam) -> NDArray[np.float64]:
     grids = [beam.stiffness_grid, beam.inertia_grid] + ([beam.twist.grid] if beam.twist is not None else [])
     return np.unique(np.concatenate(grids))
-
-
-def _couplings(beam: WindIOBeam) -> list[str]:
-    notes = []
-    k = beam.stiffness
-    for name, values in k.items():
-        i, j = int(name[1]), int(name[2])
-        if i == j or f"K{i}{i}" not in k or f"K{j}{j}" not in k:
-            continue
-        scale = np.sqrt(np.abs(k[f"K{i}{i}"] * k[f"K{j}{j}"]))
-        ratio = float(np.max(np.abs(values) / np.maximum(scale, 1e-300)))
-        if ratio > COUPLING_NOTE:
-            notes.append(f"{name} (up to {ratio:.2g} of sqrt(K{i}{i} K{j}{j}))")
-    return notes
 
 
 def _optional_positive(beam: WindIOBeam, name: str, x: NDArray) -> NDArray | None:
@@ -56,52 +48,61 @@ def _optional_positive(beam: WindIOBeam, name: str, x: NDArray) -> NDArray | Non
     return np.interp(x, beam.stiffness_grid, beam.stiffness[name])
 
 
-def _notes(turbine: WindIOTurbine, beam: WindIOBeam, what: str) -> tuple[str, ...]:
-    notes = [f"windIO {what} from {Path(turbine.path).name or 'memory'}: straight beam of the reference axis's arc "
-             f"length {beam.length:.6g} m (prebend and sweep are not modelled)"]
-    couplings = _couplings(beam)
-    if couplings:
-        notes.append("stiffness couplings neglected: " + ", ".join(couplings))
-    if "cm_y" in beam.inertia and np.any(beam.inertia["cm_y"] != 0):
-        notes.append(f"thickness-wise centre-of-mass offset cm_y (up to {np.max(np.abs(beam.inertia['cm_y'])):.3g} m)"
-                     " neglected")
-    if "K66" not in beam.stiffness:
-        notes.append("no K66: torsion rigid")
-    return tuple(notes)
+def six_by_six(beam: WindIOBeam, x: NDArray) -> tuple[NDArray, NDArray]:
+    """(n, 6, 6) stiffness and mass at grid points ``x`` in BeamDyn's axes (missing entries zero)."""
+    n = len(x)
+    K = np.zeros((n, 6, 6))
+    for name, values in beam.stiffness.items():
+        i, j = int(name[1]) - 1, int(name[2]) - 1
+        K[:, i, j] = K[:, j, i] = np.interp(x, beam.stiffness_grid, values)
+
+    def inertia(name: str) -> NDArray:
+        return np.interp(x, beam.inertia_grid, beam.inertia[name]) if name in beam.inertia else np.zeros(n)
+
+    m, cm_x, cm_y = inertia("mass"), inertia("cm_x"), inertia("cm_y")
+    M = np.zeros((n, 6, 6))
+    M[:, 0, 0] = M[:, 1, 1] = M[:, 2, 2] = m
+    M[:, 0, 5] = M[:, 5, 0] = -m * cm_y
+    M[:, 1, 5] = M[:, 5, 1] = m * cm_x
+    M[:, 2, 3] = M[:, 3, 2] = m * cm_y
+    M[:, 2, 4] = M[:, 4, 2] = -m * cm_x
+    M[:, 3, 3], M[:, 4, 4] = inertia("i_edge"), inertia("i_flap")
+    M[:, 3, 4] = M[:, 4, 3] = -inertia("i_cp")
+    M[:, 5, 5] = inertia("i_plr")
+    return K, M
+
+
+def windio_sections(turbine: WindIOTurbine) -> SixBySixBlade:
+    """The windIO blade as six-by-six sections in BeamDyn's axes on the union of its grids."""
+    beam = turbine.blade
+    if beam is None:
+        if "blade" in turbine.problems:
+            raise turbine.problems["blade"]
+        raise InputError("the file has no blade", file=turbine.path or None,
+                         line=turbine.lines.get(("components",)), field="components.blade")
+    x = _stations(beam)
+    K, M = six_by_six(beam, x)
+    twist = np.interp(x, beam.twist.grid, beam.twist.values)
+    axis = np.stack([np.interp(x, beam.reference_axis[c].grid, beam.reference_axis[c].values) for c in "xyz"], axis=1)
+    key = ("components", "blade", "structure", "elastic_properties", "stiffness_matrix")
+    if key not in turbine.lines:
+        key = ("components", "blade", "elastic_properties_mb", "six_x_six", "stiff_matrix")
+    line = turbine.lines.get(key)
+    return SixBySixBlade(x * beam.length, K, M, twist, axis, source=turbine.path,
+                         lines=(line,) * len(x) if line else None, field=".".join(key))
 
 
 def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
     """A :class:`Blade` from the windIO blade; ``pitch`` in rad."""
+    sections = windio_sections(turbine)
+    table, reduction = sections.table()
     beam = turbine.blade
-    if beam is None:
-        raise InputError("the file has no blade", file=turbine.path or None,
-                         line=turbine.lines.get(("components",)), field="components.blade")
-    x = _stations(beam)
-
-    def inertia(name: str) -> NDArray | None:
-        return np.interp(x, beam.inertia_grid, beam.inertia[name]) if name in beam.inertia else None
-
-    def stiffness(name: str) -> NDArray:
-        return np.interp(x, beam.stiffness_grid, beam.stiffness[name])
-
-    cm_x = inertia("cm_x")
-    sections = SectionTable(
-        span=x * beam.length,
-        mass=inertia("mass"),
-        flap_stiffness=stiffness("K44"),
-        edge_stiffness=stiffness("K55"),
-        torsion_stiffness=_optional_positive(beam, "K66", x),
-        axial_stiffness=_optional_positive(beam, "K33", x),
-        twist=np.interp(x, beam.twist.grid, beam.twist.values),
-        flap_inertia=inertia("i_flap"),
-        edge_inertia=inertia("i_edge"),
-        cm_offset=None if cm_x is None else -cm_x,
-        chord=None if beam.chord is None else np.interp(x, beam.chord.grid, beam.chord.values),
-        source=turbine.path,
-    )
-    check_section_values(sections)
-    return Blade(sections=sections, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
-                 name=f"{turbine.name} blade", notes=_notes(turbine, beam, "blade"))
+    if beam.chord is not None:
+        table = replace(table, chord=np.interp(table.span / beam.length, beam.chord.grid, beam.chord.values))
+    check_section_values(table)
+    notes = [sections.curvature_note(f"windIO blade from {Path(turbine.path).name or 'memory'}")] + reduction
+    return Blade(sections=table, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
+                 name=f"{turbine.name} blade", notes=tuple(notes))
 
 
 def rotor_nacelle_mass(turbine: WindIOTurbine) -> float:
@@ -116,10 +117,15 @@ def tower_from_windio(turbine: WindIOTurbine, top_mass: TipMass | float | None =
     """A :class:`Tower` from the windIO tower; by default the rotor-nacelle mass as a point mass at the top."""
     beam = turbine.tower
     if beam is None:
+        if "tower" in turbine.problems:
+            problem = turbine.problems["tower"]
+            raise InputError(f"the tower cannot be built: {problem.message}", file=problem.file, line=problem.line,
+                             field=problem.field)
         raise InputError("the file has no tower", file=turbine.path or None,
                          line=turbine.lines.get(("components",)), field="components.tower")
     x = np.unique(np.concatenate([beam.stiffness_grid, beam.inertia_grid]))
-    notes = _notes(turbine, beam, "tower")
+    notes = (f"windIO tower from {Path(turbine.path).name or 'memory'}: straight beam of the reference axis's arc "
+             f"length {beam.length:.6g} m, diagonal stiffness (fore-aft K55, side-side K44, torsion K66)",)
     if top_mass is None:
         top_mass = rotor_nacelle_mass(turbine)
         notes += (f"tower-top mass {top_mass:.6g} kg (blades, hub, drivetrain, yaw) as a point mass",)

@@ -71,6 +71,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     geometry.add_argument("--hub-radius", type=options.non_negative, metavar="M", help="HubRad, m")
     geometry.add_argument("--tower-height", type=options.positive, metavar="M", help="flexible tower length, m")
     geometry.add_argument("--top-mass", type=options.non_negative, metavar="KG", help="tower-top point mass, kg")
+    geometry.add_argument("--htc", metavar="FILE",
+                          help="HAWC2 .htc file whose blade body (c2_def) gives a HAWC2 st INPUT its twist")
     parser.set_defaults(run=run)
 
 
@@ -142,7 +144,7 @@ def run(args: argparse.Namespace) -> int:
     kind = detect_format(args.input)
     wanted = _part(args)
     geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
-                        tower_height=args.tower_height, top_mass=args.top_mass)
+                        tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc)
     model = read_model(args.input, wanted, geometry)
     part = "blade" if isinstance(model, Blade) else "tower"
     if wanted is not None and part != wanted:

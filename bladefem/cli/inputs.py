@@ -21,8 +21,9 @@ def add_blade_options(parser: argparse.ArgumentParser) -> None:
     """INPUT, ``--part``, the blade geometry options (for ElastoDyn blade files, and overrides), the tower options
     and ``--elements``."""
     parser.add_argument("input", metavar="INPUT",
-                        help="bladefem case (blade or tower) or windIO file (.yaml), BModes deck (.bmi), ElastoDyn "
-                             "main, blade or tower file")
+                        help="bladefem case (blade or tower) or windIO file (.yaml, 1.x or 2.x), BModes deck "
+                             "(.bmi), ElastoDyn main, blade or tower file, BeamDyn primary or blade file, HAWC2 st "
+                             "(.st) or .htc file")
     parser.add_argument("--part", choices=PARTS,
                         help="blade or tower of an input that holds both (ElastoDyn main, windIO; default blade)")
     geometry = parser.add_argument_group("blade geometry (ElastoDyn blade files; override case-file values)")
@@ -37,6 +38,8 @@ def add_blade_options(parser: argparse.ArgumentParser) -> None:
     geometry.add_argument("--elastodyn-main", metavar="FILE",
                           help="ElastoDyn main file to read TipRad, HubRad, PreCone(1), TipMass(1) (blade) or "
                                "TowerHt and the rotor-nacelle body (tower) from")
+    geometry.add_argument("--htc", metavar="FILE",
+                          help="HAWC2 .htc file whose blade body (c2_def) gives a HAWC2 st INPUT its twist")
     geometry.add_argument("--root", choices=ROOTS, help="root condition (default: from the case, else cantilever)")
     add_tower_options(parser)
     parser.add_argument("--elements", type=options.elements, metavar="N",
@@ -136,7 +139,7 @@ def read_structure(args: argparse.Namespace) -> object:
         model = read_tower(args)
     else:
         geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, tip_mass=args.tip_mass,
-                            elastodyn_main=args.elastodyn_main,
+                            elastodyn_main=args.elastodyn_main, htc=getattr(args, "htc", None),
                             precone=None if args.precone_deg is None else math.radians(args.precone_deg),
                             pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
         model = read_model(args.input, part, geometry)

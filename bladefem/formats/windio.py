@@ -1,21 +1,27 @@
-"""windIO turbine ontology (IEA Wind Task 37, version 2.x, as used by the IEA-15MW and IEA-22MW reference turbines):
-the blade's and the tower's structural properties and the geometry bladefem needs.
+"""windIO turbine ontology (IEA Wind Task 37; versions 1.x and 2.x, as used by the IEA-15MW and IEA-22MW reference
+turbines): the blade's and the tower's structural properties and the geometry bladefem needs.
 
 Read (every other entry of the file is ignored):
 
 - ``assembly``: ``number_of_blades``, ``rotor_orientation``;
-- ``components.hub``: ``diameter`` (hub radius = diameter / 2), ``cone_angle`` (deg, positive away from the tower
-  for upwind and downwind rotors alike), ``elastic_properties.mass``;
+- ``components.hub``: ``diameter`` (hub radius = diameter / 2), ``cone_angle`` (positive away from the tower for
+  upwind and downwind rotors alike; degrees in 2.x, radians in 1.x), ``elastic_properties.mass``;
 - ``components.blade`` and ``components.tower``: ``reference_axis`` (x, y, z on normalised arc-length grids),
   ``structure.elastic_properties.stiffness_matrix`` (``grid``, ``K11`` .. ``K66``) and ``inertia_matrix``
   (``grid``, ``mass``, ``cm_x``, ``cm_y``, ``i_edge``, ``i_flap``, ``i_plr``, ``i_cp``); the blade's
   ``outer_shape.twist`` (deg) and, if given, ``outer_shape.chord`` (m, for drawing the planform);
+- windIO 1.x blades: ``elastic_properties_mb.six_x_six`` (``reference_axis``, ``twist`` in rad, ``stiff_matrix``
+  and ``inertia_matrix``: ``grid`` and, per grid point, the 21 upper-triangle entries of the 6x6 row by row), read
+  into the same record (the inertia entries by BeamDyn's mass-matrix form: ``M34 = m cm_y``, ``M35 = -m cm_x``,
+  ``M44 = i_edge``, ``M55 = i_flap``, ``M45 = -i_cp``, ``M66 = i_plr``), and ``outer_shape_bem.chord``;
 - ``components.drivetrain.elastic_properties.mass`` and ``components.yaw.elastic_properties.mass``.
 
-windIO 1.x files (``elastic_properties_mb``) are recognised and refused with a pointer to windIO's converter.
-Every problem is an :class:`InputError` naming the file, the YAML line and the key path. When the ``windio`` package
-and ``jsonschema`` are installed, the two ``elastic_properties`` objects are also validated against windIO's own
-``beam`` schema.
+The blade and the tower are read independently: a part without beam properties (a 1.x tower, or a converted one,
+with a layup and no ``elastic_properties``) is None, its reason kept in ``problems`` and raised only when that part
+is asked for; a malformed value in a part that has them is an error at once. Every problem is an
+:class:`InputError` naming the file, the YAML line and the key path. When the
+``windio`` package and ``jsonschema`` are installed, the 2.x ``elastic_properties`` objects are also validated
+against windIO's own ``beam`` schema.
 """
 
 from __future__ import annotations
@@ -106,6 +112,8 @@ class WindIOTurbine:
     blade: WindIOBeam | None
     tower: WindIOBeam | None
     path: str = field(default="", compare=False)
+    #: part ('blade', 'tower') -> why it could not be read (raised when that part is asked for)
+    problems: dict[str, InputError] = field(default_factory=dict, compare=False, repr=False)
     lines: dict[Key, int] = field(default_factory=dict, compare=False, repr=False)
 
     @property
@@ -220,12 +228,27 @@ def read_windio(path: str | Path) -> WindIOTurbine:
     if not isinstance(data, dict) or "components" not in data:
         raise InputError("not a windIO turbine file (no 'components')", file=str(path), line=1, field="components")
     components = r.mapping(("components",))
-    if isinstance(components.get("blade"), dict) and "elastic_properties_mb" in components["blade"]:
-        raise r.error("windIO 1.x layout (elastic_properties_mb); convert it to windIO 2 with the windio package's "
-                      "converter first", ("components", "blade", "elastic_properties_mb"))
-    blade = _beam(r, ("components", "blade"), twist=True) if "blade" in components else None
-    tower = _beam(r, ("components", "tower"), twist=False) if "tower" in components else None
-    if blade is None and tower is None:
+    version1 = isinstance(components.get("blade"), dict) and (
+        "elastic_properties_mb" in components["blade"] or "outer_shape_bem" in components["blade"])
+    parts: dict[str, WindIOBeam | None] = {"blade": None, "tower": None}
+    problems: dict[str, InputError] = {}
+    for part in parts:
+        if part not in components:
+            continue
+        given = components[part] if isinstance(components[part], dict) else {}
+        structure = given.get("structure")
+        if part == "blade" and version1:
+            parts[part] = _beam_v1(r, ("components", "blade"))
+        elif isinstance(structure, dict) and "elastic_properties" in structure:
+            parts[part] = _beam(r, ("components", part), twist=part == "blade")
+        else:
+            key = ("components", part) + (("structure",) if isinstance(structure, dict) else ())
+            problems[part] = r.error(f"the {part} has no elastic_properties (only its geometry or a composite "
+                                     "layup, which bladefem does not reduce to beam properties)",
+                                     key + ("elastic_properties",))
+    if parts["blade"] is None and parts["tower"] is None:
+        if problems:
+            raise problems.get("blade", problems.get("tower"))  # type: ignore[misc]
         raise r.error("neither a blade nor a tower", ("components",))
     orientation = str(r.get(("assembly", "rotor_orientation"), "upwind")).lower()
     if orientation not in ("upwind", "downwind"):
@@ -233,23 +256,24 @@ def read_windio(path: str | Path) -> WindIOTurbine:
     blades = r.number(("assembly", "number_of_blades"), 3, minimum=1)
     if blades != int(blades):
         raise r.error(f"expected an integer, got {blades}", ("assembly", "number_of_blades"))
-    _validate_with_windio(r)
+    if not version1:
+        _validate_with_windio(r, [p for p in parts if parts[p] is not None])
     return WindIOTurbine(
         name=str(data.get("name", Path(path).stem)),
         number_of_blades=int(blades),
         upwind=orientation == "upwind",
         hub_radius=r.number(("components", "hub", "diameter"), 0.0, minimum=0) / 2,
-        cone_angle=_cone_angle(r),
+        cone_angle=_cone_angle(r, radians=version1),
         hub_mass=r.number(("components", "hub", "elastic_properties", "mass"), 0.0, minimum=0),
         drivetrain_mass=r.number(("components", "drivetrain", "elastic_properties", "mass"), 0.0, minimum=0),
         yaw_mass=r.number(("components", "yaw", "elastic_properties", "mass"), 0.0, minimum=0),
-        blade=blade, tower=tower, path=str(path), lines=lines)
+        blade=parts["blade"], tower=parts["tower"], path=str(path), lines=lines, problems=problems)
 
 
-def _cone_angle(r: _Reader) -> float:
-    """The hub's cone angle, rad, within ElastoDyn's precone range."""
+def _cone_angle(r: _Reader, radians: bool = False) -> float:
+    """The hub's cone angle, rad (given in degrees, in radians by windIO 1.x), within ElastoDyn's precone range."""
     key = ("components", "hub", "cone_angle")
-    angle = math.radians(r.number(key, 0.0))
+    angle = r.number(key, 0.0) if radians else math.radians(r.number(key, 0.0))
     problem = precone_problem(angle)
     if problem:
         raise r.error(problem.replace("precone", "cone_angle"), key)
@@ -289,6 +313,64 @@ def _beam(r: _Reader, key: Key, twist: bool) -> WindIOBeam:
     return beam
 
 
+def _matrices(r: _Reader, key: Key, length: int) -> list[NDArray[np.float64]]:
+    """The 21 upper-triangle entries per grid point of a windIO 1.x six_x_six matrix."""
+    values = r.get(key + ("values",))
+    if not isinstance(values, list) or len(values) != length:
+        raise r.error(f"expected {length} rows of 21 numbers (one per grid point)", key + ("values",))
+    rows = []
+    for i, entry in enumerate(values):
+        if not isinstance(entry, list) or len(entry) != 21:
+            raise r.error("expected the 21 upper-triangle entries of the 6x6, row by row", key + ("values", i))
+        numbers = [_as_number(v) for v in entry]
+        for j, v in enumerate(numbers):
+            if v is None:
+                raise r.error(f"expected a finite number, got {shown(entry[j])}", key + ("values", i, j))
+        rows.append(np.array(numbers, dtype=float))
+    return rows
+
+
+def _beam_v1(r: _Reader, key: Key) -> WindIOBeam:
+    """A windIO 1.x blade (elastic_properties_mb.six_x_six) as the 2.x record."""
+    six = key + ("elastic_properties_mb", "six_x_six")
+    if not isinstance(r.get(six, None), dict):
+        raise r.error("a windIO 1.x blade without its six_x_six matrices (elastic_properties_mb.six_x_six)", six)
+    axis_key = six + ("reference_axis",) if "reference_axis" in r.mapping(six) else key + (
+        "outer_shape_bem", "reference_axis")
+    axis = {c: r.distribution(axis_key + (c,)) for c in ("x", "y", "z")}
+    stiffness_grid = r.grid(six + ("stiff_matrix", "grid"))
+    upper = np.array(_matrices(r, six + ("stiff_matrix",), len(stiffness_grid)))
+    stiffness = {name: upper[:, n] for n, name in enumerate(STIFFNESS_KEYS)}
+    for name in ("K44", "K55"):
+        bad = np.flatnonzero(stiffness[name] <= 0)
+        if bad.size:
+            raise r.error(f"{name} must be positive, got {stiffness[name][bad[0]]}",
+                          six + ("stiff_matrix", "values", int(bad[0])))
+    inertia_grid = r.grid(six + ("inertia_matrix", "grid"))
+    M = np.array(_matrices(r, six + ("inertia_matrix",), len(inertia_grid)))
+    entry = {name: M[:, n] for n, name in enumerate(STIFFNESS_KEYS)}
+    mass = entry["K11"]
+    bad = np.flatnonzero(mass <= 0)
+    if bad.size:
+        raise r.error(f"mass (entry 1,1) must be positive, got {mass[bad[0]]}",
+                      six + ("inertia_matrix", "values", int(bad[0])))
+    inertia = {"mass": mass, "cm_x": -entry["K35"] / mass, "cm_y": entry["K34"] / mass, "i_edge": entry["K44"],
+               "i_flap": entry["K55"], "i_plr": entry["K66"], "i_cp": -entry["K45"]}
+    twist_key = six + ("twist",) if "twist" in r.mapping(six) else key + ("outer_shape_bem", "twist")
+    twist = r.distribution(twist_key)
+    if np.any(np.abs(twist.values) > MAX_TWIST):
+        i = int(np.flatnonzero(np.abs(twist.values) > MAX_TWIST)[0])
+        raise r.error("twist beyond a half turn (windIO 1.x gives radians)", twist_key + ("values", i))
+    shape = r.get(key + ("outer_shape_bem",), None)
+    chord = (r.distribution(key + ("outer_shape_bem", "chord"))
+             if isinstance(shape, dict) and "chord" in shape else None)
+    beam = WindIOBeam(axis, stiffness_grid, stiffness, inertia_grid, inertia, twist, chord)
+    if not beam.length > 0:
+        raise r.error("reference axis has zero length", axis_key)
+    _check_reach(r, six + ("inertia_matrix",), inertia, MAX_REACH * beam.length)
+    return beam
+
+
 def _check_reach(r: _Reader, key: Key, inertia: dict[str, NDArray], reach: float) -> None:
     """Centre-of-mass offsets and radii of gyration within :data:`~bladefem.sections.checks.MAX_REACH` beam lengths."""
     for name, values in inertia.items():
@@ -299,7 +381,7 @@ def _check_reach(r: _Reader, key: Key, inertia: dict[str, NDArray], reach: float
                           f"({reach / MAX_REACH:g} m)", key + (name, int(np.flatnonzero(far)[0])))
 
 
-def _validate_with_windio(r: _Reader) -> None:
+def _validate_with_windio(r: _Reader, parts: list[str]) -> None:
     """Validate the elastic_properties objects against windIO's 'beam' schema when windio and jsonschema exist."""
     try:
         import jsonschema
@@ -313,7 +395,7 @@ def _validate_with_windio(r: _Reader) -> None:
     except (OSError, yaml.YAMLError):
         return
     beam = dict(schema["definitions"]["beam"], definitions=schema["definitions"])
-    for part in ("blade", "tower"):
+    for part in parts:
         key = ("components", part, "structure", "elastic_properties")
         value = r.get(key, None)
         if value is None:

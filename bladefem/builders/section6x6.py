@@ -1,0 +1,258 @@
+"""Six-by-six beam sections in BeamDyn's axes, and their reduction to bladefem's diagonal :class:`SectionTable`.
+
+Axes (OpenFAST docs/source/user/beamdyn/input_files.rst): ``x`` toward the suction side (downwind for an upwind
+rotor), ``y`` toward the trailing edge, ``z`` along the reference axis; rows and columns (shear x, shear y,
+extension, bending about x = edgewise, bending about y = flapwise, torsion); matrices about the reference axis in the
+frame turned by the twist. bladefem's section frame is ``eta = -y`` (toward the leading edge), ``zeta = x``
+(downwind), so chordwise offsets change sign.
+
+The reduction (what today's beam can hold, per station):
+
+1. The transverse shear is condensed (shear forces zero, the slender-beam limit):
+   ``Kc = K[2:, 2:] - K[2:, :2] K[:2, :2]^-1 K[:2, 2:]``; without shear stiffness the block is kept as it is.
+2. Tension centre from the axial-bending coupling, ``y_C = Kc34 / EA``, ``x_C = -Kc35 / EA`` (the convention of
+   openfast_toolbox converters/beam.py ``KK``: ``K34 = EA y_C``, ``K35 = -EA x_C``); the bending stiffness about it
+   is the Schur complement ``H = Kc[4:6, 4:6] - Kc[4:6, 3] Kc[3, 4:6] / EA``.
+3. Principal axes: ``H`` turned by the angle ``theta`` (about +z, at most 45 degrees) that makes it diagonal:
+   ``EI_edge``, ``EI_flap`` its diagonal; bladefem's structural twist is ``twist - theta`` (bladefem's twist turns
+   the leading edge upwind, a rotation about -z).
+4. GJ = ``Kc66`` (about the shear centre once the shear is condensed).
+5. Mass (openfast_toolbox ``MM``: ``M34 = m y_G``, ``M35 = -m x_G``): ``m = M11``, the centre of mass, and the
+   rotary inertias about it ``M44 - m y_G^2`` (edgewise, about x) and ``M55 - m x_G^2`` (flapwise, about y).
+6. Shear centre (kept for reference in the table) from ``K[:3, :3]^-1 K[:3, 3:]`` (openfast_toolbox
+   ``ComputeShearCenter``).
+
+:class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis), the
+record a full six-by-six beam model takes; its ``table()`` is this reduction.
+
+Dropped, and named with their size in :func:`reduction_notes`: the extension-twist and bend-twist couplings left in
+``Kc`` (36, 46, 56 after the principal rotation), the thickness-wise tension-centre and centre-of-mass offsets
+``x_C``, ``x_G``, the product of inertia, the shear flexibility, and any curvature of the reference axis.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..sections import SectionTable
+
+#: Couplings and offsets smaller than this (fraction of sqrt(K_ii K_jj), or m) are not mentioned in the notes.
+NOTE_THRESHOLD = 0.01
+
+
+@dataclass(frozen=True)
+class Reduced:
+    """bladefem's diagonal section at each station (SI; chordwise offsets positive toward the leading edge)."""
+
+    mass: NDArray[np.float64]
+    flap_stiffness: NDArray[np.float64]
+    edge_stiffness: NDArray[np.float64]
+    torsion_stiffness: NDArray[np.float64]
+    axial_stiffness: NDArray[np.float64]
+    principal_angle: NDArray[np.float64]
+    flap_inertia: NDArray[np.float64]
+    edge_inertia: NDArray[np.float64]
+    cm_offset: NDArray[np.float64]
+    tension_centre_offset: NDArray[np.float64]
+    shear_centre_offset: NDArray[np.float64]
+    #: what is dropped, per station: name -> magnitude (fraction of sqrt(K_ii K_jj), or m, or kg m)
+    dropped: dict[str, NDArray[np.float64]]
+
+
+def condensed(K: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The 4x4 (extension, bending x, bending y, torsion) with the shear condensed out, shape (..., 4, 4)."""
+    shear = K[..., :2, :2]
+    out = K[..., 2:, 2:].copy()
+    has = np.linalg.det(shear) > 0
+    if np.any(has):
+        coupling = K[has][:, :2, 2:]
+        out[has] -= np.swapaxes(coupling, -1, -2) @ np.linalg.solve(shear[has], coupling)
+    return out
+
+
+def reduce(K: NDArray[np.float64], M: NDArray[np.float64]) -> Reduced:
+    """Reduce (n, 6, 6) stiffness and mass matrices (BeamDyn's axes) to bladefem's diagonal section."""
+    K = np.asarray(K, dtype=float)
+    M = np.asarray(M, dtype=float)
+    Kc = condensed(K)
+    EA = Kc[:, 0, 0]
+    axial = EA > 0
+    safe = np.where(axial, EA, 1.0)
+    y_c = np.where(axial, Kc[:, 0, 1] / safe, 0.0)
+    x_c = np.where(axial, -Kc[:, 0, 2] / safe, 0.0)
+    H = Kc[:, 1:3, 1:3] - np.where(axial, 1.0, 0.0)[:, None, None] * (
+        Kc[:, 1:3, 0][:, :, None] * Kc[:, 0, 1:3][:, None, :]) / safe[:, None, None]
+    difference = H[:, 0, 0] - H[:, 1, 1]
+    theta = 0.5 * np.arctan2(2 * H[:, 0, 1], np.abs(difference)) * np.where(difference < 0, -1.0, 1.0)
+    c, s = np.cos(theta), np.sin(theta)
+    edge = c**2 * H[:, 0, 0] + 2 * c * s * H[:, 0, 1] + s**2 * H[:, 1, 1]
+    flap = s**2 * H[:, 0, 0] - 2 * c * s * H[:, 0, 1] + c**2 * H[:, 1, 1]
+    m = M[:, 0, 0]
+    y_g = M[:, 2, 3] / m
+    x_g = -M[:, 2, 4] / m
+    edge_inertia = M[:, 3, 3] - m * y_g**2
+    flap_inertia = M[:, 4, 4] - m * x_g**2
+    product = M[:, 3, 4] + m * x_g * y_g
+    shear_centre = np.zeros_like(m)
+    for i, k in enumerate(K):
+        if np.linalg.det(k[:2, :2]) > 0 and k[2, 2] > 0:
+            Y = np.linalg.solve(k[:3, :3], -k[:3, 3:])
+            shear_centre[i] = -Y[0, 2]                 # -(y_S): chordwise toward the leading edge
+    rotation = np.zeros((len(m), 4, 4))
+    rotation[:, 0, 0] = rotation[:, 3, 3] = 1
+    rotation[:, 1, 1] = rotation[:, 2, 2] = c
+    rotation[:, 1, 2], rotation[:, 2, 1] = s, -s
+    principal = rotation @ Kc @ np.swapaxes(rotation, 1, 2)
+    dropped = {
+        "extension-twist coupling K36": _ratio(principal, 0, 3),
+        "edgewise bend-twist coupling K46": _ratio(principal, 1, 3),
+        "flapwise bend-twist coupling K56": _ratio(principal, 2, 3),
+        "shear-torsion coupling K16": _ratio(K, 0, 5, shift=0),
+        "shear-torsion coupling K26": _ratio(K, 1, 5, shift=0),
+        "thickness-wise tension-centre offset (m)": np.abs(x_c),
+        "thickness-wise centre-of-mass offset (m)": np.abs(x_g),
+        "product of inertia (kg m)": np.abs(product),
+    }
+    return Reduced(mass=m, flap_stiffness=flap, edge_stiffness=edge, torsion_stiffness=Kc[:, 3, 3],
+                   axial_stiffness=EA, principal_angle=theta, flap_inertia=flap_inertia, edge_inertia=edge_inertia,
+                   cm_offset=-y_g, tension_centre_offset=-y_c, shear_centre_offset=shear_centre, dropped=dropped)
+
+
+def _ratio(K: NDArray, i: int, j: int, shift: int = 0) -> NDArray[np.float64]:
+    scale = np.sqrt(np.abs(K[:, i, i] * K[:, j, j]))
+    return np.abs(K[:, i, j]) / np.where(scale > 0, scale, np.inf)
+
+
+def reduction_notes(reduced: Reduced) -> list[str]:
+    """One sentence per dropped term that matters (above :data:`NOTE_THRESHOLD`), and the principal-axis turn."""
+    notes = []
+    big = [f"{name} up to {np.max(values):.2g}" + ("" if "(" in name else " of sqrt(K_ii K_jj)")
+           for name, values in reduced.dropped.items() if np.max(values) > NOTE_THRESHOLD]
+    if big:
+        notes.append("6x6 section reduced to bladefem's diagonal beam; neglected: " + "; ".join(big))
+    angle = np.degrees(np.max(np.abs(reduced.principal_angle)))
+    notes.append(f"transverse shear condensed (slender beam, no shear flexibility); bending about the tension centre "
+                 f"and the principal axes (turned up to {angle:.2g} deg from the chord, added to the twist)")
+    return notes
+
+
+def section_table(span: NDArray[np.float64], K: NDArray[np.float64], M: NDArray[np.float64],
+                  twist: NDArray[np.float64], source: str = "", lines: tuple[int, ...] | None = None,
+                  field: str = "") -> tuple[SectionTable, list[str]]:
+    """bladefem's section table from six-by-six sections (BeamDyn's axes) at arc lengths ``span`` (m) with the
+    chord's twist ``twist`` (rad, bladefem's sign: the leading edge upwind); and the notes on what is dropped.
+    A section whose reduced bending stiffness or mass is not positive is an :class:`InputError` at its station's
+    line (``lines``) naming ``field`` (default the column)."""
+    r = reduce(K, M)
+    for name, values, what in (("edge_stiffness", r.edge_stiffness, "edgewise EI about the tension centre"),
+                               ("flap_stiffness", r.flap_stiffness, "flapwise EI about the tension centre"),
+                               ("mass", r.mass, "mass per length")):
+        bad = np.flatnonzero(~(values > 0))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(f"station {i + 1} (span {span[i]:.6g} m): {what} is {values[i]:.6g}: the 6x6 section "
+                             "is not positive definite", file=source or None,
+                             line=lines[i] if lines else None, field=field or name)
+    positive = np.all(r.axial_stiffness > 0)
+    table = SectionTable(
+        span=span, mass=r.mass, flap_stiffness=r.flap_stiffness, edge_stiffness=r.edge_stiffness,
+        torsion_stiffness=r.torsion_stiffness if np.all(r.torsion_stiffness > 0) else None,
+        axial_stiffness=r.axial_stiffness if positive else None,
+        twist=twist - r.principal_angle, flap_inertia=np.maximum(r.flap_inertia, 0.0),
+        edge_inertia=np.maximum(r.edge_inertia, 0.0), cm_offset=r.cm_offset,
+        tension_centre_offset=r.tension_centre_offset if positive else None,
+        shear_centre_offset=r.shear_centre_offset, source=source, lines=lines)
+    notes = reduction_notes(r)
+    if not positive:
+        notes.append("no axial stiffness (K33) at every station: inextensible, tension-centre offsets dropped")
+    if table.torsion_stiffness is None:
+        notes.append("no torsional stiffness (K66) at every station: torsionally rigid")
+    return table, notes
+
+
+def translation(x: NDArray[np.float64] | float, y: NDArray[np.float64] | float) -> NDArray[np.float64]:
+    """``T`` with ``T^T K T`` the section matrix ``K`` taken about the point (x, y) instead of the origin (the
+    convention of openfast_toolbox converters/beam.py ``CrossSectionTranslationMatrix``), shape (..., 6, 6)."""
+    x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+    T = np.broadcast_to(np.eye(6), x.shape + (6, 6)).copy()
+    T[..., 0, 5], T[..., 1, 5], T[..., 2, 3], T[..., 2, 4] = y, -x, -y, x
+    return T
+
+
+def rotation(angle: NDArray[np.float64] | float) -> NDArray[np.float64]:
+    """``R`` with ``R K R^T`` the section matrix in axes turned by ``angle`` (rad) about +z (openfast_toolbox
+    ``CrossSectionRotationMatrix``), shape (..., 6, 6)."""
+    angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    R = np.zeros(angle.shape + (6, 6))
+    for k in (0, 3):
+        R[..., k, k] = R[..., k + 1, k + 1] = c
+        R[..., k, k + 1], R[..., k + 1, k] = s, -s
+        R[..., k + 2, k + 2] = 1.0
+    return R
+
+
+def about_reference(K: NDArray[np.float64], x: NDArray[np.float64], y: NDArray[np.float64],
+                    angle: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Section matrices given about the point (x, y) in axes turned by ``angle`` (rad), taken back to the origin
+    and the reference axes."""
+    R = rotation(angle)
+    T = translation(-np.asarray(x), -np.asarray(y))
+    return np.swapaxes(T, -1, -2) @ np.swapaxes(R, -1, -2) @ K @ R @ T
+
+
+def stiffness_matrix(EA, EI_x, EI_y, GJ, GA_x, GA_y, tension_centre, shear_centre, angle) -> NDArray[np.float64]:
+    """(n, 6, 6) stiffness about the origin from principal-axis properties: extension and bending about the tension
+    centre (x, y) in axes turned by ``angle``; shear and torsion about the shear centre in the same axes."""
+    EA = np.asarray(EA, dtype=float)
+    bending = np.zeros(EA.shape + (6, 6))
+    bending[..., 2, 2], bending[..., 3, 3], bending[..., 4, 4] = EA, EI_x, EI_y
+    shear = np.zeros_like(bending)
+    shear[..., 0, 0], shear[..., 1, 1], shear[..., 5, 5] = GA_x, GA_y, GJ
+    return (about_reference(bending, *tension_centre, angle) + about_reference(shear, *shear_centre, angle))
+
+
+def mass_matrix(m, x_g, y_g, i_x, i_y, angle) -> NDArray[np.float64]:
+    """(n, 6, 6) mass matrix about the origin (BeamDyn's form, input_files.rst) from the mass per length ``m``, the
+    centre of mass (x_g, y_g) and the rotary inertias about it, ``i_x`` and ``i_y`` about axes turned by ``angle``."""
+    m = np.asarray(m, dtype=float)
+    local = np.zeros(m.shape + (6, 6))
+    local[..., 0, 0] = local[..., 1, 1] = local[..., 2, 2] = m
+    local[..., 3, 3], local[..., 4, 4], local[..., 5, 5] = i_x, i_y, np.asarray(i_x) + np.asarray(i_y)
+    return about_reference(local, x_g, y_g, angle)
+
+
+@dataclass(frozen=True, eq=False)
+class SixBySixBlade:
+    """A blade as six-by-six sections in BeamDyn's axes, whichever file it came from (BeamDyn, HAWC2, windIO): what
+    a full six-by-six beam model needs, and what :meth:`table` reduces to today's beam.
+
+    span : (n,) station positions along the reference axis's arc length from the root, m
+    stiffness, mass : (n, 6, 6) about the reference (pitch) axis in the section axes turned by ``twist``
+    twist : (n,) the chord's twist, rad (bladefem's sign: positive turns the leading edge upwind)
+    axis : (n, 3) the reference axis at the stations in the blade-root axes: x toward the suction side (prebend,
+        negative upwind), y toward the trailing edge (sweep), z along the pitch axis, m
+    source, lines, field : where the sections were read, for error messages
+    """
+
+    span: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    mass: NDArray[np.float64]
+    twist: NDArray[np.float64]
+    axis: NDArray[np.float64]
+    source: str = ""
+    lines: tuple[int, ...] | None = None
+    field: str = ""
+
+    def table(self) -> tuple[SectionTable, list[str]]:
+        """bladefem's diagonal section table and the notes on what it drops (:func:`section_table`)."""
+        return section_table(self.span, self.stiffness, self.mass, self.twist, self.source, self.lines, self.field)
+
+    def curvature_note(self, what: str) -> str:
+        return (f"{what}: straight beam of the reference axis's arc length {self.span[-1]:.6g} m (prebend up to "
+                f"{np.max(np.abs(self.axis[:, 0])):.3g} m, sweep up to {np.max(np.abs(self.axis[:, 1])):.3g} m not "
+                "modelled)")
