@@ -11,7 +11,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import scipy.linalg as sla
 from uniform_beam_exact import natural_frequencies, tip_deflection
 
 from bladefem.assembly.blade import assemble_blade
@@ -49,12 +48,12 @@ def uniform_blade(K: np.ndarray, M: np.ndarray, twist: float = 0.0, pitch: float
     return Blade(FullSections(span=[0.0, L], stiffness=[K, K], mass=[M, M], twist=twist).table(), pitch=pitch)
 
 
-def fe_frequencies(blade: Blade, count: int, elements: int = 40) -> tuple[np.ndarray, np.ndarray, object]:
-    """Lowest natural frequencies (rad/s) and mode vectors of the parked blade, dense solve."""
-    matrices = assemble_blade(blade, elements)
-    K, _, M = (A.toarray() for A in matrices.free_parts)
-    values, vectors = sla.eigh(K, M, subset_by_index=[0, count - 1])
-    return np.sqrt(values), vectors, matrices
+def fe_frequencies(blade: Blade, count: int, elements: int = 40) -> tuple[np.ndarray, list]:
+    """Lowest natural frequencies (rad/s) and mode shapes of the parked blade (bladefem's modal solve: its
+    Rayleigh-quotient refinement keeps the digits that a dense solve of the assembled matrices loses, 1e-7 at 40
+    elements)."""
+    result = modes(blade, 0.0, count, elements=elements)
+    return 2 * np.pi * result.frequencies_hz, [mode.shape for mode in result.modes]
 
 
 def fe_tip_static(blade: Blade, load: np.ndarray, elements: int = 8) -> np.ndarray:
