@@ -165,3 +165,23 @@ def test_uniform_case_diagonal_sections_give_the_column_model():
     for rpm in (0.0, 60.0):
         fa, fb = (modes(x, rpm, 6).frequencies_hz for x in (columns, full))
         assert np.max(np.abs(fb / fa - 1)) < 1e-10
+
+
+def test_turning_the_section_frame_changes_nothing():
+    """The same sections written in a frame turned by beta (matrices Q^T K Q, twist + beta) are the same blade:
+    every matrix, the gyroscopic one included, to round-off, rotating with hub radius, precone and pitch."""
+    from bladefem.sections.full_section import frame_rotation
+
+    K = stiffness_matrix(EA, GJ, EI_FLAP, EI_EDGE, GA, 0.5 * GA, tension_centre=(0.3, -0.1), principal_angle=0.2,
+                         shear_centre=(0.1, 0.05), extension_twist=1e5, flap_twist=2e6, edge_twist=-1e6)
+    M = mass_matrix(MASS, (0.3, 0.1), 0.5, 4.0, 0.3)
+    beta = 0.7
+    Q = np.zeros((6, 6))
+    Q[:3, :3] = Q[3:, 3:] = frame_rotation(beta)
+    geometry = dict(hub_radius=2.0, precone=np.radians(-3), pitch=0.1)
+    blades = [Blade(FullSections([0.0, L], [k, 0.7 * k], [m, 0.8 * m], twist=[t + 0.4, t]).table(), **geometry)
+              for k, m, t in [(K, M, 0.0), (Q.T @ K @ Q, Q.T @ M @ Q, beta)]]
+    a, b = (assemble_blade(blade, 20) for blade in blades)
+    for name in ("K0", "K2", "M", "G"):
+        X, Y = getattr(a, name), getattr(b, name)
+        assert abs(X - Y).max() <= 1e-13 * abs(X).max(), name
