@@ -185,3 +185,17 @@ def test_turning_the_section_frame_changes_nothing():
     for name in ("K0", "K2", "M", "G"):
         X, Y = getattr(a, name), getattr(b, name)
         assert abs(X - Y).max() <= 1e-13 * abs(X).max(), name
+
+
+def test_scaling_six_by_six_sections():
+    """Mass x k divides the frequencies by sqrt(k), stiffness x k multiplies them by sqrt(k) (SectionTable.scaled
+    on the matrices); scaling flap or edge alone is refused (the matrices have no such split)."""
+    table = FullSections([0.0, L], [section(tension_centre=(0.2, 0.1), flap_twist=1e6)] * 2,
+                         [mass_matrix(MASS, (0.1, 0.05), 0.5, 4.0, 0.2)] * 2, twist=[0.3, 0.0]).table()
+    base = modes(Blade(table), 0.0, 6, elements=30).frequencies_hz
+    heavy = modes(Blade(table.scaled(mass=4.0)), 0.0, 6, elements=30).frequencies_hz
+    stiff = modes(Blade(table.scaled(stiffness=4.0)), 0.0, 6, elements=30).frequencies_hz
+    np.testing.assert_allclose(heavy, base / 2, rtol=1e-9)
+    np.testing.assert_allclose(stiff, base * 2, rtol=1e-9)
+    with pytest.raises(InputError, match="flap or edge alone"):
+        table.scaled(flap_stiffness=2.0)
