@@ -6,8 +6,9 @@ turned with the section, ``X`` toward the suction side (downwind for an upwind r
 edge, ``Z`` along the reference axis; rows and columns ``(F_X, F_Y, F_Z, M_X, M_Y, M_Z)`` (stiffness: shear X, shear
 Y, extension, bending about X = edgewise, bending about Y = flapwise, torsion) and the mass likewise on
 ``(u_X, u_Y, u_Z, omega_X, omega_Y, omega_Z)``. BeamDyn's ``initial_twist`` follows the IEC convention, a rotation
-about ``-Z`` (input_files.rst, "Blade key points"), which turns the leading edge upwind for positive values: the
-sense of bladefem's twist, so it is taken as it is.
+about ``-Z`` (input_files.rst, "Blade key points"; in the source BeamDyn_IO.f90 negates the value as it reads it
+and BD_ComputeIniNodalCrv turns the section by that about the tangent), which turns the leading edge upwind for
+positive values: the sense of bladefem's twist, so it is taken as it is.
 
 bladefem's section frame (:mod:`bladefem.sections.full_section`): ``x = Z`` along the span, ``eta = -Y`` toward the
 leading edge, ``zeta = X``; a proper rotation (determinant +1), so forces and moments (strains and curvatures)
