@@ -80,7 +80,8 @@ class BladeMatrices:
     @cached_property
     def elastic_operator(self) -> NDArray:
         """K0's form at the quadrature points (:func:`~bladefem.assembly.forms.pointwise_operator`)."""
-        return pointwise_operator(self.quadrature, self.parameters, elastic_terms(self.dofs.fields))
+        return pointwise_operator(self.quadrature, self.parameters,
+                                  elastic_terms(self.dofs.fields, self.parameters))
 
     @cached_property
     def G(self) -> sp.csr_matrix:
@@ -119,10 +120,14 @@ def model_fields(blade: Blade) -> tuple[str, ...]:
     return tuple(fields)
 
 
-def elastic_terms(fields: tuple[str, ...]) -> list[Term]:
+def elastic_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
+    """K0's terms: bending (with extension when the axial field is present), torsion, and the twist couplings of
+    six-by-six sections where they have any."""
     parts: list[Term] = [terms.extension_bending_stiffness if "u" in fields else terms.bending_stiffness]
     if "phi" in fields:
         parts.append(terms.torsion_stiffness)
+    if parameters.twist_coupling is not None:
+        parts.append(terms.twist_coupling_stiffness)
     return parts
 
 
@@ -175,7 +180,7 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     quadrature = Quadrature.from_basis(basis, fields)
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
-    K0 = assemble_terms(quadrature, parameters, elastic_terms(fields))
+    K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))
     K2 = assemble_terms(quadrature, parameters, CENTRIFUGAL_TERMS) + K2_tip
     M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))

@@ -13,6 +13,8 @@ from ..sections import (
     bending_stiffness,
     extension_bending_stiffness,
     mass_moments,
+    torsion_stiffness,
+    twist_coupling_stiffness,
 )
 
 #: Gauss-Legendre rule for the tension integrals (exact to degree 9 on each piece)
@@ -71,6 +73,7 @@ class SectionParameters:
     rotation: NDArray                # (3, 3, ...) rotation-second-order matrix per Omega^2
     tension: NDArray                 # N(x) per Omega^2, N s^2
     gyroscopic: NDArray | None = None  # (6, 6, ...) skew Coriolis matrix per Omega, kg/m .. kg m (rotating beams)
+    twist_coupling: NDArray | None = None  # (3, ...) phi' with (u', v'', w''), N m, N m^2 (six-by-six sections)
 
 
 def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
@@ -84,12 +87,13 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
         bending=bending_stiffness(sections, x, blade.pitch),
         extension_bending=(None if sections.axial_stiffness is None
                            else extension_bending_stiffness(sections, x, blade.pitch)),
-        torsion=None if sections.torsion_stiffness is None else sections.at(x, "torsion_stiffness"),
+        torsion=torsion_stiffness(sections, x, blade.pitch),
         inertia=projected_inertia(np.eye(3), moments.m, moments.S, moments.J),
         spin=projected_inertia(P, moments.m, moments.S, moments.J),
         rotation=rotation_second_order(P, node, moments.S, moments.J),
         tension=centrifugal_tension(blade, x),
         gyroscopic=gyroscopic_inertia(blade.shaft_axis, moments.m, moments.S, moments.J),
+        twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch),
     )
 
 

@@ -35,6 +35,14 @@ def torsion_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParam
     return p.torsion * test.phi_x * trial.phi_x
 
 
+def twist_coupling_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Extension-twist and bend-twist coupling of six-by-six sections: the twist rate phi' against (u', v'', w''),
+    both ways (the off-diagonal row and column of the classical stiffness)."""
+    g = p.twist_coupling
+    return (test.phi_x * np.einsum("i...,i...->...", g, trial.extension_curvatures)
+            + trial.phi_x * np.einsum("i...,i...->...", g, test.extension_curvatures))
+
+
 def inertia(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
     """Kinetic energy of the section slice: translation, centre-of-mass offset and rotary inertia."""
     return quadratic(test.kinematic, p.inertia, trial.kinematic)

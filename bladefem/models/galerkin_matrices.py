@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from ..sections import Blade
 from .galerkin_basis import Basis, bending_shapes, torsion_shapes
-from .galerkin_sections import body_second_moment, column, section_properties
+from .galerkin_sections import SectionProperties, body_second_moment, column, section_properties
 from .galerkin_terms import (
     axial_centrifugal_force,
     kinetic_form,
@@ -141,6 +141,15 @@ def kinematics(x: NDArray, length: float, terms: Terms,
     return G, slopes, curvatures, twist_rate
 
 
+def add_axial_motion(G: NDArray, section: SectionProperties) -> None:
+    """Six-by-six sections: the axial motion ``u = a . (phi, v', w')`` of the reference axis at zero axial force
+    (:mod:`.galerkin_sections`) into the first row of ``G`` (in place); column tables stay inextensible."""
+    if section.axial is None:
+        return
+    a = section.axial
+    G[:, 0, :] = a[:, :1] * G[:, 3, :] + a[:, 1:2] * G[:, 5, :] - a[:, 2:3] * G[:, 4, :]   # G4 = -w', G5 = v'
+
+
 def integrate(B: NDArray, density: NDArray, weights: NDArray) -> NDArray:
     """``sum_q w_q B_q^T A_q B_q`` for maps ``B`` (n, k, dofs) and densities ``A`` (n, k, k)."""
     weighted = (weights[:, None, None] * B).reshape(-1, B.shape[-1])
@@ -160,13 +169,17 @@ def galerkin_matrices(blade: Blade, terms: Terms, basis: Basis = "jacobi", order
     x, weights = quad.x, quad.weights
     G, slopes, curvatures, twist_rate = kinematics(x, length, terms, basis)
     section = section_properties(blade, x)
+    add_axial_motion(G, section)
     X = blade.hub_radius + x
 
     M = integrate(G, kinetic_form(section.m, section.S, section.J), weights)
     K0 = integrate(curvatures, section.D, weights)
     if terms.torsion:
-        GJ = column(sections, "torsion_stiffness", x)
+        GJ = column(sections, "torsion_stiffness", x) if section.torsion is None else section.torsion
         K0 += np.einsum("q,qi,qj->ij", weights * GJ, twist_rate, twist_rate)
+        if section.bend_twist is not None:
+            coupling = np.einsum("q,qi,qk,qkj->ij", weights, twist_rate, section.bend_twist, curvatures)
+            K0 += coupling + coupling.T
     tension = centrifugal_tension(blade, edges, x, order)
     K2 = (integrate(slopes, tension_form(tension), weights)
           + integrate(G, spin_softening_form(section.m, section.S, section.J, axis), weights)
@@ -175,6 +188,7 @@ def galerkin_matrices(blade: Blade, terms: Terms, basis: Basis = "jacobi", order
     if blade.tip_mass is not None:
         tip = blade.tip_mass
         G_tip = kinematics(np.array([length]), length, terms, basis)[0]
+        add_axial_motion(G_tip, section_properties(blade, np.array([length])))
         S_tip, J_tip = tip.mass * tip.offset, body_second_moment(tip.mass, tip.offset, tip.inertia)
         one = np.ones(1)
         M += integrate(G_tip, kinetic_form(tip.mass, S_tip, J_tip)[None], one)

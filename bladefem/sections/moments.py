@@ -17,6 +17,10 @@ from numpy.typing import NDArray
 
 from .table import SectionTable
 
+#: positions of (u', v'', w'') and of phi' in the classical strains (u', phi', v'', w'')
+EXTENSION_BENDING = (0, 2, 3)
+TWIST = 1
+
 
 def chord_direction(theta: NDArray) -> tuple[NDArray, NDArray]:
     """(y, z) components of the unit vector along the chord toward the leading edge."""
@@ -39,6 +43,8 @@ def total_angle(sections: SectionTable, x: NDArray, pitch: float) -> NDArray:
 
 def mass_moments(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> MassMoments:
     """Mass per length (kg/m), first moments (kg) and second moments (kg m) about the reference axis."""
+    if sections.full is not None:
+        return sections.full.mass_moments(x, pitch)
     theta = total_angle(sections, x, pitch)
     c, s = np.cos(theta), np.sin(theta)
     m = sections.at(x, "mass")
@@ -59,8 +65,13 @@ def bending_stiffness(sections: SectionTable, x: NDArray, pitch: float = 0.0) ->
     """2x2 bending stiffness about the tension centre for curvatures (v'', w''), N m^2, shape (2, 2, ...).
 
     The principal stiffnesses (edge about the thickness axis, flap about the chord axis) are rotated by the
-    structural twist plus pitch: this is what couples flap and edge bending in a twisted blade.
+    structural twist plus pitch: this is what couples flap and edge bending in a twisted blade. For six-by-six
+    sections: the bending block with extension and twist free (axial force and torque zero).
     """
+    if sections.full is not None:
+        D = np.moveaxis(sections.full.blade_stiffness(x, pitch), (0, 1), (-2, -1))
+        B = D[..., 2:, 2:] - D[..., 2:, :2] @ np.linalg.solve(D[..., :2, :2], D[..., :2, 2:])
+        return np.moveaxis(B, (-2, -1), (0, 1))
     theta = total_angle(sections, x, pitch)
     c, s = np.cos(theta), np.sin(theta)
     flap = sections.at(x, "flap_stiffness")
@@ -77,7 +88,11 @@ def extension_bending_stiffness(sections: SectionTable, x: NDArray, pitch: float
 
     The axial strain of a fibre at (y, z) is ``u' - y v'' - z w''``; integrating ``E`` times its square over the
     section about the reference axis gives EA, the offset coupling ``-EA y_t`` and the parallel-axis terms.
+    Six-by-six sections give their classical stiffness's block (offsets in both directions, turned principal
+    axes).
     """
+    if sections.full is not None:
+        return sections.full.blade_stiffness(x, pitch)[np.ix_(EXTENSION_BENDING, EXTENSION_BENDING)]
     theta = total_angle(sections, x, pitch)
     EA = sections.at(x, "axial_stiffness")
     e_t = sections.at(x, "tension_centre_offset")
@@ -88,3 +103,19 @@ def extension_bending_stiffness(sections: SectionTable, x: NDArray, pitch: float
     D[0, 1:] = D[1:, 0] = EA * offset
     D[1:, 1:] = bending_stiffness(sections, x, pitch) + EA * offset[:, None] * offset[None, :]
     return D
+
+
+def torsion_stiffness(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> NDArray | None:
+    """GJ at ``x``, N m^2 (None for a torsionally rigid table); six-by-six sections: the classical twist entry."""
+    if sections.full is not None:
+        return sections.full.blade_stiffness(x, pitch)[TWIST, TWIST]
+    return None if sections.torsion_stiffness is None else sections.at(x, "torsion_stiffness")
+
+
+def twist_coupling_stiffness(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> NDArray | None:
+    """The classical stiffness's coupling of the twist rate phi' with (u', v'', w''), shape (3, ...): extension-
+    twist and bend-twist, N m and N m^2; None where there is none (every column table)."""
+    if sections.full is None:
+        return None
+    D = sections.full.blade_stiffness(x, pitch)[TWIST, list(EXTENSION_BENDING)]
+    return D if np.any(D != 0) else None

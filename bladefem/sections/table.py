@@ -15,11 +15,15 @@ span axis; see :mod:`bladefem.sections.moments`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+
+if TYPE_CHECKING:
+    from .full_section import FullSections
 
 #: Columns that must be given and strictly positive.
 POSITIVE = ("mass", "flap_stiffness", "edge_stiffness")
@@ -63,6 +67,10 @@ class SectionTable:
         column; True: the squared radii of gyration about the reference axis vary linearly, ``flap_inertia / mass``
         and ``(edge_inertia + mass cm_offset^2) / mass``, and the inertias follow from them and the interpolated
         mass and offset (BModes' convention)
+    full : the whole six-by-six sections (:class:`~bladefem.sections.full_section.FullSections`, made by its
+        ``table()``): when given, the finite elements take stiffness and mass from them, with every coupling, and
+        the columns are their summary (:meth:`~bladefem.sections.full_section.FullSections.summary`), which must
+        match
     """
 
     span: NDArray[np.float64]
@@ -80,6 +88,7 @@ class SectionTable:
     chord: NDArray[np.float64] | None = None
     pitch_axis: NDArray[np.float64] | None = None
     inertia_per_mass: bool = False
+    full: FullSections | None = field(default=None, compare=False, repr=False)
     source: str = field(default="", compare=False)
     #: 1-based line number of each station in ``source`` (for error messages), if known
     lines: tuple[int, ...] | None = field(default=None, compare=False)
@@ -161,6 +170,24 @@ class SectionTable:
             bad = np.flatnonzero(getattr(self, name) < 0)
             if bad.size:
                 raise self._error(f"must not be negative, got {getattr(self, name)[bad[0]]}", int(bad[0]), name)
+        if self.full is not None:
+            self._validate_full()
+
+    def _validate_full(self) -> None:
+        """The columns must be the summary of the six-by-six sections they carry (a column changed alone would
+        leave the finite elements on the matrices)."""
+        full = self.full
+        if full.span.shape != self.span.shape or np.any(full.span != self.span):
+            raise self._error("the six-by-six sections' stations differ from the table's", None, "span")
+        if self.inertia_per_mass:
+            raise self._error("six-by-six sections interpolate their matrices, not radii of gyration", None,
+                              "inertia_per_mass")
+        for name, value in full.summary().items():
+            column = getattr(self, name)
+            bad = np.flatnonzero(~np.isclose(column, value, rtol=1e-12, atol=1e-12 * np.max(np.abs(value))))
+            if bad.size:
+                raise self._error(f"differs from the six-by-six sections' {value[bad[0]]} (change the matrices, "
+                                  "not the column)", int(bad[0]), name)
 
     def at(self, x: NDArray[np.float64], name: str) -> NDArray[np.float64]:
         """Column ``name`` at span positions ``x`` (m), any shape: linear between stations (the inertias per
@@ -178,6 +205,11 @@ class SectionTable:
         """A copy with mass (and mass inertias) and stiffnesses multiplied by the given factors."""
         def times(value: NDArray | None, k: float) -> NDArray | None:
             return None if value is None else value * k
+        if self.full is not None:
+            if flap_stiffness != 1.0 or edge_stiffness != 1.0:
+                raise InputError("six-by-six sections scale their whole stiffness, not flap or edge alone",
+                                 field="sections")
+            return self.full.scaled(mass=mass, stiffness=stiffness).table()
         return replace(
             self,
             mass=self.mass * mass,
