@@ -65,6 +65,19 @@ def wind_speeds(text: str) -> tuple[float, ...]:
     return values
 
 
+def leave_out(args: argparse.Namespace) -> frozenset[str]:
+    """The ways forward the command line takes (options of :data:`bladefem.io.aerodyn_primary.WAYS`): what the deck
+    asks for and bladefem does not model is left out (and named) instead of refused."""
+    taken = set()
+    if getattr(args, "foundation", None) == "rigid":
+        taken.add("--foundation rigid")
+    if getattr(args, "quasi_steady", False):
+        taken.add("--quasi-steady")
+    if getattr(args, "rpm", None) is not None:
+        taken.add("--rpm")
+    return frozenset(taken)
+
+
 def wants_aeroelastic(args: argparse.Namespace) -> bool:
     """True for --linearize or --campbell with aerodynamics: --wind-speed given (:func:`read_deck` refuses a deck
     without them), or a .fst whose AeroDyn is on, unless --no-aero."""
@@ -76,7 +89,7 @@ def wants_aeroelastic(args: argparse.Namespace) -> bool:
     if args.wind_speed is not None:
         return True
     return Path(args.main).is_file() and is_openfast_deck(args.main) and (
-        read_openfast_deck(args.main).aerodyn is not None)
+        read_openfast_deck(args.main, leave_out=leave_out(args)).aerodyn is not None)
 
 
 def check_aeroelastic_options(args: argparse.Namespace) -> None:
@@ -107,15 +120,15 @@ def check_aeroelastic_options(args: argparse.Namespace) -> None:
                          "(--rpm 0)", field="--azimuth-deg")
 
 
-def read_deck(path: str):
-    """The OpenFAST deck (with aerodynamics) of ``path``."""
+def read_deck(path: str, taken: frozenset[str] = frozenset()):
+    """The OpenFAST deck (with aerodynamics) of ``path``, with the ways forward ``taken`` (:func:`leave_out`)."""
     from ..io._labels import Labels
     from ..io.openfast_fst import read_openfast_deck
 
     if Path(path).is_file() and not Labels.read(path).has("CompElast"):
         raise InputError("aerodynamics come from an OpenFAST main file (.fst) naming ElastoDyn, AeroDyn and "
                          "InflowWind: give that instead of an ElastoDyn file", file=path, field="--wind-speed")
-    deck = read_openfast_deck(path)
+    deck = read_openfast_deck(path, leave_out=taken)
     if deck.aerodyn is None:
         raise InputError("the deck has no aerodynamics (CompAero 0)", file=deck.path, field="CompAero")
     return deck
@@ -123,18 +136,21 @@ def read_deck(path: str):
 
 def run_aeroelastic(args: argparse.Namespace) -> int:
     """The aeroelastic ``--linearize`` or ``--campbell`` of an OpenFAST deck."""
-    from ..io.turbine_elastodyn import deck_conditions
+    from ..io.turbine_elastodyn import deck_conditions, platform_note
     from ..models.turbine.aeroelastic_campbell import AeroelasticTurbine
     from ..models.turbine.control import Generator
     from ..models.turbine.initial import free_from_switches
     from ..models.turbine.parameters import dof_names
     from ..models.turbine.system import select_dofs
 
-    deck = read_deck(args.main)
+    taken = leave_out(args)
+    deck = read_deck(args.main, taken)
     if args.wind_speed is None:
         args.wind_speed = (deck.inflow.speed,)
-    switches, conditions = deck_conditions(deck.elastodyn.path)
-    notes: list[str] = list(deck.aerodyn.notes())
+    rigid = "--foundation rigid" in taken
+    switches, conditions = deck_conditions(deck.elastodyn.path, rigid)
+    notes: list[str] = ([platform_note(deck.elastodyn.path)] if rigid else []) + list(deck.left_out)
+    notes += list(deck.aerodyn.notes())
     structure_notes: list[str] = []
     structure = structure_builder(deck, args, structure_notes)
     dofs = dof_names(deck.elastodyn.num_blades)

@@ -32,14 +32,29 @@ FLAGS = (("TwrPotent", 0, "tower potential-flow influence"), ("TwrShadow", 0, "t
          ("SkewMomCorr", False, "the skew momentum correction"))
 
 
+#: The ways forward offered when a deck asks for what bladefem does not model: command-line option -> what it does.
+WAYS = {"--foundation rigid": "runs the turbine with the tower clamped at its base (platform, hydrodynamics and "
+                              "substructure left out)",
+        "--quasi-steady": "runs quasi-steady BEM, leaving out the aerodynamic features bladefem does not model",
+        "--rpm": "runs at a fixed rotor speed (--rpm R, with --pitch-deg P) without the controller"}
+
+
 @dataclass(frozen=True)
 class Unmodelled:
-    """A switch asking for physics bladefem does not model: file, line, label, and a one-line explanation."""
+    """A switch asking for physics bladefem does not model: file, line, label, a one-line explanation, and the
+    command-line option of :data:`WAYS` that runs the deck without it ("" when there is none: change the file)."""
 
     file: str
     line: int
     label: str
     message: str
+    way: str = ""
+
+    def refusal(self) -> str:
+        """The message with the way forward, when there is one."""
+        if not self.way:
+            return self.message
+        return f"{self.message}; or {self.way} {WAYS[self.way]}"
 
 
 @dataclass(frozen=True)
@@ -103,12 +118,12 @@ class AeroDynPrimary:
         """Every switch of this file that asks for physics bladefem does not model."""
         found = []
 
-        def refuse(name: str, message: str) -> None:
+        def refuse(name: str, message: str, way: str = "--quasi-steady") -> None:
             label, line = self.lines[name]
-            found.append(Unmodelled(self.path, line, label, message))
+            found.append(Unmodelled(self.path, line, label, message, way))
 
         if self.wake_mod not in (0, 1):
-            refuse("wake_mod", f"Wake_Mod {self.wake_mod} (free vortex wake) is not modelled: set 1 (BEM) or 0")
+            refuse("wake_mod", f"Wake_Mod {self.wake_mod} (free vortex wake) is not modelled: set 1 (BEM) or 0", "")
         if self.wake_mod == 1 and self.dbemt_mod != 0:
             refuse("dbemt_mod", f"dynamic wake (DBEMT_Mod {self.dbemt_mod}) is not modelled: bladefem's BEM is "
                                 "quasi-steady (set DBEMT_Mod 0, or the legacy WakeMod 1)")
@@ -116,7 +131,7 @@ class AeroDynPrimary:
             refuse("ua_mod", f"unsteady airfoil aerodynamics (UA_Mod {self.ua_mod}) are not modelled: set UA_Mod 0 "
                              "(legacy AFAeroMod 1)")
         if self.skew_mod == -1:
-            refuse("skew_mod", "Skew_Mod -1 (orthogonal inflow only, for linearization) is not modelled")
+            refuse("skew_mod", "Skew_Mod -1 (orthogonal inflow only, for linearization) is not modelled: set 1", "")
         for label, modelled, physics in FLAGS:
             value = self.flags.get(label, modelled)
             if value != modelled:
