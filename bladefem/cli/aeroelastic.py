@@ -75,6 +75,8 @@ def leave_out(args: argparse.Namespace) -> frozenset[str]:
         taken.add("--quasi-steady")
     if getattr(args, "rpm", None) is not None:
         taken.add("--rpm")
+    if getattr(args, "elastodyn_blades", False):
+        taken.add("--elastodyn-blades")
     return frozenset(taken)
 
 
@@ -288,10 +290,18 @@ def aeroelastic_table(linear, free_count: int) -> str:
 
 
 def mode_lines(modes) -> list[str]:
-    """A table of named modes: frequency (Hz), damping ratio (per cent) and the two largest participations."""
-    lines = [f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation"]
+    """A table of named modes: frequency (Hz), damping ratio (per cent) and the two largest participations; a mode
+    that does not oscillate (a real root: overdamped, or the rotor speed settling) says so and gives its decay time
+    instead of a frequency."""
+    width = max([45, *(len(mode.name) for mode in modes)])
+    lines = [f"{'mode':<{width}} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation"]
     for mode in modes:
         top = sorted(mode.participation.items(), key=lambda item: -item[1])[:2]
-        lines.append(f"{mode.name:<45} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
-                     + ", ".join(f"{name} {share:.2f}" for name, share in top))
+        shares = ", ".join(f"{name} {share:.2f}" for name, share in top)
+        if getattr(mode, "oscillating", True):
+            lines.append(f"{mode.name:<{width}} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
+                         f"{shares}")
+        else:
+            lines.append(f"{mode.name:<{width}} {'no oscillation':>15} {'-':>12}  decay time "
+                         f"{mode.time_constant:.3g} s; {shares}")
     return lines

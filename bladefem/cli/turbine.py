@@ -81,6 +81,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="run the aerodynamics quasi-steady: the deck's unsteady airfoil aerodynamics, dynamic "
                              "wake (DBEMT), tower and nacelle aerodynamics that bladefem does not model are left "
                              "out, listed in one note")
+    parser.add_argument("--elastodyn-blades", action="store_true",
+                        help="for a deck with BeamDyn blades (CompElast 2): use the ElastoDyn blade files (BldFile) "
+                             "the deck also carries")
     parser.add_argument("--azimuth-deg", type=float, default=None, metavar="DEG",
                         help="rotor azimuth of a parked (0 rpm) linearization, deg, blade 1 up at 0 (default: "
                              "Azimuth - AzimB1Up of the main file)")

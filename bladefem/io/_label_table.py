@@ -42,6 +42,7 @@ ALIASES: dict[str, tuple[tuple[str, str], ...]] = {
 #: (label up to OpenFAST v3.5, labels from v4.0, how the value maps).
 RENAMED = (
     ("WakeMod", "Wake_Mod, DBEMT_Mod", "0 -> 0; 1 -> 1 with DBEMT_Mod 0; 2 -> 1 with DBEMT_Mod > 0; 3 -> 3"),
+    ("WakeMod 10, 11, 12 (v3.5 only)", "Wake_Mod, BEM_Mod 2", "as WakeMod 0, 1, 2 with the polar projection"),
     ("AFAeroMod, UAMod", "UA_Mod", "AFAeroMod 1 -> 0 (steady); AFAeroMod 2 -> UA_Mod = UAMod"),
     ("SkewMod", "Skew_Mod", "0 -> -1; 1 -> 0; 2 -> 1"),
     ("FrozenWake", "DBEMT_Mod", "True -> -1"),

@@ -99,7 +99,8 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
     """Read a .fst and its modules. ``unmodelled``: "error" raises the first unmodelled setting as an
     :class:`InputError` naming the option of :data:`~bladefem.io.aerodyn_primary.WAYS` that runs without it;
     "keep" returns them in the deck. ``leave_out``: the ways forward taken (options of ``WAYS``): what they cover
-    is left out and listed in :attr:`OpenFASTDeck.left_out`."""
+    is left out and listed in :attr:`OpenFASTDeck.left_out`; "--no-aero" (the caller leaves the aerodynamic loads
+    out) drops AeroDyn's unmodelled settings."""
     if unmodelled not in ("error", "keep"):
         raise ValueError(f"unmodelled must be 'error' or 'keep', got {unmodelled!r}")
     fst = Labels.read(path)
@@ -109,7 +110,10 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
         refused.append(Unmodelled(fst.path, fst.line(label), fst.which(label) or label, message, way))
 
     elast = fst.int("CompElast")
-    if elast != 1:
+    if elast == 2:
+        refuse("CompElast", "BeamDyn blades (CompElast 2) are not modelled in the turbine: set 1 (ElastoDyn)",
+               "--elastodyn-blades")
+    elif elast != 1:
         refuse("CompElast", f"CompElast {elast} is not modelled: set 1 (ElastoDyn)")
     inflow_switch = fst.int("CompInflow", choices=(0, 1, 2))
     if inflow_switch == 2:
@@ -133,7 +137,8 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
     aerodyn, blades, polars = None, (), ()
     if aero_switch == 2:
         aerodyn = read_aerodyn_primary(fst.existing_file("AeroFile"))
-        refused += aerodyn.unmodelled()
+        if "--no-aero" not in leave_out:         # with the aerodynamic loads left out, what they lack does not matter
+            refused += aerodyn.unmodelled()
         blades = _blades(aerodyn, elastodyn.num_blades)
         polars = tuple(read_airfoil(file, aerodyn.columns)[0] for file in aerodyn.airfoil_files)
         _check_airfoil_ids(aerodyn, blades)
@@ -163,7 +168,8 @@ def _left_out(found: list[Unmodelled], leave_out: frozenset[str] | set[str]) -> 
     lines = []
     for way, what in (("--foundation rigid", "foundation rigid: the tower is clamped at its base; left out"),
                       ("--quasi-steady", "quasi-steady aerodynamics: not modelled and left out"),
-                      ("--rpm", "fixed operation at --rpm and the pitch of --pitch-deg (or BlPitch): left out")):
+                      ("--rpm", "fixed operation at --rpm and the pitch of --pitch-deg (or BlPitch): left out"),
+                      ("--elastodyn-blades", "blades from ElastoDyn's blade files (BldFile): left out")):
         entries = [entry for entry in found if entry.way == way]
         if way in leave_out and entries:
             lines.append(f"{what}: " + "; ".join(f"{re.split(' (?:is|are) not ', entry.message)[0]} ({Path(entry.file).name}, "

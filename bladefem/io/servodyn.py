@@ -83,11 +83,14 @@ class ServoDyn:
             timed.append(("TimGenOf", "generator switch-off"))
         for label, message in timed:
             if label in s and s[label] < end_time:
-                refuse(label, f"{message} at {s[label]:g} s is not modelled: move it beyond the end of the run")
+                refuse(label, f"{message} at {s[label]:g} s is not modelled: move it beyond the end of the run",
+                       "--rpm" if label == "TimGenOf" else "")
+        # a rotor held at --rpm has its generator torque from the imposed speed: the switching times do not matter
         if not s.get("GenTiStr", 1):
-            refuse("GenTiStr", "generator start at a speed (GenTiStr False) is not modelled: set GenTiStr True")
+            refuse("GenTiStr", "generator start at a speed (GenTiStr False) is not modelled: set GenTiStr True",
+                   "--rpm")
         elif s.get("TimGenOn", 0) > 0:
-            refuse("TimGenOn", f"generator switch-on at {s['TimGenOn']:g} s is not modelled: set TimGenOn 0")
+            refuse("TimGenOn", f"generator switch-on at {s['TimGenOn']:g} s is not modelled: set TimGenOn 0", "--rpm")
         return found
 
 

@@ -90,7 +90,7 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
         return TurbineDeck(str(path), str(path), params, None, None, switches, conditions, False,
                            (platform_note(path),) if rigid else ())
     from .openfast_fst import read_openfast_deck
-    deck = read_openfast_deck(path, leave_out=leave_out)
+    deck = read_openfast_deck(path, leave_out=set(leave_out) | ({"--no-aero"} if not aero else set()))
     servo = deck.servodyn
     if yaw_stiffness is None:
         yaw_stiffness = servo.yaw_spring if servo is not None else NREL5MW_YAW_STIFFNESS
