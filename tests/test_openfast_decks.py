@@ -20,6 +20,7 @@ from bladefem.io.elastodyn_blade import read_elastodyn_blade
 from bladefem.io.elastodyn_main import elastodyn_main_text, read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower
 from bladefem.io.openfast_fst import read_openfast_deck
+from bladefem.io.turbine_elastodyn import deck_conditions
 
 IEA15 = DATA / "iea15"
 IEA22 = DATA / "iea22"
@@ -208,6 +209,13 @@ def test_openfast_5_labels(tmp_path):
     taken = {"--quasi-steady", "--rpm"}
     deck = read_openfast_deck(fst, leave_out=taken)
     assert deck.elastodyn.dofs["PitchDOF"] is False and math.isfinite(deck.elastodyn.hub_mass)
+    friction = tmp_path / "friction.dat"
+    friction.write_text(ed.read_text().replace("False         PitchDOF", "False         PitchDOF\n"
+                                               "1             YawFrctMod  - Yaw-friction model"))
+    with pytest.raises(InputError) as error:
+        deck_conditions(friction)
+    line = next(i for i, text in enumerate(friction.read_text().splitlines(), 1) if "YawFrctMod" in text)
+    assert error.value.field == "YawFrctMod" and error.value.line == line
     for label, value in (("NRotors", "2"), ("MirrorRotor", "T"), ("CompSoil", "1")):
         shutil.copyfile(fst, tmp_path / "saved.fst")
         fst.write_text(fst.read_text().replace(

@@ -316,6 +316,11 @@ def deck_conditions(main_path: str | Path, rigid_foundation: bool = False):
                              field=key)
         if rigid_foundation:
             dofs[key] = False
+    if main.text is not None and main.text.has("YawFrctMod") and main.text.int("YawFrctMod") != 0 and dofs.get(
+            "YawDOF", True):
+        line = main.text.line_of("YawFrctMod")
+        raise InputError("yaw-bearing friction (YawFrctMod, OpenFAST 4) is not modelled: set YawFrctMod 0, or lock "
+                         "the yaw (YawDOF False)", file=main.path, line=line, field="YawFrctMod")
     return dofs, InitialConditions(
         oop_deflection=main.oop_deflection, ip_deflection=main.ip_deflection,
         azimuth=main.azimuth - main.azimuth_blade1_up, nacelle_yaw=main.nacelle_yaw, rotor_speed=main.rotor_speed,
