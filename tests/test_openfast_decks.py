@@ -16,6 +16,7 @@ from bladefem.errors import InputError
 from bladefem.io._fast_format import FastText
 from bladefem.io._label_table import spellings
 from bladefem.io.aerodyn_primary import read_aerodyn_primary
+from bladefem.io.detect import read_model
 from bladefem.io.elastodyn_blade import read_elastodyn_blade
 from bladefem.io.elastodyn_main import elastodyn_main_text, read_elastodyn_main
 from bladefem.io.elastodyn_tower import read_elastodyn_tower
@@ -168,7 +169,8 @@ def test_platform_dofs_are_refused_with_file_and_line(capsys):
 
 
 def test_blade_and_tower_commands_on_the_iea_files(tmp_path, capsys):
-    """modes and export read the IEA ElastoDyn files as they are; a .fst given to modes names its EDFile."""
+    """modes and export read the IEA ElastoDyn files as they are; a .fst given to modes stands for its ElastoDyn
+    main file (said on stderr); read_model names the EDFile."""
     main_file = IEA22 / "IEA-22-280-RWT-Semi/IEA-22-280-RWT-Semi_ElastoDyn.dat"
     code, out, err = run(capsys, "modes", str(main_file))
     assert code == 0, err
@@ -180,8 +182,13 @@ def test_blade_and_tower_commands_on_the_iea_files(tmp_path, capsys):
     code, out, err = run(capsys, "export", str(main_file), "-o", str(tmp_path / "out"), "--quiet")
     assert code == 0, err
     fst = IEA22 / IEA22_SEMI
-    code, _, err = run(capsys, "modes", str(fst))
-    assert code == 2 and "field 'EDFile'" in err and "IEA-22-280-RWT-Semi_ElastoDyn.dat" in err
+    code, out_fst, err = run(capsys, "modes", str(fst))
+    assert code == 0 and "its ElastoDyn main file" in err and "IEA-22-280-RWT-Semi_ElastoDyn.dat (EDFile" in err
+    code, out_main, _ = run(capsys, "modes", str(main_file))
+    assert out_fst == out_main
+    with pytest.raises(InputError) as error:                  # the Python API names the EDFile to give instead
+        read_model(fst)
+    assert error.value.field == "EDFile" and "IEA-22-280-RWT-Semi_ElastoDyn.dat" in str(error.value)
 
 
 def test_openfast_5_labels(tmp_path):
