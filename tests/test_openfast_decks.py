@@ -232,3 +232,21 @@ def test_openfast_5_labels(tmp_path):
             read_openfast_deck(fst, leave_out=taken)
         assert error.value.field == label
         shutil.copyfile(tmp_path / "saved.fst", fst)
+
+
+def test_tower_concentrated_masses_are_refused(tmp_path):
+    """ElastoDyn's optional tower concentrated masses (OpenFAST 4.2 and later, NTwCMass) are refused by line when
+    there are any, read when the count is 0."""
+    source = DATA / "nrel5mw_toolbox/5MW_Baseline/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"
+    section = ("---------------------- TOWER CONCENTRATED MASSES -----\n{count}   NTwCMass    - Number of tower "
+               "concentrated masses (-)\nHtFract  TwCMass\n(-)  (kg)\n0.5  2000.0\n")
+    for count in (0, 1):
+        path = tmp_path / f"tower_{count}.dat"
+        path.write_text(source.read_text() + section.format(count=count))
+        if count == 0:
+            assert read_elastodyn_tower(path).stations > 2
+            continue
+        with pytest.raises(InputError) as error:
+            read_elastodyn_tower(path)
+        line = next(i for i, text in enumerate(path.read_text().splitlines(), 1) if "NTwCMass" in text)
+        assert error.value.field == "NTwCMass" and error.value.line == line
