@@ -46,7 +46,8 @@ def run(*argv: str) -> object:
 
 
 def damping_by_name(result: dict) -> dict[str, float]:
-    return {mode["name"]: mode["damping_ratio"] for mode in result["modes"]}
+    """Damping ratio by family name ("1st blade collective edge / drivetrain" is the collective edge family)."""
+    return {mode["name"].split(" / ")[0]: mode["damping_ratio"] for mode in result["modes"]}
 
 
 def table(rows: list[list[str]], header: list[str]) -> str:

@@ -273,3 +273,22 @@ def test_an_arpack_failure_on_a_tower_falls_back_to_dense(monkeypatch):
     monkeypatch.setattr(solve_module.spla, "eigsh", failing)
     for tower, frequencies in zip(towers, expected):
         assert tower_modes(tower, 8, elements=60).frequencies_hz == pytest.approx(frequencies, rel=1e-8)
+
+
+#: pybmodes 1.19.1 (PyPI) on the IEA-15MW BModes tower deck as it is (its own 61-element el_loc mesh, no gravity:
+#: BModes leaves it out), Hz: ``pybmodes.models.Tower(deck).run(n_modes=8).frequencies``
+PYBMODES_IEA15_TOWER = (0.14444, 0.14545, 0.87657, 0.91844, 0.93936, 2.13657, 2.18057, 4.55262)
+
+
+def test_the_iea15_bmodes_tower_deck_reads_as_it_is():
+    """Issue 25, item 6: the IEA-15MW repository's BModes tower deck (removed in e5fac6a; tests/data/bmodes_iea15)
+    gives no placeholder rows for its zero distributed-stiffness sections; it reads, and without gravity its
+    frequencies are pybmodes': the first pair within 0.05 % (measured 0.01 %), the rest within 0.5 % (measured
+    0.3 %: pybmodes solves on the deck's coarser el_loc mesh, bladefem refines from the stations, and a coarser
+    mesh is stiffer)."""
+    deck = read_bmodes(DATA / "bmodes_iea15" / "IEA-15-240-RWT_BModes_tower.bmi")
+    assert deck.platform is not None and deck.platform.distributed_stiffness.size == 0
+    assert deck.platform.added_mass.size == 0 and deck.key_lines["n_secs_k_distr"] > 0
+    frequencies = [m.frequency_hz for m in tower_modes(tower_from_bmodes(deck).with_(gravity=0.0), 8).modes]
+    np.testing.assert_allclose(frequencies[:2], PYBMODES_IEA15_TOWER[:2], rtol=5e-4)
+    np.testing.assert_allclose(frequencies, PYBMODES_IEA15_TOWER, rtol=5e-3)

@@ -53,7 +53,7 @@ def test_linearize_json_schema(tmp_path):
     assert data["rpm"] == 0.0 and data["azimuth_deg"] == pytest.approx(30.0)
     assert [m["name"] for m in data["modes"]][:2] == ["1st tower side-side", "1st tower fore-aft"]
     for mode in data["modes"]:
-        assert set(mode) == {"name", "frequency_hz", "damping_ratio", "participation"}
+        assert set(mode) == {"name", "frequency_hz", "damping_ratio", "oscillating", "participation"}
         assert 0.98 < sum(mode["participation"].values()) <= 1 + 1e-6
         assert set(mode["participation"]) <= {"tower_fa1", "tower_ss1", "collective_flap1", "cosine_flap1",
                                               "sine_flap1"}

@@ -85,10 +85,12 @@ def test_names_follow_the_dominant_participation(elastodyn):
     asymmetric edge mode coupled to it keeps its blade name; participations are energy shares summing to 1."""
     locked = parked(elastodyn)
     assert frequency(locked, "1st drivetrain torsion") == pytest.approx(0.62, abs=0.005)
-    # the blades' collective edge against the hub shares its energy with the drivetrain twist (0.54 / 0.43) but
-    # the twist names one mode only, the 0.62 Hz one it dominates more (0.58)
-    assert frequency(locked, "1st blade collective edge") > 3.0
-    assert sum("drivetrain" in m.name for m in locked.modes) == 1
+    # the blades' collective edge against the hub shares its energy with the drivetrain twist (0.43 / 0.54) but
+    # the twist names one mode only, the 0.62 Hz one it dominates more (0.58); the name says that the twist holds
+    # the larger share of this one too (issue 23, item 6: it was named "1st blade collective edge" alone)
+    edge = next(m for m in locked.modes if m.name == "1st blade collective edge / drivetrain")
+    assert edge.frequency_hz > 3.0 and edge.participation["drivetrain"] > 0.5
+    assert sum("drivetrain torsion" in m.name for m in locked.modes) == 1
     names = {m.name for m in locked.modes}
     assert {"1st blade asymmetric flap (yaw)", "1st blade asymmetric flap (pitch)",
             "1st blade asymmetric edge (yaw)", "1st blade asymmetric edge (pitch)", "nacelle yaw"} <= names
@@ -102,7 +104,8 @@ def test_names_follow_the_dominant_participation(elastodyn):
     assert free_yaw.rigid == ["rigid nacelle yaw"]
     assert not any("whirl" in m.name for m in free_yaw.modes)
     # the yaw damper alone: a decaying, non-oscillating yaw motion (a real eigenvalue, damping ratio 1)
-    assert [m.damping_ratio for m in free_yaw.modes if m.name == "nacelle yaw"] == [pytest.approx(1.0)]
+    decay = [m for m in free_yaw.modes if m.name == "nacelle yaw (decaying)"]
+    assert [m.damping_ratio for m in decay] == [pytest.approx(1.0)] and not decay[0].oscillating
     assert sum("asymmetric edge" in m.name for m in free_yaw.modes) == 2
     spinning = linearize(TurbineModel(elastodyn), np.ones(16, dtype=bool), 12.1)
     assert spinning.rigid == ["rigid rotor rotation"]
@@ -171,7 +174,8 @@ def test_modes_and_names_match_openfast(elastodyn, case, rpm):
     model = TurbineModel(elastodyn)
     free = np.ones(model.n, dtype=bool)
     free[model.dofs.index("generator_azimuth")] = False
-    ours = {m.name: m for m in linearize(model, free, rpm).modes}
+    # OpenFAST names a mode by its blade family alone ("1st blade collective edge" for bladefem's "... / drivetrain")
+    ours = {m.name.split(" / ")[0]: m for m in linearize(model, free, rpm).modes}
     for mode in reference["modes"]:
         match = ours[openfast_name(mode["name"])]
         assert match.frequency_hz == pytest.approx(mode["frequency_hz"], rel=6e-4), mode["name"]

@@ -32,14 +32,31 @@ FLAGS = (("TwrPotent", 0, "tower potential-flow influence"), ("TwrShadow", 0, "t
          ("SkewMomCorr", False, "the skew momentum correction"))
 
 
+#: The ways forward offered when a deck asks for what bladefem does not model: command-line option -> what it does.
+WAYS = {"--foundation rigid": "runs the turbine with the tower clamped at its base (platform, hydrodynamics and "
+                              "substructure left out)",
+        "--quasi-steady": "runs quasi-steady BEM, leaving out the aerodynamic features bladefem does not model",
+        "--rpm": "runs at a fixed rotor speed (--rpm R, with --pitch-deg P) without the controller",
+        "--elastodyn-blades": "runs the blades of ElastoDyn's blade files (BldFile), which the deck carries, instead "
+                              "of BeamDyn's"}
+
+
 @dataclass(frozen=True)
 class Unmodelled:
-    """A switch asking for physics bladefem does not model: file, line, label, and a one-line explanation."""
+    """A switch asking for physics bladefem does not model: file, line, label, a one-line explanation, and the
+    command-line option of :data:`WAYS` that runs the deck without it ("" when there is none: change the file)."""
 
     file: str
     line: int
     label: str
     message: str
+    way: str = ""
+
+    def refusal(self) -> str:
+        """The message with the way forward, when there is one."""
+        if not self.way:
+            return self.message
+        return f"{self.message}; or {self.way} {WAYS[self.way]}"
 
 
 @dataclass(frozen=True)
@@ -103,12 +120,12 @@ class AeroDynPrimary:
         """Every switch of this file that asks for physics bladefem does not model."""
         found = []
 
-        def refuse(name: str, message: str) -> None:
+        def refuse(name: str, message: str, way: str = "--quasi-steady") -> None:
             label, line = self.lines[name]
-            found.append(Unmodelled(self.path, line, label, message))
+            found.append(Unmodelled(self.path, line, label, message, way))
 
         if self.wake_mod not in (0, 1):
-            refuse("wake_mod", f"Wake_Mod {self.wake_mod} (free vortex wake) is not modelled: set 1 (BEM) or 0")
+            refuse("wake_mod", f"Wake_Mod {self.wake_mod} (free vortex wake) is not modelled: set 1 (BEM) or 0", "")
         if self.wake_mod == 1 and self.dbemt_mod != 0:
             refuse("dbemt_mod", f"dynamic wake (DBEMT_Mod {self.dbemt_mod}) is not modelled: bladefem's BEM is "
                                 "quasi-steady (set DBEMT_Mod 0, or the legacy WakeMod 1)")
@@ -116,7 +133,7 @@ class AeroDynPrimary:
             refuse("ua_mod", f"unsteady airfoil aerodynamics (UA_Mod {self.ua_mod}) are not modelled: set UA_Mod 0 "
                              "(legacy AFAeroMod 1)")
         if self.skew_mod == -1:
-            refuse("skew_mod", "Skew_Mod -1 (orthogonal inflow only, for linearization) is not modelled")
+            refuse("skew_mod", "Skew_Mod -1 (orthogonal inflow only, for linearization) is not modelled: set 1", "")
         for label, modelled, physics in FLAGS:
             value = self.flags.get(label, modelled)
             if value != modelled:
@@ -153,7 +170,7 @@ def read_aerodyn_primary(path: str | os.PathLike) -> AeroDynPrimary:
                            "UseBlCm")
     return AeroDynPrimary(
         path=labels.path, wake_mod=wake_mod, dbemt_mod=dbemt_mod, ua_mod=ua_mod,
-        bem_mod=labels.int("BEM_Mod", choices=(1, 2)) if labels.has("BEM_Mod") else 1, skew_mod=skew_mod,
+        bem_mod=_bem_mod(labels), skew_mod=skew_mod,
         skew_redistribution=(labels.int("SkewRedistr_Mod", default=1, choices=(0, 1))
                              if labels.has("SkewRedistr_Mod") else 1),
         skew_factor=labels.float("SkewRedistrFactor", "SkewModFactor", default=PITT_PETERS_FACTOR)
@@ -169,13 +186,14 @@ def read_aerodyn_primary(path: str | os.PathLike) -> AeroDynPrimary:
 
 
 def _wake(labels: Labels) -> tuple[int, int]:
-    """(Wake_Mod, DBEMT_Mod) with the legacy WakeMod and FrozenWake mapped as AeroDyn does."""
+    """(Wake_Mod, DBEMT_Mod) with the legacy WakeMod and FrozenWake mapped as AeroDyn does (WakeMod 10, 11, 12 of
+    OpenFAST v3.5 as 0, 1, 2: :func:`_bem_mod`)."""
     if labels.has("Wake_Mod") and labels.has("WakeMod"):
         raise labels.error("give either Wake_Mod or the legacy WakeMod, not both", labels.line("WakeMod"),
                            "WakeMod")
     dbemt = labels.int("DBEMT_Mod", choices=(-1, 0, 1, 2, 3)) if labels.has("DBEMT_Mod") else 0
     if labels.has("WakeMod"):
-        legacy = labels.int("WakeMod", choices=(0, 1, 2, 3))
+        legacy = labels.int("WakeMod", choices=(0, 1, 2, 3, 10, 11, 12)) % 10   # 1x: see polar_projection()
         wake, dbemt = (1, dbemt) if legacy == 2 else (legacy, 0 if legacy == 1 else dbemt)
         if legacy == 2 and dbemt <= 0:
             raise labels.error("the legacy WakeMod 2 needs DBEMT_Mod > 0", labels.line("WakeMod"), "WakeMod")
@@ -184,6 +202,16 @@ def _wake(labels: Labels) -> tuple[int, int]:
     if labels.has("FrozenWake") and labels.bool("FrozenWake"):
         dbemt = -1
     return wake, dbemt
+
+
+def _bem_mod(labels: Labels) -> int:
+    """BEM_Mod; OpenFAST v3.5's WakeMod 10, 11, 12 are WakeMod 0, 1, 2 with the polar projection (its
+    "AeroProjMod 2", BEM_Mod 2 from v4.0; AeroDyn.f90 of v3.5.0 to v3.5.5)."""
+    if labels.has("BEM_Mod"):
+        return labels.int("BEM_Mod", choices=(1, 2))
+    if labels.has("WakeMod") and labels.int("WakeMod") >= 10:
+        return 2
+    return 1
 
 
 def _unsteady(labels: Labels) -> int:

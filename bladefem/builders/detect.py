@@ -83,6 +83,13 @@ def detect_format(path: str | Path) -> str:
         return "elastodyn-main"
     if any(line.startswith("components:") for line in head):
         return "windio"
+    if path.suffix.lower() == ".fst" or {"CompElast", "EDFile"} <= words:
+        from ._labels import Labels
+        labels = Labels.read(path)
+        if labels.has("EDFile"):
+            raise InputError(f"an OpenFAST deck: give its ElastoDyn main file (EDFile: {labels.file('EDFile')}) for "
+                             "the blade and tower, or run 'bladefem turbine' on the deck for the whole turbine",
+                             file=str(path), line=labels.line("EDFile"), field="EDFile")
     raise InputError(f"unrecognised input format: not .yaml/.yml/.bmi, and none of its first {len(head)} lines "
                      "names the keys of an ElastoDyn main (NumBl, TipRad), blade (NBlInpSt) or tower (NTwInpSt) "
                      "file, a BModes deck (beam_type, sec_props_file), a BeamDyn primary (kp_total, BldFile) or blade "

@@ -84,6 +84,11 @@ def read_elastodyn_tower(path: str | Path) -> ElastoDynTowerFile:
     def pair(key: str, **check: bool) -> tuple[float, float]:
         return text.float(f"{key}(1)", **check), text.float(f"{key}(2)", **check)
 
+    if text.has("NTwCMass") and text.int("NTwCMass", minimum=0) > 0:
+        raise text.error(f"tower concentrated masses (NTwCMass {text.int('NTwCMass')}, the optional section of "
+                         "OpenFAST 4.2 and later) are not modelled: set NTwCMass 0", text.line_of("NTwCMass"),
+                         "NTwCMass")
+
     keys = ["NTwInpSt", "AdjTwMa", "AdjFASt", "AdjSSSt"] + [
         f"{key}({i})" for key in ("TwrFADmp", "TwrSSDmp", "FAStTunr", "SSStTunr") for i in (1, 2)] + [
         f"{prefix}({p})" for prefix in TOWER_BLOCKS.values() for p in range(2, 7)]

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,10 +30,11 @@ from ..formats.elastodyn_main import ElastoDynMain, read_elastodyn_main
 from .inflowwind import read_inflowwind
 from .servodyn import ServoDyn, read_servodyn
 
-#: Module switches that must be off: label -> what it would add.
-OFF_SWITCHES = {"CompSeaSt": "sea state", "CompHydro": "hydrodynamics", "CompSub": "substructure",
-                "CompMooring": "mooring", "CompIce": "ice loads", "CompLidar": "lidar", "CompSoil": "soil",
-                "MHK": "a marine turbine"}
+#: Module switches that must be off: label -> (what it would add, the option that runs without it or "").
+OFF_SWITCHES = {"CompSeaSt": ("sea state", "--foundation rigid"), "CompHydro": ("hydrodynamics", "--foundation rigid"),
+                "CompSub": ("substructure", "--foundation rigid"), "CompMooring": ("mooring", "--foundation rigid"),
+                "CompSoil": ("soil", "--foundation rigid"), "CompIce": ("ice loads", ""), "CompLidar": ("lidar", ""),
+                "MHK": ("a marine turbine", "")}
 
 
 @dataclass(frozen=True)
@@ -47,6 +49,7 @@ class OpenFASTDeck:
     air_density, kinematic_viscosity, speed_of_sound : resolved (AeroDyn's value, else the .fst's, else OpenFAST's
     standard air 1.225 kg/m^3, 1.464e-5 m^2/s, 335 m/s)
     unmodelled : settings asking for unmodelled physics (only with ``unmodelled="keep"``)
+    left_out : what the ways forward of ``leave_out`` left out, one line each (said in the output's header)
     """
 
     path: str
@@ -64,6 +67,7 @@ class OpenFASTDeck:
     kinematic_viscosity: float
     speed_of_sound: float
     unmodelled: tuple[Unmodelled, ...] = ()
+    left_out: tuple[str, ...] = ()
 
     @property
     def hub_height(self) -> float:
@@ -90,19 +94,26 @@ class OpenFASTDeck:
                      options=self.aerodyn.options(), notes=(f"rotor of {self.path}",))
 
 
-def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error") -> OpenFASTDeck:
+def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
+                       leave_out: frozenset[str] | set[str] = frozenset()) -> OpenFASTDeck:
     """Read a .fst and its modules. ``unmodelled``: "error" raises the first unmodelled setting as an
-    :class:`InputError`; "keep" returns them in the deck."""
+    :class:`InputError` naming the option of :data:`~bladefem.builders.aerodyn_primary.WAYS` that runs without it;
+    "keep" returns them in the deck. ``leave_out``: the ways forward taken (options of ``WAYS``): what they cover
+    is left out and listed in :attr:`OpenFASTDeck.left_out`; "--no-aero" (the caller leaves the aerodynamic loads
+    out) drops AeroDyn's unmodelled settings."""
     if unmodelled not in ("error", "keep"):
         raise ValueError(f"unmodelled must be 'error' or 'keep', got {unmodelled!r}")
     fst = Labels.read(path)
     refused: list[Unmodelled] = []
 
-    def refuse(label: str, message: str) -> None:
-        refused.append(Unmodelled(fst.path, fst.line(label), fst.which(label) or label, message))
+    def refuse(label: str, message: str, way: str = "") -> None:
+        refused.append(Unmodelled(fst.path, fst.line(label), fst.which(label) or label, message, way))
 
     elast = fst.int("CompElast")
-    if elast != 1:
+    if elast == 2:
+        refuse("CompElast", "BeamDyn blades (CompElast 2) are not modelled in the turbine: set 1 (ElastoDyn)",
+               "--elastodyn-blades")
+    elif elast != 1:
         refuse("CompElast", f"CompElast {elast} is not modelled: set 1 (ElastoDyn)")
     inflow_switch = fst.int("CompInflow", choices=(0, 1, 2))
     if inflow_switch == 2:
@@ -112,9 +123,9 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error") -> Op
         what = "AeroDyn 14 / AeroDisk" if aero_switch == 1 else "external loads"
         refuse("CompAero", f"CompAero {aero_switch} ({what}) is not modelled: set 2 (AeroDyn) or 0")
     servo_switch = fst.int("CompServo", choices=(0, 1))
-    for label, what in OFF_SWITCHES.items():
+    for label, (what, way) in OFF_SWITCHES.items():
         if fst.has(label) and fst.int(label) != 0:
-            refuse(label, f"{what} ({label} {fst.int(label)}) is not modelled: set {label} 0")
+            refuse(label, f"{what} ({label} {fst.int(label)}) is not modelled: set {label} 0", way)
     if fst.has("NRotors") and fst.int("NRotors") != 1:
         refuse("NRotors", "more than one rotor is not modelled: set NRotors 1")
     if fst.has("MirrorRotor") and fst.bool("MirrorRotor"):
@@ -126,16 +137,19 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error") -> Op
     aerodyn, blades, polars = None, (), ()
     if aero_switch == 2:
         aerodyn = read_aerodyn_primary(fst.existing_file("AeroFile"))
-        refused += aerodyn.unmodelled()
+        if "--no-aero" not in leave_out:         # with the aerodynamic loads left out, what they lack does not matter
+            refused += aerodyn.unmodelled()
         blades = _blades(aerodyn, elastodyn.num_blades)
         polars = tuple(read_airfoil(file, aerodyn.columns)[0] for file in aerodyn.airfoil_files)
         _check_airfoil_ids(aerodyn, blades)
     servo = read_servodyn(fst.existing_file("ServoFile")) if servo_switch == 1 else None
     if servo is not None:
         refused += servo.unmodelled(t_max)
+    left_out = _left_out(refused, leave_out)
+    refused = [entry for entry in refused if entry.way not in leave_out or not entry.way]
     if refused and unmodelled == "error":
         first = refused[0]
-        raise InputError(first.message, file=first.file, line=first.line, field=first.label)
+        raise InputError(first.refusal(), file=first.file, line=first.line, field=first.label)
     deck = OpenFASTDeck(
         path=fst.path, t_max=t_max, dt=fst.float("DT", positive=True), elastodyn=elastodyn, pitch=pitch,
         yaw=math.radians(ed_labels.float("NacYaw")) if ed_labels.has("NacYaw") else 0.0, aerodyn=aerodyn,
@@ -143,10 +157,24 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error") -> Op
         air_density=default_air_density(_environment(aerodyn, fst, "air_density", "AirDens")),
         kinematic_viscosity=_environment(aerodyn, fst, "kinematic_viscosity", "KinVisc") or 1.464e-5,
         speed_of_sound=_environment(aerodyn, fst, "speed_of_sound", "SpdSound") or 335.0,
-        unmodelled=tuple(refused))
+        unmodelled=tuple(refused), left_out=left_out)
     inflow = read_inflowwind(fst.existing_file("InflowFile")) if inflow_switch == 1 else Inflow(0.0,
                                                                                                   deck.hub_height)
     return OpenFASTDeck(**{**deck.__dict__, "inflow": inflow})
+
+
+def _left_out(found: list[Unmodelled], leave_out: frozenset[str] | set[str]) -> tuple[str, ...]:
+    """One line per way forward taken, naming everything it leaves out with its file and label."""
+    lines = []
+    for way, what in (("--foundation rigid", "foundation rigid: the tower is clamped at its base; left out"),
+                      ("--quasi-steady", "quasi-steady aerodynamics: not modelled and left out"),
+                      ("--rpm", "fixed operation at --rpm and the pitch of --pitch-deg (or BlPitch): left out"),
+                      ("--elastodyn-blades", "blades from ElastoDyn's blade files (BldFile): left out")):
+        entries = [entry for entry in found if entry.way == way]
+        if way in leave_out and entries:
+            lines.append(f"{what}: " + "; ".join(f"{re.split(' (?:is|are) not ', entry.message)[0]} ({Path(entry.file).name}, "
+                                                 f"line {entry.line}, {entry.label})" for entry in entries))
+    return tuple(lines)
 
 
 def _environment(aerodyn: AeroDynPrimary | None, fst: Labels, name: str, label: str) -> float | None:

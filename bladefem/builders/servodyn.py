@@ -29,6 +29,7 @@ class ServoDyn:
     rated_generator_speed : VS_RtGnSp, rad/s; rated_torque : VS_RtTq, N m; region2_constant : VS_Rgn2K in
     N m / (rad/s)^2; slip : VS_SlPc / 100; yaw_neutral : YawNeut, rad; yaw_spring : YawSpr, N m/rad;
     yaw_damper : YawDamp, N m s/rad; events : label -> time (s) of the timed events; lines : label -> line
+    controller : DLL_FileName, the Bladed-style controller library (run with PCMode or VSContrl 5)
     """
 
     path: str
@@ -45,19 +46,25 @@ class ServoDyn:
     yaw_damper: float
     settings: dict[str, float]
     lines: dict[str, tuple[str, int]]
+    controller: str = ""
 
     def unmodelled(self, end_time: float) -> list[Unmodelled]:
         """Settings that ask for behaviour bladefem does not model within a simulation ending at ``end_time``."""
         found = []
 
-        def refuse(label: str, message: str) -> None:
+        def refuse(label: str, message: str, way: str = "") -> None:
             key, line = self.lines[label]
-            found.append(Unmodelled(self.path, line, key, message))
+            found.append(Unmodelled(self.path, line, key, message, way))
 
-        if self.pitch_mode != 0:
+        if 5 in (self.pitch_mode, self.torque_control):
+            label = "PCMode" if self.pitch_mode == 5 else "VSContrl"
+            name = f" {self.controller}" if self.controller else ""
+            refuse(label, f"the deck's Bladed-style DLL controller (DISCON{name}; PCMode {self.pitch_mode}, VSContrl "
+                          f"{self.torque_control}) is not modelled (bladefem does not run it yet)", "--rpm")
+        if self.pitch_mode not in (0, 5):
             refuse("PCMode", f"pitch control PCMode {self.pitch_mode} ({CONTROL_NAMES.get(self.pitch_mode, '?')}) "
                              "is not modelled: set PCMode 0 (pitch fixed at ElastoDyn's BlPitch)")
-        if self.torque_control != 1:
+        if self.torque_control not in (1, 5):
             what = CONTROL_NAMES.get(self.torque_control, "no variable-speed law" if self.torque_control == 0
                                      else "?")
             refuse("VSContrl", f"torque control VSContrl {self.torque_control} ({what}) is not modelled: set "
@@ -76,11 +83,14 @@ class ServoDyn:
             timed.append(("TimGenOf", "generator switch-off"))
         for label, message in timed:
             if label in s and s[label] < end_time:
-                refuse(label, f"{message} at {s[label]:g} s is not modelled: move it beyond the end of the run")
+                refuse(label, f"{message} at {s[label]:g} s is not modelled: move it beyond the end of the run",
+                       "--rpm" if label == "TimGenOf" else "")
+        # a rotor held at --rpm has its generator torque from the imposed speed: the switching times do not matter
         if not s.get("GenTiStr", 1):
-            refuse("GenTiStr", "generator start at a speed (GenTiStr False) is not modelled: set GenTiStr True")
+            refuse("GenTiStr", "generator start at a speed (GenTiStr False) is not modelled: set GenTiStr True",
+                   "--rpm")
         elif s.get("TimGenOn", 0) > 0:
-            refuse("TimGenOn", f"generator switch-on at {s['TimGenOn']:g} s is not modelled: set TimGenOn 0")
+            refuse("TimGenOn", f"generator switch-on at {s['TimGenOn']:g} s is not modelled: set TimGenOn 0", "--rpm")
         return found
 
 
@@ -112,4 +122,5 @@ def read_servodyn(path: str | os.PathLike) -> ServoDyn:
         region2_constant=labels.float("VS_Rgn2K", non_negative=True) / RPM ** 2 if law else math.nan,
         slip=slip, yaw_neutral=math.radians(labels.float("YawNeut")),
         yaw_spring=labels.float("YawSpr", non_negative=True), yaw_damper=labels.float("YawDamp", non_negative=True),
-        settings=settings, lines=lines)
+        settings=settings, lines=lines,
+        controller=labels.string("DLL_FileName") if labels.has("DLL_FileName") else "")

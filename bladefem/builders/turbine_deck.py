@@ -21,6 +21,7 @@ from .turbine_elastodyn import (
     NREL5MW_YAW_DAMPING,
     NREL5MW_YAW_STIFFNESS,
     deck_conditions,
+    platform_note,
     turbine_from_elastodyn,
 )
 
@@ -64,12 +65,14 @@ def is_openfast_deck(path: str | Path) -> bool:
 def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float | None = None,
                       shear_exponent: float | None = None, pitch: float | None = None,
                       yaw_stiffness: float | None = None, yaw_damping: float | None = None,
-                      **structure) -> TurbineDeck:
+                      leave_out: frozenset[str] | set[str] = frozenset(), **structure) -> TurbineDeck:
     """The turbine of a .fst or an ElastoDyn main file.
 
     aero : include the aerodynamic loads of a .fst (False: structure and generator only)
     wind_speed : m/s at InflowWind's reference height; shear_exponent : power law; pitch : rad (default: BlPitch)
     yaw_stiffness, yaw_damping : N m/rad, N m s/rad (default: ServoDyn's, else the NREL 5MW's)
+    leave_out : the ways forward taken (options of :data:`~bladefem.builders.aerodyn_primary.WAYS`: "--foundation
+    rigid", "--quasi-steady", "--rpm"); what they leave out is named in the notes
     structure : keyword arguments of :func:`turbine_from_elastodyn` (blade_shapes, rpm, tower_shapes, ...)
     """
     if not Path(path).is_file():
@@ -82,10 +85,12 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
         params = turbine_from_elastodyn(
             path, pitch=pitch, yaw_stiffness=NREL5MW_YAW_STIFFNESS if yaw_stiffness is None else yaw_stiffness,
             yaw_damping=NREL5MW_YAW_DAMPING if yaw_damping is None else yaw_damping, **structure)
-        switches, conditions = deck_conditions(path)
-        return TurbineDeck(str(path), str(path), params, None, None, switches, conditions, False)
+        rigid = "--foundation rigid" in leave_out
+        switches, conditions = deck_conditions(path, rigid)
+        return TurbineDeck(str(path), str(path), params, None, None, switches, conditions, False,
+                           (platform_note(path),) if rigid else ())
     from .openfast_fst import read_openfast_deck
-    deck = read_openfast_deck(path)
+    deck = read_openfast_deck(path, leave_out=set(leave_out) | ({"--no-aero"} if not aero else set()))
     servo = deck.servodyn
     if yaw_stiffness is None:
         yaw_stiffness = servo.yaw_spring if servo is not None else NREL5MW_YAW_STIFFNESS
@@ -103,6 +108,8 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
     elif aero:
         loads = TurbineAero.from_deck(deck, params, wind_speed=wind_speed, shear_exponent=shear_exponent)
     generator = Generator.from_servodyn(servo) if servo is not None else None
-    switches, conditions = deck_conditions(main)
-    notes = tuple(deck.aerodyn.notes()) if loads is not None else ()
+    rigid = "--foundation rigid" in leave_out
+    switches, conditions = deck_conditions(main, rigid)
+    notes = ((platform_note(main),) if rigid else ()) + deck.left_out
+    notes += tuple(deck.aerodyn.notes()) if loads is not None else ()
     return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True, notes)

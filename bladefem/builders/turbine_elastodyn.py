@@ -297,11 +297,42 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
     return params
 
 
-def deck_conditions(main_path: str | Path):
-    """ElastoDyn's DOF switches (name -> flag) and initial conditions of a main file."""
+#: ElastoDyn's platform DOF switches, left out (switched off) by ``--foundation rigid``
+PLATFORM_DOFS = ("PtfmSgDOF", "PtfmSwDOF", "PtfmHvDOF", "PtfmRDOF", "PtfmPDOF", "PtfmYDOF")
+
+
+def deck_conditions(main_path: str | Path, rigid_foundation: bool = False):
+    """ElastoDyn's DOF switches (name -> flag) and initial conditions of a main file. A platform DOF switched on
+    is refused (file, line, switch, and the way forward ``--foundation rigid``), or with ``rigid_foundation``
+    switched off."""
     from ..models.turbine.initial import InitialConditions
     main = read_elastodyn_main(main_path)
-    return main.dofs, InitialConditions(
+    dofs = dict(main.dofs)
+    for key in PLATFORM_DOFS:
+        if dofs.get(key) and not rigid_foundation:
+            raise InputError(f"{key} is on, but bladefem's turbine model has no platform motion: set it to False; "
+                             "or --foundation rigid runs the turbine with the tower clamped at its base (platform, "
+                             "hydrodynamics and substructure left out)", file=main.path, line=main.key_lines.get(key),
+                             field=key)
+        if rigid_foundation:
+            dofs[key] = False
+    if main.text is not None and main.text.has("YawFrctMod") and main.text.int("YawFrctMod") != 0 and dofs.get(
+            "YawDOF", True):
+        line = main.text.line_of("YawFrctMod")
+        raise InputError("yaw-bearing friction (YawFrctMod, OpenFAST 4) is not modelled: set YawFrctMod 0, or lock "
+                         "the yaw (YawDOF False)", file=main.path, line=line, field="YawFrctMod")
+    return dofs, InitialConditions(
         oop_deflection=main.oop_deflection, ip_deflection=main.ip_deflection,
         azimuth=main.azimuth - main.azimuth_blade1_up, nacelle_yaw=main.nacelle_yaw, rotor_speed=main.rotor_speed,
         tower_top_fa=main.tower_top_fa, tower_top_ss=main.tower_top_ss)
+
+
+def platform_note(main_path: str | Path) -> str:
+    """What ``--foundation rigid`` leaves out of an ElastoDyn main file (said in the output's header)."""
+    main = read_elastodyn_main(main_path)
+    on = [key for key in PLATFORM_DOFS if main.dofs.get(key)]
+    text = main.text
+    mass = text.float("PtfmMass") if text is not None and text.has("PtfmMass") else 0.0
+    return (f"foundation rigid: the tower is clamped at its base, TowerBsHt {main.tower_base_height:g} m; left out of "
+            f"{Path(main.path).name}: the platform DOFs {', '.join(on) or '(none on)'} and the platform mass "
+            f"PtfmMass {mass:g} kg")

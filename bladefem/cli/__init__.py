@@ -79,6 +79,27 @@ def one_line_warning(message: Warning | str, category: type[Warning], filename: 
     print(f"bladefem: warning: {message}", file=sys.stderr)
 
 
+def follow_openfast_deck(args: argparse.Namespace) -> None:
+    """An OpenFAST deck (.fst) given as the INPUT of a blade or tower command stands for its ElastoDyn main file
+    (``EDFile``), said on stderr; ``turbine`` reads the whole deck itself."""
+    from pathlib import Path
+
+    path = getattr(args, "input", None)
+    if not isinstance(path, str) or not Path(path).is_file():
+        return
+    if Path(path).suffix.lower() != ".fst":
+        with open(path, encoding="utf-8", errors="replace") as stream:
+            words = {word for _, line in zip(range(200), stream) for word in line.split()[:3]}
+        if not {"CompElast", "EDFile"} <= words:
+            return
+    from ..formats._labels import Labels
+    labels = Labels.read(path)
+    main_file = labels.existing_file("EDFile")
+    print(f"# OpenFAST deck {path}: its ElastoDyn main file {main_file} (EDFile, line {labels.line('EDFile')})",
+          file=sys.stderr)
+    args.input = str(main_file)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``bladefem`` console script; returns the exit code."""
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -90,6 +111,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.showwarning = one_line_warning
+            follow_openfast_deck(args)
             return int(args.run(args) or 0)
     except InputError as error:
         print(f"bladefem: error: {error}", file=sys.stderr)

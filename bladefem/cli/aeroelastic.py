@@ -65,6 +65,21 @@ def wind_speeds(text: str) -> tuple[float, ...]:
     return values
 
 
+def leave_out(args: argparse.Namespace) -> frozenset[str]:
+    """The ways forward the command line takes (options of :data:`bladefem.builders.aerodyn_primary.WAYS`): what the deck
+    asks for and bladefem does not model is left out (and named) instead of refused."""
+    taken = set()
+    if getattr(args, "foundation", None) == "rigid":
+        taken.add("--foundation rigid")
+    if getattr(args, "quasi_steady", False):
+        taken.add("--quasi-steady")
+    if getattr(args, "rpm", None) is not None:
+        taken.add("--rpm")
+    if getattr(args, "elastodyn_blades", False):
+        taken.add("--elastodyn-blades")
+    return frozenset(taken)
+
+
 def wants_aeroelastic(args: argparse.Namespace) -> bool:
     """True for --linearize or --campbell with aerodynamics: --wind-speed given (:func:`read_deck` refuses a deck
     without them), or a .fst whose AeroDyn is on, unless --no-aero."""
@@ -76,7 +91,7 @@ def wants_aeroelastic(args: argparse.Namespace) -> bool:
     if args.wind_speed is not None:
         return True
     return Path(args.main).is_file() and is_openfast_deck(args.main) and (
-        read_openfast_deck(args.main).aerodyn is not None)
+        read_openfast_deck(args.main, leave_out=leave_out(args)).aerodyn is not None)
 
 
 def check_aeroelastic_options(args: argparse.Namespace) -> None:
@@ -107,15 +122,15 @@ def check_aeroelastic_options(args: argparse.Namespace) -> None:
                          "(--rpm 0)", field="--azimuth-deg")
 
 
-def read_deck(path: str):
-    """The OpenFAST deck (with aerodynamics) of ``path``."""
+def read_deck(path: str, taken: frozenset[str] = frozenset()):
+    """The OpenFAST deck (with aerodynamics) of ``path``, with the ways forward ``taken`` (:func:`leave_out`)."""
     from ..formats._labels import Labels
     from ..builders.openfast_fst import read_openfast_deck
 
     if Path(path).is_file() and not Labels.read(path).has("CompElast"):
         raise InputError("aerodynamics come from an OpenFAST main file (.fst) naming ElastoDyn, AeroDyn and "
                          "InflowWind: give that instead of an ElastoDyn file", file=path, field="--wind-speed")
-    deck = read_openfast_deck(path)
+    deck = read_openfast_deck(path, leave_out=taken)
     if deck.aerodyn is None:
         raise InputError("the deck has no aerodynamics (CompAero 0)", file=deck.path, field="CompAero")
     return deck
@@ -123,18 +138,21 @@ def read_deck(path: str):
 
 def run_aeroelastic(args: argparse.Namespace) -> int:
     """The aeroelastic ``--linearize`` or ``--campbell`` of an OpenFAST deck."""
-    from ..builders.turbine_elastodyn import deck_conditions
+    from ..builders.turbine_elastodyn import deck_conditions, platform_note
     from ..models.turbine.aeroelastic_campbell import AeroelasticTurbine
     from ..models.turbine.control import Generator
     from ..models.turbine.initial import free_from_switches
     from ..models.turbine.parameters import dof_names
     from ..models.turbine.system import select_dofs
 
-    deck = read_deck(args.main)
+    taken = leave_out(args)
+    deck = read_deck(args.main, taken)
     if args.wind_speed is None:
         args.wind_speed = (deck.inflow.speed,)
-    switches, conditions = deck_conditions(deck.elastodyn.path)
-    notes: list[str] = list(deck.aerodyn.notes())
+    rigid = "--foundation rigid" in taken
+    switches, conditions = deck_conditions(deck.elastodyn.path, rigid)
+    notes: list[str] = ([platform_note(deck.elastodyn.path)] if rigid else []) + list(deck.left_out)
+    notes += list(deck.aerodyn.notes())
     structure_notes: list[str] = []
     structure = structure_builder(deck, args, structure_notes)
     dofs = dof_names(deck.elastodyn.num_blades)
@@ -272,10 +290,18 @@ def aeroelastic_table(linear, free_count: int) -> str:
 
 
 def mode_lines(modes) -> list[str]:
-    """A table of named modes: frequency (Hz), damping ratio (per cent) and the two largest participations."""
-    lines = [f"{'mode':<45} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation"]
+    """A table of named modes: frequency (Hz), damping ratio (per cent) and the two largest participations; a mode
+    that does not oscillate (a real root: overdamped, or the rotor speed settling) says so and gives its decay time
+    instead of a frequency."""
+    width = max([45, *(len(mode.name) for mode in modes)])
+    lines = [f"{'mode':<{width}} {'frequency [Hz]':>15} {'damping [%]':>12}  main participation"]
     for mode in modes:
         top = sorted(mode.participation.items(), key=lambda item: -item[1])[:2]
-        lines.append(f"{mode.name:<45} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
-                     + ", ".join(f"{name} {share:.2f}" for name, share in top))
+        shares = ", ".join(f"{name} {share:.2f}" for name, share in top)
+        if getattr(mode, "oscillating", True):
+            lines.append(f"{mode.name:<{width}} {mode.frequency_hz:>15.4f} {100 * mode.damping_ratio:>12.3f}  "
+                         f"{shares}")
+        else:
+            lines.append(f"{mode.name:<{width}} {'no oscillation':>15} {'-':>12}  decay time "
+                         f"{mode.time_constant:.3g} s; {shares}")
     return lines

@@ -23,6 +23,7 @@ from ..errors import InputError
 from .aeroelastic import (
     add_aeroelastic_options,
     check_aeroelastic_options,
+    leave_out,
     linearization_text,
     mode_lines,
     run_aeroelastic,
@@ -73,6 +74,16 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--pitch-deg", type=float, default=None, metavar="DEG",
                         help="collective blade pitch, deg (default: ElastoDyn's BlPitch)")
     parser.add_argument("--no-aero", action="store_true", help="leave the aerodynamic loads of a .fst out")
+    parser.add_argument("--foundation", choices=("rigid",), default=None,
+                        help="rigid: the tower clamped at its base, the deck's platform DOFs, hydrodynamics, "
+                             "mooring and substructure (HydroDyn, SubDyn, MoorDyn, ...) left out, said in the header")
+    parser.add_argument("--quasi-steady", action="store_true",
+                        help="run the aerodynamics quasi-steady: the deck's unsteady airfoil aerodynamics, dynamic "
+                             "wake (DBEMT), tower and nacelle aerodynamics that bladefem does not model are left "
+                             "out, listed in one note")
+    parser.add_argument("--elastodyn-blades", action="store_true",
+                        help="for a deck with BeamDyn blades (CompElast 2): use the ElastoDyn blade files (BldFile) "
+                             "the deck also carries")
     parser.add_argument("--azimuth-deg", type=float, default=None, metavar="DEG",
                         help="rotor azimuth of a parked (0 rpm) linearization, deg, blade 1 up at 0 (default: "
                              "Azimuth - AzimB1Up of the main file)")
@@ -218,7 +229,7 @@ def build_model(args: argparse.Namespace):
         pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg), yaw_stiffness=args.yaw_stiffness,
         yaw_damping=args.yaw_damping, blade_shapes=shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
         elastodyn_compatible=args.elastodyn_compatible, damping=args.damping,
-        gauss_points=1 if args.elastodyn_compatible else 2)
+        gauss_points=1 if args.elastodyn_compatible else 2, leave_out=leave_out(args))
     params = deck.params
     if args.no_gravity:
         params = params.with_(gravity=0.0)
@@ -254,10 +265,12 @@ def run(args: argparse.Namespace) -> int:
         print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, wind "
               f"{inflow.speed:g} m/s at {inflow.reference_height:g} m, shear exponent {inflow.shear_exponent:g}, "
               f"pitch {math.degrees(model.aero.pitch):g} deg", file=notes)
-        for note in deck.notes:
-            print(f"# {note}", file=notes)
-    if model.generator is not None and model.generator.torque_law:
-        print("# generator: ServoDyn's simple variable-speed torque law (VSContrl 1)", file=notes)
+    for note in deck.notes:
+        print(f"# {note}", file=notes)
+    generator = generator_line(model.generator, bool(free[model.dofs.index("generator_azimuth")]),
+                               conditions.rotor_speed)
+    if generator:
+        print(f"# {generator}", file=notes)
     rpm = conditions.rotor_speed * 30 / math.pi
     if args.linearize or args.campbell is not None:
         azimuth = conditions.azimuth if args.azimuth_deg is None else math.radians(args.azimuth_deg)
@@ -270,6 +283,17 @@ def run(args: argparse.Namespace) -> int:
     for note in notes:
         print(f"# {note}")
     return simulate_command(model, free, q0, u0, args)
+
+
+def generator_line(generator, free: bool, rotor_speed: float) -> str | None:
+    """The header line on the generator: its torque law when the generator azimuth is free, or that the speed is
+    held (rotor speed in rad/s) and the deck's law is not used."""
+    if generator is None or not generator.torque_law:
+        return None
+    if free:
+        return "generator: ServoDyn's simple variable-speed torque law (VSContrl 1)"
+    return (f"generator: locked at {rotor_speed * 30 / math.pi:g} rpm (GenDOF off); ServoDyn's torque law is not "
+            "used")
 
 
 def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace,

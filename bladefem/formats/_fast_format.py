@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from ..errors import InputError
 from ..files import read_input
 from ..limits import MAX_MAGNITUDE
+from ._label_table import spellings
 
 #: A value (quoted string or a token without blanks) followed by a key name such as ``TipRad`` or ``PreCone(1)``.
 #: BModes writes ``rot_rpm:`` (a colon after the key) and sometimes ``"file" : key``; both are accepted.
@@ -49,6 +50,7 @@ class FastText:
     keys: dict[str, KeyValue] = field(default_factory=dict)
     #: how the file's bytes decode ("utf-8", or "latin-1" for legacy files); write it back the same way
     encoding: str = "utf-8"
+    _lower: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> FastText:
@@ -88,14 +90,34 @@ class FastText:
         return InputError(message, file=self.path, line=line if line is not None else max(len(self.lines), 1),
                           field=field)
 
+    def spelled(self, key: str) -> str | None:
+        """The label under which the file writes ``key`` (any spelling of :func:`~bladefem.io._label_table.spellings`,
+        any case), or None."""
+        if key in self.keys:
+            return key
+        folded = self._folded()
+        for name in spellings(key):
+            if name.lower() in folded:
+                return folded[name.lower()]
+        return None
+
+    def _folded(self) -> dict[str, str]:
+        if len(self._lower) != len(self.keys):
+            self._lower.clear()
+            for written, entry in sorted(self.keys.items(), key=lambda item: item[1].line):
+                self._lower.setdefault(written.lower(), written)
+        return self._lower
+
     def find(self, key: str) -> KeyValue:
-        try:
-            return self.keys[key]
-        except KeyError:
-            raise self.error("missing key", line=len(self.lines) or None, field=key) from None
+        written = self.spelled(key)
+        if written is None:
+            names = spellings(key)
+            also = f" (also looked for {', '.join(names[1:])})" if names[1:] else ""
+            raise self.error("missing key" + also, line=len(self.lines) or None, field=key)
+        return self.keys[written]
 
     def has(self, key: str) -> bool:
-        return key in self.keys
+        return self.spelled(key) is not None
 
     # -- typed values -------------------------------------------------------------------------------------------
     def float(self, key: str, *, positive: bool = False, non_negative: bool = False) -> float:

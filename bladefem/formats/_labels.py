@@ -1,7 +1,8 @@
 """Label lookup for OpenFAST module input files (.fst, AeroDyn, InflowWind, ServoDyn).
 
-OpenFAST matches labels without regard to case (``PLExp`` / ``PLexp``) and recent versions renamed several of them
-(``WakeMod`` -> ``Wake_Mod``); :class:`Labels` finds a value under any of its names, treats the word ``default``
+OpenFAST matches labels without regard to case (``PLExp`` / ``PLexp``), its versions and tools spell some of them
+differently (``BldFile(1)`` / ``BldFile1``, :mod:`bladefem.io._label_table`) and recent versions renamed several of
+them (``WakeMod`` -> ``Wake_Mod``); :class:`Labels` finds a value under any of its names, treats the word ``default``
 as "use the default", and reports problems as :class:`InputError` naming the file, line and label.
 """
 
@@ -19,9 +20,6 @@ class Labels:
 
     def __init__(self, text: FastText) -> None:
         self.text = text
-        self.entries: dict[str, tuple[str, KeyValue]] = {}
-        for key, entry in sorted(text.keys.items(), key=lambda item: item[1].line):
-            self.entries.setdefault(key.lower(), (key, entry))
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> Labels:
@@ -35,19 +33,21 @@ class Labels:
         return self.text.error(message, line, label)
 
     def which(self, *names: str) -> str | None:
-        """The first of ``names`` present in the file (as spelled there), or None."""
+        """The first of ``names`` present in the file (as spelled there, under any of its spellings in
+        :mod:`bladefem.io._label_table`), or None."""
         for name in names:
-            if name.lower() in self.entries:
-                return self.entries[name.lower()][0]
+            written = self.text.spelled(name)
+            if written is not None:
+                return written
         return None
 
     def has(self, *names: str) -> bool:
         return self.which(*names) is not None
 
     def entry(self, *names: str) -> tuple[str, KeyValue]:
-        for name in names:
-            if name.lower() in self.entries:
-                return self.entries[name.lower()]
+        written = self.which(*names)
+        if written is not None:
+            return written, self.text.keys[written]
         raise self.error("missing label" + (f" (also looked for {', '.join(names[1:])})" if names[1:] else ""),
                          len(self.text.lines) or None, names[0])
 

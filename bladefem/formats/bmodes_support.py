@@ -113,6 +113,9 @@ def _distribution(text: FastText, count_key: str, z_key: str, value_key: str, af
                   lines: dict[str, int]) -> tuple[NDArray, NDArray]:
     count = text.int(count_key, minimum=0)
     lines[count_key] = text.line_of(count_key)
+    if count == 0 and not _placeholder_follows(text, z_key, lines[count_key]):
+        # no sections: the placeholder rows may be left out (the IEA-15MW's BModes tower deck, pybmodes)
+        return np.zeros(0), np.zeros(0)
     z = _array(text, z_key, count, after, lines)
     values = _array(text, value_key, count, lines[z_key], lines)
     if count > 0 and np.any(np.diff(z) <= 0):
@@ -120,6 +123,15 @@ def _distribution(text: FastText, count_key: str, z_key: str, value_key: str, af
     if np.any(values < 0):
         raise text.error(f"must not be negative, got {values[values < 0][0]}", lines[value_key], value_key)
     return z, values
+
+
+def _placeholder_follows(text: FastText, key: str, count_line: int) -> bool:
+    """True when the first non-blank line after the count line holds the word ``key`` (a placeholder row)."""
+    for number in range(count_line + 1, len(text.lines) + 1):
+        words = [word.rstrip(":") for word in text.lines[number - 1].split()]
+        if words:
+            return key in words
+    return False
 
 
 def _platform(text: FastText, start: int, lines: dict[str, int]) -> BModesPlatform:

@@ -23,8 +23,9 @@ from ._fast_format import (
 )
 
 #: DOF switches read when present.
-DOF_KEYS = ("FlapDOF1", "FlapDOF2", "EdgeDOF", "TeetDOF", "DrTrDOF", "GenDOF", "YawDOF", "TwFADOF1", "TwFADOF2",
-            "TwSSDOF1", "TwSSDOF2", "PtfmSgDOF", "PtfmSwDOF", "PtfmHvDOF", "PtfmRDOF", "PtfmPDOF", "PtfmYDOF")
+DOF_KEYS = ("PitchDOF", "FlapDOF1", "FlapDOF2", "EdgeDOF", "TeetDOF", "DrTrDOF", "GenDOF", "YawDOF", "TwFADOF1",
+            "TwFADOF2", "TwSSDOF1", "TwSSDOF2", "PtfmSgDOF", "PtfmSwDOF", "PtfmHvDOF", "PtfmRDOF", "PtfmPDOF",
+            "PtfmYDOF")
 
 #: Scalar entries: attribute -> (key, kind). Kinds: 'float' (SI as in the file), 'positive', 'mass' (>= 0),
 #: 'deg' (file degrees, stored rad), 'rpm' (file rpm, stored rad/s).

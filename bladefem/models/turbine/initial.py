@@ -25,7 +25,7 @@ ELASTODYN_DOFS = {"FlapDOF1": "flap1", "FlapDOF2": "flap2", "EdgeDOF": "edge1", 
                   "GenDOF": "generator_azimuth", "YawDOF": "yaw", "TwFADOF1": "tower_fa1", "TwFADOF2": "tower_fa2",
                   "TwSSDOF1": "tower_ss1", "TwSSDOF2": "tower_ss2"}
 #: ElastoDyn DOF switches of motions bladefem does not model (refused when on)
-UNMODELLED_DOFS = ("TeetDOF", "PtfmSgDOF", "PtfmSwDOF", "PtfmHvDOF", "PtfmRDOF", "PtfmPDOF", "PtfmYDOF")
+UNMODELLED_DOFS = ("PitchDOF", "TeetDOF", "PtfmSgDOF", "PtfmSwDOF", "PtfmHvDOF", "PtfmRDOF", "PtfmPDOF", "PtfmYDOF")
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,7 @@ def free_from_switches(dofs: tuple[str, ...], switches: dict[str, bool]) -> NDAr
     blades = sum(dof.endswith("_flap1") for dof in dofs)
     for key in UNMODELLED_DOFS:
         if switches.get(key) and (key != "TeetDOF" or blades == 2):          # teeter exists for 2 blades only
-            raise InputError(f"{key} is on, but bladefem's turbine model has no teeter or platform motion; set it "
+            raise InputError(f"{key} is on, but bladefem's turbine model has no blade-pitch, teeter or platform motion; set it "
                              "to False", field=key)
     free = np.ones(len(dofs), dtype=bool)
     for key, coordinate in ELASTODYN_DOFS.items():

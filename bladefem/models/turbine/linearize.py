@@ -122,10 +122,16 @@ class LinearMode:
     damping_ratio: float
     damped_frequency_hz: float
     participation: dict[str, float]
+    oscillating: bool = True
+
+    @property
+    def time_constant(self) -> float:
+        """1 / |lambda|, s: the decay time of a non-oscillating mode (a real root, |lambda| = 2 pi frequency_hz)."""
+        return 1.0 / (2 * np.pi * self.frequency_hz) if self.frequency_hz > 0 else float("inf")
 
     def as_dict(self) -> dict:
         return {"name": self.name, "frequency_hz": self.frequency_hz, "damping_ratio": self.damping_ratio,
-                "participation": self.participation}
+                "oscillating": self.oscillating, "participation": self.participation}
 
 
 @dataclass(frozen=True)
@@ -179,8 +185,9 @@ def modes_of(A: NDArray, coordinates: list[str], stiffness: NDArray, mass: NDArr
     names = name_modes([row[3] for row in rows], [row[4] for row in rows], coordinates, rigid, spinning,
                        [row[5] for row in rows])
     modes = [LinearMode(name=name, frequency_hz=float(f), damping_ratio=float(zeta), damped_frequency_hz=float(fd),
-                        participation={c: round(float(s), 6) for c, s in zip(coordinates, share) if s >= SHARE_SHOWN})
-             for name, (f, zeta, fd, _, share, _), is_rigid in zip(names, rows, rigid) if not is_rigid]
+                        participation={c: round(float(s), 6) for c, s in zip(coordinates, share) if s >= SHARE_SHOWN},
+                        oscillating=bool(swings))
+             for name, (f, zeta, fd, _, share, swings), is_rigid in zip(names, rows, rigid) if not is_rigid]
     return modes, list(dict.fromkeys(name for name, is_rigid in zip(names, rigid) if is_rigid))
 
 

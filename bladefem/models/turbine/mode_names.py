@@ -11,7 +11,11 @@ al. (2009), Table 9-1: at rest, a flap pattern along cos(psi) (vertical) tilts t
 sin(psi) yaws it, "(yaw)"; an edge pattern along cos(psi) pushes the hub sideways, "(yaw)", one along sin(psi)
 up and down, "(pitch)". On a spinning rotor the pair is told apart by its whirl, from the phase between the cosine
 and sine coordinates (forward: the pattern turns with the rotor). Drivetrain modes are counted ('1st', '2nd');
-other repeated names get a count, '(2)'.
+other repeated names get a count, '(2)'. A mode whose largest share belongs to a family that already names another
+mode (its room used up) adds that family: '1st blade collective edge / drivetrain'. A non-oscillating mode of an
+elastic coordinate (two real roots: an overdamped pair, e.g. a blade flap mode under strong aerodynamic damping) is
+named '(overdamped, slow root)' and '(overdamped, fast root)', not counted as an oscillation; a lone real root
+(a damper without a spring) '(decaying)'.
 """
 
 from __future__ import annotations
@@ -72,6 +76,14 @@ def asymmetric_label(vector: NDArray, coordinates: list[str], mode: str, spinnin
     return "(forward whirl)" if (np.conj(cosine) * sine).imag < 0 else "(backward whirl)"
 
 
+def overdamped_name(name: str, root: int, roots: int) -> str:
+    """Name of the ``root``-th (by increasing rate) of ``roots`` real roots of the family ``name``."""
+    if roots < 2:
+        return f"{name} (decaying)"            # one real root: e.g. a damper without a spring
+    which = {1: "slow root", 2: "fast root"}.get(root, f"root {root}") if roots == 2 else f"root {root}"
+    return f"{name} (overdamped, {which})"
+
+
 def name_modes(vectors: list[NDArray], shares: list[NDArray], coordinates: list[str], rigid: list[bool],
                spinning: bool, oscillating: list[bool] | None = None) -> list[str]:
     """A name for each mode (in the given order) from its participation (see the module's description).
@@ -103,21 +115,36 @@ def name_modes(vectors: list[NDArray], shares: list[NDArray], coordinates: list[
             chosen[i], room[u] = u, room[u] - 1
     names: list[str] = []
     used: dict[str, int] = {}
+    overdamped = [family_name(chosen[i] or unique[int(np.argmax(total))], False)
+                  for i, total in enumerate(totals) if not oscillating[i] and not rigid[i]]
+    roots: dict[str, int] = {}
     for i, (vector, total) in enumerate(zip(vectors, totals)):
         dominant = chosen[i] or unique[int(np.argmax(total))]
         name = family_name(dominant, rigid[i])
         if rigid[i]:
             names.append(name)
             continue
-        if dominant.startswith("asymmetric_"):
-            label = asymmetric_label(vector, coordinates, dominant.split("_", 1)[1], spinning)
-            other = {"(pitch)": "(yaw)", "(yaw)": "(pitch)"}.get(label)
-            if other and f"{name} {label}" in used and f"{name} {other}" not in used:
-                label = other                  # a degenerate pair (rotor on a rigid hub): one of each
-            name += " " + label
         if dominant == "drivetrain" and not oscillating[i]:
             names.append("rotor speed")        # the free rotor's speed settling under the generator torque law
             continue
+        if not oscillating[i]:
+            # two real roots of one coordinate: an overdamped pair, not an oscillation; named once each
+            roots[name] = roots.get(name, 0) + 1
+            names.append(overdamped_name(name, roots[name], overdamped.count(name)))
+            continue
+        if dominant.startswith("asymmetric_"):
+            label = asymmetric_label(vector, coordinates, dominant.split("_", 1)[1], spinning)
+            other = {"(pitch)": "(yaw)", "(yaw)": "(pitch)", "(forward whirl)": "(backward whirl)",
+                     "(backward whirl)": "(forward whirl)"}[label]
+            if f"{name} {label}" in used and f"{name} {other}" not in used:
+                # the family's two oscillations are one of each: a degenerate pair (rotor on a rigid hub), or
+                # a pair damped so strongly (aerodynamic flap damping near critical) that its whirl is ill-defined
+                label = other
+            name += " " + label
+        top = unique[int(np.argmax(total))]
+        if top != dominant and total[unique.index(top)] > 0.5:
+            # the family that dominates this mode already names another one: say that it dominates here too
+            name += " / " + ("drivetrain" if top == "drivetrain" else family_name(top, False))
         used[name] = used.get(name, 0) + 1
         if dominant == "drivetrain":
             names.append(f"{ORDINALS.get(str(used[name]), str(used[name]) + 'th')} drivetrain torsion")
