@@ -14,7 +14,7 @@ from deck_copies import DATA, deck_copy
 from bladefem.cli import main
 from bladefem.errors import InputError
 from bladefem.formats._fast_format import FastText
-from bladefem.io._label_table import spellings
+from bladefem.formats._label_table import spellings
 from bladefem.builders.aerodyn_primary import read_aerodyn_primary
 from bladefem.builders.detect import read_model
 from bladefem.builders.elastodyn_blade import read_elastodyn_blade

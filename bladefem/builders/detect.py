@@ -84,7 +84,7 @@ def detect_format(path: str | Path) -> str:
     if any(line.startswith("components:") for line in head):
         return "windio"
     if path.suffix.lower() == ".fst" or {"CompElast", "EDFile"} <= words:
-        from ._labels import Labels
+        from ..formats._labels import Labels
         labels = Labels.read(path)
         if labels.has("EDFile"):
             raise InputError(f"an OpenFAST deck: give its ElastoDyn main file (EDFile: {labels.file('EDFile')}) for "

@@ -91,7 +91,7 @@ class FastText:
                           field=field)
 
     def spelled(self, key: str) -> str | None:
-        """The label under which the file writes ``key`` (any spelling of :func:`~bladefem.io._label_table.spellings`,
+        """The label under which the file writes ``key`` (any spelling of :func:`~bladefem.formats._label_table.spellings`,
         any case), or None."""
         if key in self.keys:
             return key

@@ -1,7 +1,7 @@
 """Label lookup for OpenFAST module input files (.fst, AeroDyn, InflowWind, ServoDyn).
 
 OpenFAST matches labels without regard to case (``PLExp`` / ``PLexp``), its versions and tools spell some of them
-differently (``BldFile(1)`` / ``BldFile1``, :mod:`bladefem.io._label_table`) and recent versions renamed several of
+differently (``BldFile(1)`` / ``BldFile1``, :mod:`bladefem.formats._label_table`) and recent versions renamed several of
 them (``WakeMod`` -> ``Wake_Mod``); :class:`Labels` finds a value under any of its names, treats the word ``default``
 as "use the default", and reports problems as :class:`InputError` naming the file, line and label.
 """
@@ -34,7 +34,7 @@ class Labels:
 
     def which(self, *names: str) -> str | None:
         """The first of ``names`` present in the file (as spelled there, under any of its spellings in
-        :mod:`bladefem.io._label_table`), or None."""
+        :mod:`bladefem.formats._label_table`), or None."""
         for name in names:
             written = self.text.spelled(name)
             if written is not None:
