@@ -111,8 +111,9 @@ def read_deck(path: str):
     """The OpenFAST deck (with aerodynamics) of ``path``."""
     from ..io._labels import Labels
     from ..io.openfast_fst import read_openfast_deck
+    from ..io.turbine_deck import is_openfast_deck
 
-    if Path(path).is_file() and not Labels.read(path).has("CompElast"):
+    if Path(path).is_file() and not is_openfast_deck(path) and Labels.read(path).has("NumBl", "TwrFile"):
         raise InputError("aerodynamics come from an OpenFAST main file (.fst) naming ElastoDyn, AeroDyn and "
                          "InflowWind: give that instead of an ElastoDyn file", file=path, field="--wind-speed")
     deck = read_openfast_deck(path)

@@ -101,10 +101,11 @@ def check_folder(path: str, field: str = "--output") -> None:
     check_writable(folder / "probe")
 
 
-def check_output(path: str | None) -> None:
-    """Fail now, not after the computation, when an output file cannot be written (read-only, a folder...)."""
+def check_output(path: str | None, field: str | None = None) -> None:
+    """Fail now, not after the computation, when an output file (of the option ``field``) cannot be written
+    (an input of the command, read-only, a folder...)."""
     if path:
-        check_writable(path)
+        check_writable(path, field=field)
 
 
 #: Options that only blades take, and only towers (argparse dest -> option)

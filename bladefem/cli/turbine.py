@@ -142,8 +142,8 @@ def check_options(args: argparse.Namespace) -> None:
     if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
         raise InputError(f"the figure's format goes by its suffix: one of {', '.join(PLOT_SUFFIXES)}",
                          file=args.plot, field="--plot")
-    check_output(args.output)
-    check_output(args.plot)
+    check_output(args.output, "--output")
+    check_output(args.plot, "--plot")
     if args.no_aero:
         for name in AERO_ONLY:
             if getattr(args, name) is not None:
@@ -207,6 +207,20 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
     return conditions, coordinates
 
 
+def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
+    """Parse the deck's chain of files (nothing computed yet) and refuse an output that names one of them."""
+    from ..files import note_input
+    from ..io.elastodyn_main import read_elastodyn_main
+    from ..io.openfast_fst import read_openfast_deck
+    from ..io.turbine_deck import is_openfast_deck
+
+    main = read_openfast_deck(args.main).elastodyn if is_openfast_deck(args.main) else read_elastodyn_main(args.main)
+    for file in (*main.blade_files, main.tower_file):
+        note_input(file)
+    check_output(args.output, "--output")
+    check_output(args.plot, "--plot")
+
+
 def build_model(args: argparse.Namespace):
     """The deck's turbine (:class:`~bladefem.io.turbine_deck.TurbineDeck`) and its model, with the options."""
     from ..io.turbine_deck import read_turbine_deck
@@ -235,6 +249,7 @@ def run(args: argparse.Namespace) -> int:
 
     check_options(args)
     check_aeroelastic_options(args)
+    refuse_overwriting_inputs(args)
     if wants_aeroelastic(args):
         return run_aeroelastic(args)
     deck, params, model = build_model(args)
