@@ -156,6 +156,17 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
+    from ..limits import MAX_RTOL, MAX_SHEAR_EXPONENT, MAX_YAW_DAMPING, MAX_YAW_STIFFNESS, MIN_RTOL
+    if args.rtol is not None and not MIN_RTOL <= args.rtol <= MAX_RTOL:
+        raise InputError(f"must lie between {MIN_RTOL:g} and {MAX_RTOL:g} (MIN_RTOL, MAX_RTOL), got {args.rtol:g}",
+                         field="--rtol")
+    if args.shear_exp is not None and abs(args.shear_exp) > MAX_SHEAR_EXPONENT:
+        raise InputError(f"must lie between -{MAX_SHEAR_EXPONENT:g} and {MAX_SHEAR_EXPONENT:g}, got "
+                         f"{args.shear_exp:g}", field="--shear-exp")
+    for name, largest in (("yaw_stiffness", MAX_YAW_STIFFNESS), ("yaw_damping", MAX_YAW_DAMPING)):
+        if getattr(args, name) is not None and getattr(args, name) > largest:
+            raise InputError(f"must be at most {largest:g} (past it the yaw is locked: --dof yaw=off), got "
+                             f"{getattr(args, name):g}", field="--" + name.replace("_", "-"))
     for name in ("azimuth_deg", "shear_exp", "pitch_deg"):
         value = getattr(args, name)
         if value is not None and not math.isfinite(value):

@@ -25,6 +25,11 @@ from ..limits import MAX_MAGNITUDE
 #: BModes writes ``rot_rpm:`` (a colon after the key) and sometimes ``"file" : key``; both are accepted.
 KEY_LINE = re.compile(r"""^(?P<lead>\s*)(?P<value>"[^"]*"|'[^']*'|[^\s"',]+)(?P<gap>\s+(?::\s*)?)"""
                       r"""(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?):?(?=\s|$)""")
+#: A line with several values before a key name (``1 2   TwrPotent``): not a ``value key`` line, but a mistake in
+#: one when the key is asked for (a key named in a heading or a comment is preceded by words, not values)
+_VALUE = r"""(?:[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?|true|false|t|f|default|"[^"]*")"""
+CROWDED_LINE = re.compile(rf"""^\s*(?:{_VALUE}\s+){{2,}}(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?)(?=\s|$)""",
+                          re.IGNORECASE)
 TRUE_WORDS = ("true", "t", ".true.")
 FALSE_WORDS = ("false", "f", ".false.")
 
@@ -49,6 +54,8 @@ class FastText:
     keys: dict[str, KeyValue] = field(default_factory=dict)
     #: how the file's bytes decode ("utf-8", or "latin-1" for legacy files); write it back the same way
     encoding: str = "utf-8"
+    #: key name (lower case) -> line of a line with several values before that key (see :data:`CROWDED_LINE`)
+    crowded: dict[str, int] = field(default_factory=dict)
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> FastText:
@@ -70,8 +77,11 @@ class FastText:
     def parse(cls, path: str, text: str) -> FastText:
         lines = text.splitlines(keepends=True)
         keys: dict[str, KeyValue] = {}
+        crowded: dict[str, int] = {}
         for number, line in enumerate(lines, start=1):
             match = KEY_LINE.match(line)
+            if match is None and (extra := CROWDED_LINE.match(line)):
+                crowded.setdefault(extra["key"].lower(), number)
             if match is None or match["key"] in keys:
                 continue
             value = match["value"]
@@ -79,7 +89,16 @@ class FastText:
                 value = value[1:-1]
             keys[match["key"]] = KeyValue(value, number, match.start("value"), match.end("value"),
                                           match.start("key"))
-        return cls(path, lines, keys)
+        return cls(path, lines, keys, crowded=crowded)
+
+    def refuse_crowded(self, key: str) -> None:
+        """An InputError when ``key``, absent as a ``value key`` line, has a line with several values before it."""
+        line = self.crowded.get(key.lower())
+        if line is not None:
+            values = self.lines[line - 1].split()
+            count = next(i for i, word in enumerate(values) if word.lower() == key.lower())
+            raise self.error(f"expected one value before {key}, found {count} ({' '.join(values[:count])})", line,
+                             key)
 
     # -- errors -------------------------------------------------------------------------------------------------
     def error(self, message: str, line: int | None = None, field: str | None = None) -> InputError:
@@ -92,9 +111,12 @@ class FastText:
         try:
             return self.keys[key]
         except KeyError:
+            self.refuse_crowded(key)
             raise self.error("missing key", line=len(self.lines) or None, field=key) from None
 
     def has(self, key: str) -> bool:
+        if key not in self.keys:
+            self.refuse_crowded(key)
         return key in self.keys
 
     # -- typed values -------------------------------------------------------------------------------------------

@@ -39,6 +39,8 @@ class Labels:
         for name in names:
             if name.lower() in self.entries:
                 return self.entries[name.lower()][0]
+        for name in names:
+            self.text.refuse_crowded(name)
         return None
 
     def has(self, *names: str) -> bool:
@@ -48,6 +50,8 @@ class Labels:
         for name in names:
             if name.lower() in self.entries:
                 return self.entries[name.lower()]
+        for name in names:
+            self.text.refuse_crowded(name)
         raise self.error("missing label" + (f" (also looked for {', '.join(names[1:])})" if names[1:] else ""),
                          len(self.text.lines) or None, names[0])
 
