@@ -59,6 +59,11 @@ MAX_SHEAR_EXPONENT = 1.0
 #: Relative tolerance of a time simulation (--rtol): at most 1e-2 (a per cent of error per step leaves no answer to
 #: speak of), at least 1e-13 (below, round-off of double precision, 2.2e-16 per operation, sets the error).
 MIN_RTOL, MAX_RTOL = 1e-13, 1e-2
+#: Largest length of a turbine's layout (ElastoDyn TipRad, TowerHt, OverHang, ...), m: 1 km, four times the largest
+#: rotor radius (IEA 22 MW: 142 m) and tower (about 170 m) designed so far.
+MAX_TURBINE_LENGTH = 1000.0
+#: Largest gearbox ratio (GBRatio): multi-MW gearboxes step up about 100 times (the NREL 5MW's 97).
+MAX_GEARBOX_RATIO = 1000.0
 #: Elements assumed for the estimate when the mesh is chosen automatically (its upper limit).
 AUTOMATIC_MESH_ELEMENTS = 1600
 #: Most DOFs per node of a blade (flap value and slope, edge value and slope, twist, axial).

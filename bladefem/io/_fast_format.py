@@ -230,10 +230,16 @@ def to_float(text: str, error, line: int | None, key: str) -> float:
 
 
 def to_int(text: str, error, line: int | None, key: str) -> int:
+    """An integer (``3``, or ``3.0``), at most :data:`~bladefem.limits.MAX_MAGNITUDE` in size."""
     try:
-        return int(text)
+        value = int(text)
     except ValueError:
         pass
+    else:
+        if abs(value) > MAX_MAGNITUDE:
+            raise error(f"must be at most {MAX_MAGNITUDE:g} in magnitude, got {text[:20]}"
+                        f"{'...' if len(text) > 20 else ''}", line, key)
+        return value
     value = to_float(text, error, line, key)
     if value != int(value):
         raise error(f"expected an integer, got '{text}'", line, key)

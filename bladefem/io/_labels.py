@@ -11,6 +11,7 @@ import os
 from pathlib import Path
 
 from ..errors import InputError
+from ..files import input_problem
 from ._fast_format import FALSE_WORDS, TRUE_WORDS, FastText, KeyValue, to_float, to_int
 
 
@@ -108,7 +109,8 @@ class Labels:
     def existing_file(self, *names: str) -> Path:
         """:meth:`file`, which must exist."""
         path = self.file(*names)
-        if not path.is_file():
+        problem = input_problem(path)
+        if problem is not None:
             key, entry = self.entry(*names)
-            raise self.error(f"file not found: {path}", entry.line, key)
+            raise self.error(f"{problem}: {path}", entry.line, key)
         return path

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..aero.options import PITT_PETERS_FACTOR, BEMOptions
+from ..files import input_problem
 from ..limits import MAX_BEM_ITERATIONS
 from ._labels import Labels
 from .airfoil_polars import PolarColumns
@@ -235,8 +236,9 @@ def _airfoil_files(labels: Labels) -> tuple[Path, ...]:
         if words and not words[0].startswith("!"):
             name = words[0].strip("\"'")
             path = Path(os.path.normpath(folder / name))
-            if not path.is_file():
-                raise labels.error(f"airfoil file {len(files) + 1} not found: {path}", number, "AFNames")
+            problem = input_problem(path)
+            if problem is not None:
+                raise labels.error(f"airfoil file {len(files) + 1}: {problem}: {path}", number, "AFNames")
             files.append(path)
         number += 1
     return tuple(files)

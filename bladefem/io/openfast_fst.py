@@ -21,6 +21,7 @@ import numpy as np
 from ..aero.polars import Polar
 from ..aero.rotor import Inflow, Rotor
 from ..errors import InputError
+from ..files import input_problem
 from ._labels import Labels
 from .aerodyn import AeroDynBlade, read_aerodyn_blade
 from .aerodyn_primary import AeroDynPrimary, Unmodelled, default_air_density, read_aerodyn_primary
@@ -164,8 +165,9 @@ def _blades(aerodyn: AeroDynPrimary, count: int) -> tuple[AeroDynBlade, ...]:
     blades = []
     for i, file in enumerate(aerodyn.blade_files[:count]):
         label = f"ADBlFile({i + 1})"
-        if not Path(file).is_file():
-            raise InputError(f"file not found: {file}", file=aerodyn.path,
+        problem = input_problem(file)
+        if problem is not None:
+            raise InputError(f"{problem}: {file}", file=aerodyn.path,
                              line=Labels.read(aerodyn.path).line(label), field=label)
         blades.append(read_aerodyn_blade(file))
     first = blades[0]
