@@ -59,8 +59,8 @@ def wind_speeds(text: str) -> tuple[float, ...]:
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected U, START:STOP:COUNT or U1,U2,... in m/s, got '{text}'") from None
     if not values or not all(math.isfinite(v) and 0 <= v <= MAX_WIND_SPEED for v in values):
-        raise argparse.ArgumentTypeError(f"wind speeds must lie between 0 and {MAX_WIND_SPEED:g} m/s "
-                                         f"(MAX_WIND_SPEED), got '{text}'")
+        raise argparse.ArgumentTypeError(f"wind speeds must be non-negative numbers of at most {MAX_WIND_SPEED:g} "
+                                         f"m/s (MAX_WIND_SPEED), got '{text}'")
     if len(values) > MAX_SPEEDS:
         raise argparse.ArgumentTypeError(f"at most {MAX_SPEEDS} wind speeds (MAX_SPEEDS), got {len(values)}")
     return values
