@@ -148,6 +148,7 @@ def check_options(args: argparse.Namespace) -> None:
         for name in AERO_ONLY:
             if getattr(args, name) is not None:
                 raise InputError("has no effect with --no-aero", field="--" + name.replace("_", "-"))
+    check_bounds(args)
     if args.simulate and args.wind_speed is not None:
         if len(args.wind_speed) > 1:
             raise InputError("--simulate takes one wind speed", field="--wind-speed")
@@ -156,10 +157,21 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise InputError(f"must be a non-negative number, got {value}", field="--" + name.replace("_", "-"))
-    from ..limits import MAX_RTOL, MAX_SHEAR_EXPONENT, MAX_YAW_DAMPING, MAX_YAW_STIFFNESS, MIN_RTOL
+    for name in ("azimuth_deg", "shear_exp", "pitch_deg"):
+        value = getattr(args, name)
+        if value is not None and not math.isfinite(value):
+            raise InputError(f"must be a number, got {value}", field="--" + name.replace("_", "-"))
+
+
+def check_bounds(args: argparse.Namespace) -> None:
+    """Refuse option values past what is physical (:mod:`bladefem.limits` says why each bound is where it is)."""
+    from ..limits import MAX_RTOL, MAX_SHEAR_EXPONENT, MAX_WIND_SPEED, MAX_YAW_DAMPING, MAX_YAW_STIFFNESS, MIN_RTOL
     if args.rtol is not None and not MIN_RTOL <= args.rtol <= MAX_RTOL:
         raise InputError(f"must lie between {MIN_RTOL:g} and {MAX_RTOL:g} (MIN_RTOL, MAX_RTOL), got {args.rtol:g}",
                          field="--rtol")
+    if args.wind_speed is not None and max(args.wind_speed) > MAX_WIND_SPEED:
+        raise InputError(f"at most {MAX_WIND_SPEED:g} m/s (MAX_WIND_SPEED), got {max(args.wind_speed):g}",
+                         field="--wind-speed")
     if args.shear_exp is not None and abs(args.shear_exp) > MAX_SHEAR_EXPONENT:
         raise InputError(f"must lie between -{MAX_SHEAR_EXPONENT:g} and {MAX_SHEAR_EXPONENT:g}, got "
                          f"{args.shear_exp:g}", field="--shear-exp")
@@ -167,10 +179,6 @@ def check_options(args: argparse.Namespace) -> None:
         if getattr(args, name) is not None and getattr(args, name) > largest:
             raise InputError(f"must be at most {largest:g} (past it the yaw is locked: --dof yaw=off), got "
                              f"{getattr(args, name):g}", field="--" + name.replace("_", "-"))
-    for name in ("azimuth_deg", "shear_exp", "pitch_deg"):
-        value = getattr(args, name)
-        if value is not None and not math.isfinite(value):
-            raise InputError(f"must be a number, got {value}", field="--" + name.replace("_", "-"))
 
 
 def check_duration(seconds: float | None, dt: float | None) -> None:
