@@ -188,7 +188,8 @@ BOUNDED = {**dict.fromkeys(("TipRad", "HubRad", "TowerHt", "TowerBsHt", "OverHan
 
 def _scalar(text: FastText, key: str, kind: str) -> float:
     if key in BOUNDED and abs(text.float(key)) > BOUNDED[key]:
-        raise text.error(f"must be at most {BOUNDED[key]:g} in magnitude (see bladefem.limits), got {text.string(key)}", text.line_of(key), key)
+        raise text.error(f"must be at most {BOUNDED[key]:g} in magnitude (see bladefem.limits), got "
+                         f"{text.string(key)}", text.line_of(key), key)
     if kind == "deg":
         return math.radians(text.float(key))
     if kind == "rpm":
