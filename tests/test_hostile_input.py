@@ -84,6 +84,7 @@ def test_case_reads_1e9(tmp_path):
     ("a: 1\n---\nb: 2\n", 2, "a second YAML document"),
     ("? [1, 2]\n: 3\n", 1, "key must be a plain value"),
     ("a: [1, 2\n", 2, "invalid YAML"),
+    ("a: 1\nb: x\x00y\n", 2, "U+0000"),
 ])
 def test_hostile_yaml_is_one_error_with_its_line(text, line, message):
     with cpu_limit(5), pytest.raises(InputError) as caught:

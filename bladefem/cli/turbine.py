@@ -29,7 +29,7 @@ from .aeroelastic import (
     wants_aeroelastic,
 )
 from .aeroelastic import wind_speeds as wind_speeds_type
-from .options import check_output, emit, rpm_sweep
+from .options import check_output, check_turbine_bounds, emit, rpm_sweep
 
 if TYPE_CHECKING:
     import numpy as np
@@ -148,7 +148,13 @@ def check_options(args: argparse.Namespace) -> None:
         for name in AERO_ONLY:
             if getattr(args, name) is not None:
                 raise InputError("has no effect with --no-aero", field="--" + name.replace("_", "-"))
-    check_bounds(args)
+    if args.elastodyn_compatible:
+        for option, value, wrong in (("--shapes", args.shapes, "fe"), ("--tower-shapes", args.tower_shapes, "fe"),
+                                     ("--damping", args.damping, "rna")):
+            if value == wrong:
+                raise InputError(f"--elastodyn-compatible takes ElastoDyn's own choice here, not '{wrong}'",
+                                 field=option)
+    check_turbine_bounds(args)
     if args.simulate and args.wind_speed is not None:
         if len(args.wind_speed) > 1:
             raise InputError("--simulate takes one wind speed", field="--wind-speed")
@@ -161,24 +167,6 @@ def check_options(args: argparse.Namespace) -> None:
         value = getattr(args, name)
         if value is not None and not math.isfinite(value):
             raise InputError(f"must be a number, got {value}", field="--" + name.replace("_", "-"))
-
-
-def check_bounds(args: argparse.Namespace) -> None:
-    """Refuse option values past what is physical (:mod:`bladefem.limits` says why each bound is where it is)."""
-    from ..limits import MAX_RTOL, MAX_SHEAR_EXPONENT, MAX_WIND_SPEED, MAX_YAW_DAMPING, MAX_YAW_STIFFNESS, MIN_RTOL
-    if args.rtol is not None and not MIN_RTOL <= args.rtol <= MAX_RTOL:
-        raise InputError(f"must lie between {MIN_RTOL:g} and {MAX_RTOL:g} (MIN_RTOL, MAX_RTOL), got {args.rtol:g}",
-                         field="--rtol")
-    if args.wind_speed is not None and max(args.wind_speed) > MAX_WIND_SPEED:
-        raise InputError(f"at most {MAX_WIND_SPEED:g} m/s (MAX_WIND_SPEED), got {max(args.wind_speed):g}",
-                         field="--wind-speed")
-    if args.shear_exp is not None and abs(args.shear_exp) > MAX_SHEAR_EXPONENT:
-        raise InputError(f"must lie between -{MAX_SHEAR_EXPONENT:g} and {MAX_SHEAR_EXPONENT:g}, got "
-                         f"{args.shear_exp:g}", field="--shear-exp")
-    for name, largest in (("yaw_stiffness", MAX_YAW_STIFFNESS), ("yaw_damping", MAX_YAW_DAMPING)):
-        if getattr(args, name) is not None and getattr(args, name) > largest:
-            raise InputError(f"must be at most {largest:g} (past it the yaw is locked: --dof yaw=off), got "
-                             f"{getattr(args, name):g}", field="--" + name.replace("_", "-"))
 
 
 def check_duration(seconds: float | None, dt: float | None) -> None:

@@ -160,8 +160,11 @@ def _environment(aerodyn: AeroDynPrimary | None, fst: Labels, name: str, label: 
 def _blades(aerodyn: AeroDynPrimary, count: int) -> tuple[AeroDynBlade, ...]:
     """One AeroDyn blade file per ElastoDyn blade, all with the same planform."""
     if len(aerodyn.blade_files) < count:
+        labels = Labels.read(aerodyn.path)
+        last = f"ADBlFile({len(aerodyn.blade_files)})"
         raise InputError(f"ElastoDyn has {count} blades but only {len(aerodyn.blade_files)} ADBlFile entries",
-                         file=aerodyn.path, field=f"ADBlFile({len(aerodyn.blade_files) + 1})")
+                         file=aerodyn.path, line=labels.line(last) if labels.has(last) else len(labels.text.lines),
+                         field=f"ADBlFile({len(aerodyn.blade_files) + 1})")
     blades = []
     for i, file in enumerate(aerodyn.blade_files[:count]):
         label = f"ADBlFile({i + 1})"
