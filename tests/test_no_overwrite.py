@@ -24,6 +24,7 @@ FST = "nrel5mw/NRELOffshrBsline5MW_Onshore.fst"
 ELASTODYN = "nrel5mw/NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"
 TOWER = "nrel5mw/NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"
 POLAR = "nrel5mw/Airfoils/NACA64_A17.dat"
+SCHEDULE = "nrel5mw/table_7_1_schedule.csv"
 
 
 @pytest.fixture(scope="module")
@@ -103,3 +104,10 @@ def test_every_write_refuses_a_recorded_input_but_an_update_in_place(tmp_path):
         write_atomic(source, "updated\n", replaces_input=True)
     assert source.read_text() == "updated\n"
     check_writable(source)              # outside a command nothing is recorded: the Python API is unchanged
+
+
+def test_turbine_output_naming_the_schedule_is_refused(cases):
+    before = digests(cases)
+    refused("turbine", cases / FST, "--linearize", "--wind-speed", "11.4", "--schedule", cases / SCHEDULE,
+            "--output", cases / SCHEDULE, cpu=5)
+    assert digests(cases) == before

@@ -21,7 +21,7 @@ from ..files import note_input, recording_inputs
 __all__ = ["COMMANDS", "Parser", "build_parser", "main"]
 
 #: argparse names of the input files given on the command line (outputs may not name them)
-INPUT_ARGUMENTS = ("input", "main", "spec", "elastodyn_main", "plan", "nrel5mw")
+INPUT_ARGUMENTS = ("input", "main", "spec", "elastodyn_main", "plan", "nrel5mw", "schedule", "aero", "aerodyn")
 
 #: subcommand -> (module in bladefem.cli that adds it, one-line help shown by ``bladefem --help``)
 COMMANDS: dict[str, tuple[str, str]] = {
