@@ -27,7 +27,6 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
-import pytest
 from cpu_watchdog import Hang, cpu_limit
 from test_io_fuzz import FILE_LEVEL, NUMBER, NUMBERS, mutate
 

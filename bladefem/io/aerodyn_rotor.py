@@ -4,7 +4,6 @@ with the hub radius and precone of the structural blade: the input of ``bladefem
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
 import numpy as np
 
