@@ -111,3 +111,15 @@ def test_turbine_output_naming_the_schedule_is_refused(cases):
     refused("turbine", cases / FST, "--linearize", "--wind-speed", "11.4", "--schedule", cases / SCHEDULE,
             "--output", cases / SCHEDULE, cpu=5)
     assert digests(cases) == before
+
+
+def test_a_baseline_that_names_a_model_is_refused(tmp_path):
+    shutil.copytree(ROOT / "cases", tmp_path, dirs_exist_ok=True)
+    spec = tmp_path / "nrel5mw_check.yaml"
+    spec.write_text(spec.read_text().replace("file: nrel5mw_check_baseline.json, rpm", "file: nrel5mw_blade.yaml, rpm"))
+    before = digests(tmp_path)
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), cpu_limit(5):
+        assert main(["check", str(spec), "--update-baseline"]) == 2
+    assert "requirements.5.baseline.file" in err.getvalue() and len(err.getvalue().strip().splitlines()) == 1
+    assert digests(tmp_path) == before

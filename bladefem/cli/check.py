@@ -22,6 +22,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_check_command(args: argparse.Namespace) -> int:
+    import os
     import sys
 
     from ..errors import InputError
@@ -33,15 +34,19 @@ def run_check_command(args: argparse.Namespace) -> int:
         raise InputError("give a spec file (or --schema)", field="SPEC.yaml")
     from ..check import evaluate, read_spec
     from ..check.report import dumps, junit_xml, table
-    from ..files import check_writable, note_input, write_atomic
+    from ..files import check_writable, note_input, recorded_input, write_atomic
     spec = read_spec(args.spec)
     for model in spec.models.values():           # the files the spec names are inputs: never an output
         for path in (model.input, model.elastodyn_main):
             if path is not None:
                 note_input(path)
+    baselines = {os.path.realpath(r.parameters["file"]) for r in spec.requirements if "file" in r.parameters}
     for requirement in spec.requirements:
-        if "file" in requirement.parameters:
-            note_input(requirement.parameters["file"])
+        if "file" in requirement.parameters and recorded_input(requirement.parameters["file"]) is not None:
+            raise requirement.error("the baseline file is the spec or a model's input: name a file of its own",
+                                    "file")
+    for baseline in baselines:
+        note_input(baseline)
     if args.junit:
         check_writable(args.junit, field="--junit")
     outcomes = evaluate(spec, update_baseline=args.update_baseline)
