@@ -226,7 +226,8 @@ def wall_limit(seconds: float):
 
 @pytest.mark.parametrize("kind,words", [("folder", "is a folder"), ("loop", "symbolic link loop"),
                                         ("fifo", "not a regular file")])
-@pytest.mark.parametrize("name", [SERVODYN, "Airfoils/DU21_A17.dat", "NRELOffshrBsline5MW_AeroDyn_blade.dat"])
+@pytest.mark.parametrize("name", [SERVODYN, "Airfoils/DU21_A17.dat", "NRELOffshrBsline5MW_AeroDyn_blade.dat",
+                                  "NRELOffshrBsline5MW_Blade.dat", "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"])
 def test_referenced_file_that_is_not_a_file_says_what_it_is(deck, kind, words, name):
     path = deck / name
     path.unlink()
@@ -234,6 +235,7 @@ def test_referenced_file_that_is_not_a_file_says_what_it_is(deck, kind, words, n
     with wall_limit(30):
         line = one_line("turbine", deck / FST, *LINEARIZE)
     assert words in line and str(path) in line and "file not found" not in line, line
+    assert re.match(rf"bladefem: error: {re.escape(str(deck))}/[^:]+:\d+: field ", line), line    # the naming line
 
 
 # -- issue 23 item 10: BModes section counts ------------------------------------------------------------------------

@@ -216,13 +216,17 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
 
 def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
     """Parse the deck's chain of files (nothing computed yet) and refuse an output that names one of them."""
-    from ..files import note_input
+    from ..files import input_problem, note_input
     from ..io.elastodyn_main import read_elastodyn_main
     from ..io.openfast_fst import read_openfast_deck
     from ..io.turbine_deck import is_openfast_deck
 
     main = read_openfast_deck(args.main).elastodyn if is_openfast_deck(args.main) else read_elastodyn_main(args.main)
-    for file in (*main.blade_files, main.tower_file):
+    keys = [f"BldFile({i + 1})" for i in range(len(main.blade_files))] + ["TwrFile"]
+    for key, file in zip(keys, (*main.blade_files, main.tower_file)):
+        problem = input_problem(file)
+        if problem is not None:                     # a folder, a link loop or a pipe says so, at the line naming it
+            raise InputError(f"{problem}: {file}", file=main.path, line=main.key_lines.get(key), field=key)
         note_input(file)
     check_output(args.output, "--output")
     check_output(args.plot, "--plot")
