@@ -53,7 +53,8 @@ ACTIONS = (["--linearize", "--wind-speed", "11.4", "--elastodyn-compatible", "--
            ["--simulate", "0.2", "--elastodyn-compatible", "--quiet"],
            ["--linearize", "--no-aero", "--elastodyn-compatible", "--json"])
 #: bladefem's own errors, as a batch case records them
-OWN_ERRORS = ("InputError", "LimitError", "SolveError", "DivergenceError", "UnstableStep")
+OWN_ERRORS = ("InputError", "LimitError", "SolveError", "SolverError", "QuadraticSolverError", "DivergenceError",
+              "UnstableStep")
 
 
 def mutate_values(text: str, rng: random.Random) -> bytes:

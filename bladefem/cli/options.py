@@ -177,6 +177,8 @@ def check_turbine_bounds(args: argparse.Namespace) -> None:
         MAX_YAW_STIFFNESS,
         MIN_RTOL,
     )
+    if args.pitch_deg is not None and abs(args.pitch_deg) > 180:
+        raise InputError(f"must lie between -180 and 180 deg, got {args.pitch_deg:g}", field="--pitch-deg")
     if args.rpm is not None and args.rpm > MAX_RPM:
         raise InputError(f"rotor speed must lie between 0 and {MAX_RPM:g} rpm (MAX_RPM), got {args.rpm:g}",
                          field="--rpm")
