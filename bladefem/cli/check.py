@@ -32,7 +32,10 @@ def run_check_command(args: argparse.Namespace) -> int:
         return 0
     if args.spec is None:
         raise InputError("give a spec file (or --schema)", field="SPEC.yaml")
+    from pathlib import Path
+
     from ..check import evaluate, read_spec
+    from ..check.baseline import read_entries
     from ..check.report import dumps, junit_xml, table
     from ..files import check_writable, note_input, recorded_input, write_atomic
     spec = read_spec(args.spec)
@@ -40,13 +43,17 @@ def run_check_command(args: argparse.Namespace) -> int:
         for path in (model.input, model.elastodyn_main):
             if path is not None:
                 note_input(path)
-    baselines = {os.path.realpath(r.parameters["file"]) for r in spec.requirements if "file" in r.parameters}
+    baselines: dict[str, Path] = {}                  # one per file, however spelled
+    for requirement in spec.requirements:
+        if "file" in requirement.parameters:
+            baselines.setdefault(os.path.realpath(requirement.parameters["file"]), requirement.parameters["file"])
     for requirement in spec.requirements:
         if "file" in requirement.parameters and recorded_input(requirement.parameters["file"]) is not None:
             raise requirement.error("the baseline file is the spec or a model's input: name a file of its own",
                                     "file")
-    for baseline in baselines:
+    for baseline in baselines.values():
         note_input(baseline)
+        read_entries(baseline)                       # checked as the input it is, before anything is computed
     if args.junit:
         check_writable(args.junit, field="--junit")
     outcomes = evaluate(spec, update_baseline=args.update_baseline)
