@@ -249,3 +249,11 @@ def test_bmodes_section_count_beyond_the_file(tmp_path, count):
     with pytest.raises(InputError) as caught:
         read_bmodes_sections(path)
     assert caught.value.file == str(path) and caught.value.line is not None and "\n" not in str(caught.value)
+
+
+def test_absurd_rotor_speed_in_a_spec_names_its_line(tmp_path):
+    shutil.copytree(ROOT / "cases", tmp_path, dirs_exist_ok=True)
+    spec = tmp_path / "nrel5mw_check.yaml"
+    spec.write_text(spec.read_text().replace("hz: [0.70, 0.80], rpm: 12.1", "hz: [0.70, 0.80], rpm: 1.21e11"))
+    line = one_line("check", spec)
+    assert f"{spec}:15: field 'requirements.0.window.rpm'" in line, line
