@@ -123,3 +123,14 @@ def test_a_baseline_that_names_a_model_is_refused(tmp_path):
         assert main(["check", str(spec), "--update-baseline"]) == 2
     assert "requirements.5.baseline.file" in err.getvalue() and len(err.getvalue().strip().splitlines()) == 1
     assert digests(tmp_path) == before
+
+
+def test_junit_naming_a_baseline_still_to_be_written_is_refused(tmp_path):
+    shutil.copytree(ROOT / "cases", tmp_path, dirs_exist_ok=True)
+    (tmp_path / "nrel5mw_check_baseline.json").unlink()
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), cpu_limit(5):
+        code = main(["check", str(tmp_path / "nrel5mw_check.yaml"), "--update-baseline", "--junit",
+                     str(tmp_path / "nrel5mw_check_baseline.json")])
+    assert code == 2 and "is a baseline file of the spec" in err.getvalue(), err.getvalue()
+    assert not (tmp_path / "nrel5mw_check_baseline.json").exists()
