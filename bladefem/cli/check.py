@@ -55,10 +55,10 @@ def run_check_command(args: argparse.Namespace) -> int:
         note_input(baseline)
         read_entries(baseline)                       # checked as the input it is, before anything is computed
     if args.junit:
+        check_writable(args.junit, field="--junit")
         if os.path.realpath(args.junit) in baselines:   # a baseline not yet written is no input yet, but will be
             raise InputError("is a baseline file of the spec: write the JUnit XML elsewhere", file=args.junit,
                              field="--junit")
-        check_writable(args.junit, field="--junit")
     outcomes = evaluate(spec, update_baseline=args.update_baseline)
     if args.junit:
         write_atomic(args.junit, junit_xml(outcomes))
