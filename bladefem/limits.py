@@ -1,7 +1,10 @@
-"""What the models can answer: bounds on rotor speed, numbers of modes, mesh elements and sweep speeds.
+"""What the models can answer: bounds on rotor speed, numbers of modes, mesh elements and sweep speeds, and the
+physical bounds of a turbine deck's values and the turbine command's options (yaw spring and damper, wind speed,
+shear, inflow angles, BEM iterations, layout lengths, integration tolerance).
 
 The Python API raises :class:`~bladefem.errors.LimitError` (a ``ValueError``) and the command line prints it on one
-line (exit 2), before any computation starts. Each bound says why it is where it is.
+line (exit 2), before any computation starts; the readers name the file, line and label of a deck value past its
+bound. Each bound says why it is where it is.
 """
 
 from __future__ import annotations
