@@ -3,6 +3,11 @@
 Inputs (:func:`read_input`): a missing file, a folder, a broken link, a link loop, a device or pipe, an unreadable
 or oversized file each give an :class:`~bladefem.errors.InputError` that says which.
 
+Inputs are recorded while :func:`recording_inputs` is active (the command line records each command's inputs):
+an output that names one of them, by any path (a symbolic or hard link included), is refused by
+:func:`check_writable` and so by every write, unless the write is an explicit in-place update of that input
+(``replaces_input=True``).
+
 Outputs (:func:`atomic_path`, :func:`write_atomic`): the data goes to a temporary file beside the target and is
 renamed over it once complete. Replacing an existing file keeps its permission bits (a new file gets the ones the
 umask allows); a symbolic link is written through (the link stays, the file it points to gets the new content); a
@@ -21,6 +26,7 @@ import stat
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 from .errors import InputError
@@ -29,6 +35,8 @@ from .errors import InputError
 MAX_INPUT_BYTES = 64 * 2**20
 #: Marks a temporary file (before the target's own suffix, which writers that go by extension need)
 PART = ".part"
+#: The inputs read so far while recording: (device, inode) -> the path as the reader named it
+_INPUTS: ContextVar[dict[tuple[int, int], str] | None] = ContextVar("bladefem_inputs", default=None)
 
 
 # -- inputs -------------------------------------------------------------------------------------------------------
@@ -46,6 +54,50 @@ def _input_error(path: Path, error: OSError | ValueError) -> InputError:
     return InputError(reason.get(error.errno, f"cannot read file ({error.strerror or error})"), file=str(path))
 
 
+@contextmanager
+def recording_inputs() -> Iterator[None]:
+    """Within the block, every input checked or read is recorded, and writes that name one are refused."""
+    token = _INPUTS.set({})
+    try:
+        yield
+    finally:
+        _INPUTS.reset(token)
+
+
+def note_input(path: str | os.PathLike) -> None:
+    """Record ``path`` as an input (when recording; a file that does not exist is not recorded)."""
+    record = _INPUTS.get()
+    if record is None:
+        return
+    try:
+        info = os.stat(path)
+    except (OSError, ValueError):
+        return
+    record.setdefault((info.st_dev, info.st_ino), str(path))
+
+
+def recorded_input(path: str | os.PathLike) -> str | None:
+    """The recorded input that ``path`` names (the same file by any link), or None."""
+    record = _INPUTS.get()
+    if not record:
+        return None
+    try:
+        info = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return record.get((info.st_dev, info.st_ino))
+
+
+def input_problem(path: str | os.PathLike) -> str | None:
+    """Why ``path`` cannot be read as an input file ("file not found", "is a folder, not a file", "symbolic link
+    loop ...", "not a regular file ..."), or None when it can. Never opens the file (a pipe does not block)."""
+    try:
+        check_input(path)
+    except InputError as error:
+        return error.message
+    return None
+
+
 def check_input(path: str | os.PathLike) -> Path:
     """``path`` if it names a readable regular file of at most :data:`MAX_INPUT_BYTES`; else an InputError saying
     what it is instead."""
@@ -61,6 +113,7 @@ def check_input(path: str | os.PathLike) -> Path:
     if info.st_size > MAX_INPUT_BYTES:
         raise InputError(f"file too large ({info.st_size / 2**20:.0f} MB; inputs are at most "
                          f"{MAX_INPUT_BYTES // 2**20} MB)", file=str(path))
+    note_input(path)
     return path
 
 
@@ -97,10 +150,16 @@ def _target(path: str | os.PathLike) -> Path:
     return Path(os.path.realpath(path)) if path.is_symlink() else path
 
 
-def check_writable(path: str | os.PathLike) -> None:
-    """An InputError naming ``path`` when it cannot be written: a read-only file, a folder or device in its place, a
-    folder that cannot be created or written into. Call it before a long computation."""
+def check_writable(path: str | os.PathLike, *, field: str | None = None, replaces_input: bool = False) -> None:
+    """An InputError naming ``path`` (and the option ``field``) when it cannot be written: an input of the command
+    (while recording, unless ``replaces_input``), a read-only file, a folder or device in its place, a folder that
+    cannot be created or written into. Call it before a long computation."""
     shown = str(path)
+    source = None if replaces_input else recorded_input(path)
+    if source is not None:
+        same = "" if os.path.abspath(source) == os.path.abspath(shown) else f" (the same file as {source})"
+        raise InputError(f"is an input of this command{same}: refusing to overwrite it, write the output elsewhere",
+                         file=shown, field=field)
     target = _target(path)
     try:
         info = target.stat()
@@ -174,13 +233,14 @@ def _backup(target: Path, copy: Path) -> None:
 
 
 @contextmanager
-def atomic_path(path: str | os.PathLike, *, backup: bool = False) -> Iterator[Path]:
+def atomic_path(path: str | os.PathLike, *, backup: bool = False, replaces_input: bool = False) -> Iterator[Path]:
     """A temporary path beside the target (same suffix, so writers that go by extension pick the right format).
     It replaces ``path`` when the block succeeds and is removed when it fails. Missing folders are created.
-    ``backup``: an existing target is first copied to ``<path>.bak`` (replacing an older one). An OSError while
-    writing names ``path``, not the temporary."""
+    ``backup``: an existing target is first copied to ``<path>.bak`` (replacing an older one). ``replaces_input``:
+    an in-place update of an input (see :func:`check_writable`). An OSError while writing names ``path``, not the
+    temporary."""
     shown = Path(path)
-    check_writable(shown)
+    check_writable(shown, replaces_input=replaces_input)
     target = _target(shown)
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -206,8 +266,8 @@ def atomic_path(path: str | os.PathLike, *, backup: bool = False) -> Iterator[Pa
 
 
 def write_atomic(path: str | os.PathLike, data: bytes | str, *, encoding: str = "utf-8",
-                 backup: bool = False) -> None:
+                 backup: bool = False, replaces_input: bool = False) -> None:
     """Write text (in ``encoding``, newlines kept as given) or bytes to ``path`` whole or not at all (see
     :func:`atomic_path`)."""
-    with atomic_path(path, backup=backup) as temporary:
+    with atomic_path(path, backup=backup, replaces_input=replaces_input) as temporary:
         temporary.write_bytes(data.encode(encoding) if isinstance(data, str) else data)

@@ -1,7 +1,10 @@
-"""What the models can answer: bounds on rotor speed, numbers of modes, mesh elements and sweep speeds.
+"""What the models can answer: bounds on rotor speed, numbers of modes, mesh elements and sweep speeds, and the
+physical bounds of a turbine deck's values and the turbine command's options (yaw spring and damper, wind speed,
+shear, inflow angles, BEM iterations, layout lengths, integration tolerance).
 
 The Python API raises :class:`~bladefem.errors.LimitError` (a ``ValueError``) and the command line prints it on one
-line (exit 2), before any computation starts. Each bound says why it is where it is.
+line (exit 2), before any computation starts; the readers name the file, line and label of a deck value past its
+bound. Each bound says why it is where it is.
 """
 
 from __future__ import annotations
@@ -36,6 +39,34 @@ MAX_SIMULATION_SECONDS = 86400.0
 #: Most output rows of a time simulation: each row holds about 80 numbers (states, loads, channels), so 2e6 rows
 #: take about 1.3 GB in memory and 1 GB as a CSV table.
 MAX_OUTPUT_ROWS = 2_000_000
+#: Stiffest nacelle-yaw spring, N m/rad: 10^4 times the NREL 5MW's 9.03e9 (multi-MW yaw drives lie within a
+#: factor of ten of it). Past it the yaw mode (frequency sqrt(k / I), I ~ 4e7 kg m^2) leaves structural dynamics
+#: for kHz, and toward 1e300 the linearized matrices overflow: a stiffer spring is a locked yaw (--dof yaw=off).
+MAX_YAW_STIFFNESS = 1e14
+#: Strongest nacelle-yaw damper, N m s/rad: 10^5 times the NREL 5MW's 1.916e7. A stronger one is a locked yaw;
+#: its time constant I / c would fall below 1e-4 s and make the time integration stiff.
+MAX_YAW_DAMPING = 1e12
+#: Most iterations of the BEM induction solve (AeroDyn MaxIter; its default is 100). Brent's method needs at most
+#: about (log2(bracket / tolerance))^2 ~ 4000 steps in its worst case: more cannot change the answer.
+MAX_BEM_ITERATIONS = 10_000
+#: Largest upflow angle (InflowWind VFlowAng), deg: at 90 deg the wind blows straight up; real upflow over complex
+#: terrain stays below about 20 deg. Largest propagation direction (PropagationDir), deg: one turn either way.
+MAX_UPFLOW_DEG = 90.0
+MAX_DIRECTION_DEG = 360.0
+#: Largest wind speed, m/s: above the strongest 3 s gusts measured at hub heights (about 90 m/s in typhoons); the
+#: IEC class T extreme gust is 80 m/s.
+MAX_WIND_SPEED = 100.0
+#: Largest power-law shear exponent magnitude (PLExp, --shear-exp): measured exponents lie between about -0.3 (low-
+#: level jets) and 1 (stable nights); IEC uses 0.2 and 0.11 to 0.14.
+MAX_SHEAR_EXPONENT = 1.0
+#: Relative tolerance of a time simulation (--rtol): at most 1e-2 (a per cent of error per step leaves no answer to
+#: speak of), at least 1e-13 (below, round-off of double precision, 2.2e-16 per operation, sets the error).
+MIN_RTOL, MAX_RTOL = 1e-13, 1e-2
+#: Largest length of a turbine's layout (ElastoDyn TipRad, TowerHt, OverHang, ...), m: 1 km, four times the largest
+#: rotor radius (IEA 22 MW: 142 m) and tower (about 170 m) designed so far.
+MAX_TURBINE_LENGTH = 1000.0
+#: Largest gearbox ratio (GBRatio): multi-MW gearboxes step up about 100 times (the NREL 5MW's 97).
+MAX_GEARBOX_RATIO = 1000.0
 #: Elements assumed for the estimate when the mesh is chosen automatically (its upper limit).
 AUTOMATIC_MESH_ELEMENTS = 1600
 #: Most DOFs per node of a blade (flap value and slope, edge value and slope, twist, axial).

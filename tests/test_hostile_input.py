@@ -78,18 +78,28 @@ def test_case_reads_1e9(tmp_path):
     ("a:\n  b: " + "[" * (MAX_DEPTH + 6) + "]" * (MAX_DEPTH + 6) + "\n", 2, f"deeper than {MAX_DEPTH}"),
     # far deeper: the YAML parser may refuse it before bladefem counts (PyYAML >= 6.0.4 does, in its own words);
     # either way it is one error naming the line
-    ("a:\n  b: " + "[" * 1000 + "]" * 1000 + "\n", 2, ""),
+    ("a:\n  b: " + "[" * 1000 + "]" * 1000 + "\n", 2, None),
     ("a: 1\nb: &x [*x]\n", 2, "no complete anchor"),
     ("a: 1\nb: 2\na: 3\n", 3, "duplicate key 'a' (first at line 1)"),
     ("a: !!python/object/apply:os.system [ls]\n", 1, "unsupported tag"),
     ("a: 1\n---\nb: 2\n", 2, "a second YAML document"),
     ("? [1, 2]\n: 3\n", 1, "key must be a plain value"),
     ("a: [1, 2\n", 2, "invalid YAML"),
+    ("a: 1\nb: x\x00y\n", 2, "U+0000"),
 ])
 def test_hostile_yaml_is_one_error_with_its_line(text, line, message):
     with cpu_limit(5), pytest.raises(InputError) as caught:
         parse_yaml(text, "f.yaml")
-    assert caught.value.line == line and message in caught.value.message, str(caught.value)
+    assert caught.value.line == line and "\n" not in str(caught.value), str(caught.value)
+    assert message is None or message in caught.value.message, str(caught.value)
+
+
+def test_nesting_just_past_the_limit_is_refused_by_bladefem():
+    # one level past MAX_DEPTH: far below any YAML parser's own cap, so this is bladefem's check
+    depth = MAX_DEPTH + 1
+    with pytest.raises(InputError) as caught:
+        parse_yaml("a:\n  b: " + "[" * depth + "]" * depth + "\n", "f.yaml")
+    assert caught.value.line == 2 and f"deeper than {MAX_DEPTH}" in caught.value.message
 
 
 def test_alias_bomb_is_refused_quickly(tmp_path):

@@ -133,7 +133,7 @@ def test_missing_airfoil_file(deck_copy):
     primary = deck_copy / AERODYN
     error = expect_error(lambda: read_openfast_deck(deck_copy / FST), primary, line_of(primary, "DU21_A17.dat"),
                          "AFNames")
-    assert "airfoil file 7 not found" in str(error)
+    assert "airfoil file 7: file not found" in str(error)
 
 
 def test_polar_with_non_increasing_angle(deck_copy):

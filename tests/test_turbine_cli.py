@@ -149,8 +149,8 @@ def test_rk4_beyond_its_stability_limit_is_refused():
     (["--linearize", "--dt", "0.1"], "--dt"),
     (["--campbell", "0:10:3", "--method", "RK4"], "--method"),
     (["--linearize", "--rpm", "-3"], "--rpm"),
-    (["--linearize", "--shapes", "fe"], "blade_shapes"),
-    (["--linearize", "--damping", "rna"], "damping"),
+    (["--linearize", "--shapes", "fe"], "--shapes"),
+    (["--linearize", "--damping", "rna"], "--damping"),
     (["--simulate", "1e6"], "--simulate"),                          # beyond a day of turbine time
     (["--simulate", "1000", "--dt", "1e-4"], "--dt"),               # 1e7 output rows
     (["--simulate", "1", "--plot", "x.txt"], "--plot"),             # no figure format

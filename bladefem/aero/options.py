@@ -25,6 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..limits import MAX_BEM_ITERATIONS
+
 #: Indices of the option vector the kernels read (see :meth:`BEMOptions.vector`).
 (INDUCTION, TIP_LOSS, HUB_LOSS, TAN_IND, AI_DRAG, TI_DRAG, HIGH_INDUCTION, USE_CM, SKEW_REDISTRIBUTION,
  FORMULATION, SKEW_FACTOR, TOLERANCE, MAX_ITER) = range(13)
@@ -71,8 +73,8 @@ class BEMOptions:
             raise ValueError(f"tolerance must be positive, got {self.tolerance}")
         if self.formulation not in (1, 2):
             raise ValueError(f"formulation must be 1 or 2 (AeroDyn BEM_Mod), got {self.formulation}")
-        if self.max_iterations < 1:
-            raise ValueError(f"max_iterations must be at least 1, got {self.max_iterations}")
+        if not 1 <= self.max_iterations <= MAX_BEM_ITERATIONS:
+            raise ValueError(f"max_iterations must lie between 1 and {MAX_BEM_ITERATIONS}, got {self.max_iterations}")
 
     def vector(self) -> NDArray[np.float64]:
         """The options as the float vector the compiled kernels read (indices above)."""

@@ -21,6 +21,8 @@ from pathlib import Path
 
 from ..aero.options import PITT_PETERS_FACTOR, BEMOptions
 from ..formats._labels import Labels
+from ..files import input_problem
+from ..limits import MAX_BEM_ITERATIONS
 from .airfoil_polars import PolarColumns
 
 #: (label, value bladefem models, what the other values would add)
@@ -162,8 +164,12 @@ def read_aerodyn_primary(path: str | os.PathLike) -> AeroDynPrimary:
         if labels.has(label):
             flags[label] = labels.bool(label) if isinstance(modelled, bool) else labels.int(label)
             where(label, label)
-    columns = PolarColumns(*(labels.int(f"InCol_{name}") if labels.has(f"InCol_{name}") else default
+    columns = PolarColumns(*(_column(labels, name, default)
                              for name, default in (("Alfa", 1), ("Cl", 2), ("Cd", 3), ("Cm", 4))))
+    taken = [c for c in (columns.alpha, columns.cl, columns.cd, columns.cm) if c]
+    if len(set(taken)) < len(taken):
+        raise labels.error(f"InCol_Alfa, InCol_Cl, InCol_Cd, InCol_Cm must name different columns, got {taken}",
+                           labels.line("InCol_Cl") if labels.has("InCol_Cl") else None, "InCol_Cl")
     use_cm = labels.bool("UseBlCm")
     if use_cm and columns.cm == 0:
         raise labels.error("UseBlCm is True but InCol_Cm is 0 (no moment column)", labels.line("UseBlCm"),
@@ -179,7 +185,7 @@ def read_aerodyn_primary(path: str | os.PathLike) -> AeroDynPrimary:
         tangential_induction=labels.bool("TanInd"), axial_drag=labels.bool("AIDrag"),
         tangential_drag=labels.bool("TIDrag"),
         tolerance=labels.float("IndToler", default=5e-10, positive=True),
-        max_iterations=labels.int("MaxIter"),
+        max_iterations=_iterations(labels),
         air_density=_environment(labels, "AirDens"), kinematic_viscosity=_environment(labels, "KinVisc"),
         speed_of_sound=_environment(labels, "SpdSound"), use_cm=use_cm, columns=columns,
         airfoil_files=_airfoil_files(labels), blade_files=_blade_files(labels), flags=flags, lines=lines)
@@ -258,11 +264,38 @@ def _airfoil_files(labels: Labels) -> tuple[Path, ...]:
         if words and not words[0].startswith("!"):
             name = words[0].strip("\"'")
             path = Path(os.path.normpath(folder / name))
-            if not path.is_file():
-                raise labels.error(f"airfoil file {len(files) + 1} not found: {path}", number, "AFNames")
+            problem = input_problem(path)
+            if problem is not None:
+                raise labels.error(f"airfoil file {len(files) + 1}: {problem}: {path}", number, "AFNames")
             files.append(path)
         number += 1
     return tuple(files)
+
+
+def _iterations(labels: Labels) -> int:
+    """MaxIter: 1 to :data:`~bladefem.limits.MAX_BEM_ITERATIONS`."""
+    count = labels.int("MaxIter")
+    if not 1 <= count <= MAX_BEM_ITERATIONS:
+        raise labels.error(f"must lie between 1 and {MAX_BEM_ITERATIONS}, got {count}", labels.line("MaxIter"),
+                           "MaxIter")
+    return count
+
+
+#: Most columns of an airfoil table (AeroDyn's hold 4 to 5; a few more with unsteady-aerodynamics data)
+MAX_POLAR_COLUMNS = 100
+
+
+def _column(labels: Labels, name: str, default: int) -> int:
+    """A 1-based column of the airfoil tables, InCol_<name>; only Cm may be 0 (no moment column)."""
+    if not labels.has(f"InCol_{name}"):
+        return default
+    column = labels.int(f"InCol_{name}")
+    lowest = 0 if name == "Cm" else 1
+    if not lowest <= column <= MAX_POLAR_COLUMNS:
+        raise labels.error(f"a column number (counted from 1{', 0: none' if lowest == 0 else ''}) must lie between "
+                           f"{lowest} and {MAX_POLAR_COLUMNS}, got {column}", labels.line(f"InCol_{name}"),
+                           labels.which(f"InCol_{name}"))
+    return column
 
 
 def _blade_files(labels: Labels) -> tuple[Path, ...]:

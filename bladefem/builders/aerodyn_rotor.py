@@ -4,12 +4,12 @@ with the hub radius and precone of the structural blade: the input of ``bladefem
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
 import numpy as np
 
 from ..aero.rotor import Rotor
 from ..errors import InputError
+from ..files import input_problem
 from ..sections import Blade
 from ..formats._labels import Labels
 from .aerodyn import SPAN_RTOL, read_aerodyn_blade
@@ -28,9 +28,10 @@ def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int =
         first = refused[0]
         raise InputError(first.message, file=first.file, line=first.line, field=first.label)
     labels = Labels.read(primary.path)
-    if not primary.blade_files or not Path(primary.blade_files[0]).is_file():
-        missing = primary.blade_files[0] if primary.blade_files else "no ADBlFile(1) entry"
-        raise InputError(f"blade file not found: {missing}", file=primary.path,
+    problem = input_problem(primary.blade_files[0]) if primary.blade_files else "no ADBlFile(1) entry"
+    if problem is not None:
+        missing = f": {primary.blade_files[0]}" if primary.blade_files else ""
+        raise InputError(f"blade file: {problem}{missing}", file=primary.path,
                          line=labels.line("ADBlFile(1)") if labels.has("ADBlFile(1)") else None, field="ADBlFile(1)")
     planform = read_aerodyn_blade(primary.blade_files[0])
     polars = tuple(read_airfoil(file, primary.columns)[0] for file in primary.airfoil_files)

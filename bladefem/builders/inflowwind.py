@@ -12,6 +12,7 @@ import os
 
 from ..aero.rotor import Inflow
 from ..formats._labels import Labels
+from ..limits import MAX_DIRECTION_DEG, MAX_SHEAR_EXPONENT, MAX_UPFLOW_DEG, MAX_WIND_SPEED
 
 WIND_TYPES = {1: "steady", 2: "uniform time series", 3: "TurbSim full field", 4: "Bladed full field",
               5: "HAWC full field", 6: "user-defined", 7: "native Bladed full field", 8: "4D external"}
@@ -25,8 +26,19 @@ def read_inflowwind(path: str | os.PathLike) -> Inflow:
         what = WIND_TYPES.get(kind, "unknown")
         raise labels.error(f"WindType {kind} ({what} wind) is not modelled: bladefem reads steady wind "
                            "(WindType 1)", labels.line("WindType"), "WindType")
-    return Inflow(speed=labels.float("HWindSpeed", non_negative=True),
+    return Inflow(speed=_within(labels, "HWindSpeed", 0.0, MAX_WIND_SPEED, required=True),
                   reference_height=labels.float("RefHt", positive=True),
-                  shear_exponent=labels.float("PLExp"),
-                  direction=math.radians(labels.float("PropagationDir")) if labels.has("PropagationDir") else 0.0,
-                  upflow=math.radians(labels.float("VFlowAng")) if labels.has("VFlowAng") else 0.0)
+                  shear_exponent=_within(labels, "PLExp", -MAX_SHEAR_EXPONENT, MAX_SHEAR_EXPONENT,
+                                         required=True),
+                  direction=math.radians(_within(labels, "PropagationDir", -MAX_DIRECTION_DEG, MAX_DIRECTION_DEG)),
+                  upflow=math.radians(_within(labels, "VFlowAng", -MAX_UPFLOW_DEG, MAX_UPFLOW_DEG)))
+
+
+def _within(labels: Labels, label: str, low: float, high: float, required: bool = False) -> float:
+    """The value of ``label`` (0 when absent and not ``required``) within [low, high] (see :mod:`bladefem.limits`)."""
+    if not required and not labels.has(label):
+        return 0.0
+    value = labels.float(label)
+    if not low <= value <= high:
+        raise labels.error(f"must lie between {low:g} and {high:g}, got {value:g}", labels.line(label), label)
+    return value

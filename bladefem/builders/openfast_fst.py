@@ -15,7 +15,6 @@ import math
 import os
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -23,6 +22,7 @@ from ..aero.polars import Polar
 from ..aero.rotor import Inflow, Rotor
 from ..errors import InputError
 from ..formats._labels import Labels
+from ..files import input_problem
 from .aerodyn import AeroDynBlade, read_aerodyn_blade
 from .aerodyn_primary import AeroDynPrimary, Unmodelled, default_air_density, read_aerodyn_primary
 from .airfoil_polars import read_airfoil
@@ -187,13 +187,17 @@ def _environment(aerodyn: AeroDynPrimary | None, fst: Labels, name: str, label: 
 def _blades(aerodyn: AeroDynPrimary, count: int) -> tuple[AeroDynBlade, ...]:
     """One AeroDyn blade file per ElastoDyn blade, all with the same planform."""
     if len(aerodyn.blade_files) < count:
+        labels = Labels.read(aerodyn.path)
+        last = f"ADBlFile({len(aerodyn.blade_files)})"
         raise InputError(f"ElastoDyn has {count} blades but only {len(aerodyn.blade_files)} ADBlFile entries",
-                         file=aerodyn.path, field=f"ADBlFile({len(aerodyn.blade_files) + 1})")
+                         file=aerodyn.path, line=labels.line(last) if labels.has(last) else len(labels.text.lines),
+                         field=f"ADBlFile({len(aerodyn.blade_files) + 1})")
     blades = []
     for i, file in enumerate(aerodyn.blade_files[:count]):
         label = f"ADBlFile({i + 1})"
-        if not Path(file).is_file():
-            raise InputError(f"file not found: {file}", file=aerodyn.path,
+        problem = input_problem(file)
+        if problem is not None:
+            raise InputError(f"{problem}: {file}", file=aerodyn.path,
                              line=Labels.read(aerodyn.path).line(label), field=label)
         blades.append(read_aerodyn_blade(file))
     first = blades[0]

@@ -15,6 +15,7 @@ import os
 from dataclasses import dataclass
 
 from ..formats._labels import Labels
+from ..limits import MAX_YAW_DAMPING, MAX_YAW_STIFFNESS
 from .aerodyn_primary import Unmodelled
 
 RPM = math.pi / 30.0
@@ -121,6 +122,16 @@ def read_servodyn(path: str | os.PathLike) -> ServoDyn:
         rated_torque=labels.float("VS_RtTq", positive=True) if law else math.nan,
         region2_constant=labels.float("VS_Rgn2K", non_negative=True) / RPM ** 2 if law else math.nan,
         slip=slip, yaw_neutral=math.radians(labels.float("YawNeut")),
-        yaw_spring=labels.float("YawSpr", non_negative=True), yaw_damper=labels.float("YawDamp", non_negative=True),
+        yaw_spring=_bounded(labels, "YawSpr", MAX_YAW_STIFFNESS),
+        yaw_damper=_bounded(labels, "YawDamp", MAX_YAW_DAMPING),
         settings=settings, lines=lines,
         controller=labels.string("DLL_FileName") if labels.has("DLL_FileName") else "")
+
+
+def _bounded(labels: Labels, label: str, largest: float) -> float:
+    """A non-negative value of at most ``largest`` (see :mod:`bladefem.limits`: past it the yaw is locked)."""
+    value = labels.float(label, non_negative=True)
+    if value > largest:
+        raise labels.error(f"must be at most {largest:g} (a stiffer yaw is a locked one: lock it with --dof yaw=off), "
+                           f"got {value:g}", labels.line(label), label)
+    return value

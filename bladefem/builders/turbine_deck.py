@@ -9,10 +9,12 @@ pitch may be overridden. ElastoDyn's DOF switches and initial conditions come wi
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from ..limits import MAX_WIND_SPEED
 from ..models.turbine.aero import TurbineAero
 from ..models.turbine.control import Generator
 from ..models.turbine.initial import InitialConditions
@@ -75,6 +77,11 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
     rigid", "--quasi-steady", "--rpm"); what they leave out is named in the notes
     structure : keyword arguments of :func:`turbine_from_elastodyn` (blade_shapes, rpm, tower_shapes, ...)
     """
+    if wind_speed is not None and not 0 <= wind_speed <= MAX_WIND_SPEED:
+        raise InputError(f"must lie between 0 and {MAX_WIND_SPEED:g} m/s (MAX_WIND_SPEED), got {wind_speed:g}",
+                         field="--wind-speed")
+    if pitch is not None and not abs(pitch) <= math.pi:
+        raise InputError(f"must lie between -180 and 180 deg, got {math.degrees(pitch):g}", field="--pitch-deg")
     if not Path(path).is_file():
         raise InputError("file not found", file=str(path))
     if not is_openfast_deck(path):

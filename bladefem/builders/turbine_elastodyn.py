@@ -3,6 +3,8 @@ rotor speed) or from the ElastoDyn polynomials, and tower shapes from the tower 
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 from dataclasses import replace
 from pathlib import Path
 from typing import Literal
@@ -276,16 +278,17 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
     if elastodyn_compatible:
         notes += (f"ElastoDyn-compatible: span integrals at the midpoints of BldNodes = {main.blade_nodes} and "
                   f"TwrNodes = {main.tower_nodes} elements, ElastoDyn's shape integration and tuners",)
-    params = TurbineParameters(
-        tower=tower, blade=beam, n_blades=main.num_blades, tower_base_height=main.tower_base_height,
-        twr2shft=main.twr2shft, overhang=main.overhang, shaft_tilt=main.shaft_tilt, precone=main.precone[0],
-        hub_radius=main.hub_radius, hub_cm=main.hub_cm, hub_mass=main.hub_mass, hub_inertia=main.hub_inertia,
-        generator_inertia=main.generator_inertia, gearbox_ratio=main.gearbox_ratio,
-        nacelle_mass=main.nacelle_mass, nacelle_yaw_inertia=main.nacelle_yaw_inertia,
-        nacelle_cm=np.array(main.nacelle_cm), yaw_bearing_mass=main.yaw_bearing_mass,
-        drivetrain_stiffness=main.drivetrain_spring, drivetrain_damping=main.drivetrain_damper,
-        yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping, blade_tip_mass=main.tip_mass[0], pitch=pitch,
-        damping=damping, name=Path(main.path).stem, notes=blade.notes + notes)
+    with _located(main):
+        params = TurbineParameters(
+            tower=tower, blade=beam, n_blades=main.num_blades, tower_base_height=main.tower_base_height,
+            twr2shft=main.twr2shft, overhang=main.overhang, shaft_tilt=main.shaft_tilt, precone=main.precone[0],
+            hub_radius=main.hub_radius, hub_cm=main.hub_cm, hub_mass=main.hub_mass, hub_inertia=main.hub_inertia,
+            generator_inertia=main.generator_inertia, gearbox_ratio=main.gearbox_ratio,
+            nacelle_mass=main.nacelle_mass, nacelle_yaw_inertia=main.nacelle_yaw_inertia,
+            nacelle_cm=np.array(main.nacelle_cm), yaw_bearing_mass=main.yaw_bearing_mass,
+            drivetrain_stiffness=main.drivetrain_spring, drivetrain_damping=main.drivetrain_damper,
+            yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping, blade_tip_mass=main.tip_mass[0], pitch=pitch,
+            damping=damping, name=Path(main.path).stem, notes=blade.notes + notes)
     if tower_shapes == "fe":
         params = params.with_(tower=fe_tower_beam(params, sections, tower.damping_ratio, gauss_points, tower_edges_))
     elif tower_shapes == "fe-polynomial":
@@ -295,6 +298,18 @@ def turbine_from_elastodyn(main_path: str | Path, blade_shapes: ShapeSource = "f
             tower_beam(sections, fitted, tower.damping_ratio, tower_edges_, gauss_points)
         params = params.with_(tower=tower)
     return params
+
+
+@contextmanager
+def _located(main):
+    """An InputError of the model about an ElastoDyn entry (e.g. NacYIner) located at that entry of ``main``."""
+    try:
+        yield
+    except InputError as error:
+        if error.file is None and error.field in main.key_lines:
+            raise InputError(error.message, file=main.path, line=main.key_lines[error.field],
+                             field=error.field) from None
+        raise
 
 
 #: ElastoDyn's platform DOF switches, left out (switched off) by ``--foundation rigid``

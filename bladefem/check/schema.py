@@ -5,10 +5,14 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from ..limits import MAX_RPM
+
 SCHEMA_ID = "https://bladefem.org/schemas/check-spec-1.json"
 
 _POSITIVE = {"type": "number", "exclusiveMinimum": 0}
-_RPM_RANGE = {"type": "array", "items": {"type": "number", "minimum": 0}, "minItems": 2, "maxItems": 2,
+#: a rotor speed, rpm: 0 to :data:`bladefem.limits.MAX_RPM`
+_RPM = {"type": "number", "minimum": 0, "maximum": MAX_RPM}
+_RPM_RANGE = {"type": "array", "items": _RPM, "minItems": 2, "maxItems": 2,
               "description": "operating rotor-speed range [min, max], rpm"}
 _MODE_NAME = {"type": "string", "pattern": r"^[a-z-]+ [1-9][0-9]*$",
               "description": "a mode family by kind and number in frequency order, e.g. 'flap 1', 'edge 2', "
@@ -45,7 +49,7 @@ WINDOW = {
         "mode": _MODE_NAME,
         "hz": {"type": "array", "items": {"type": "number", "minimum": 0}, "minItems": 2, "maxItems": 2,
                "description": "allowed frequency window [low, high], Hz"},
-        "rpm": {"anyOf": [{"type": "number", "minimum": 0}, {"const": "operating"}],
+        "rpm": {"anyOf": [_RPM, {"const": "operating"}],
                 "description": "rotor speed, rpm, or 'operating' for the whole operating range (default 0)"},
     },
 }
@@ -81,7 +85,7 @@ BASELINE = {
     "required": ["file", "tolerance_percent"],
     "properties": {
         "file": {"type": "string", "description": "baseline JSON file, relative to the spec file"},
-        "rpm": {"type": "number", "minimum": 0, "description": "rotor speed, rpm (default 0)"},
+        "rpm": {**_RPM, "description": "rotor speed, rpm (default 0)"},
         "modes": {"type": "integer", "minimum": 1, "maximum": 30, "description": "lowest modes compared (default 4)"},
         "tolerance_percent": {"type": "number", "exclusiveMinimum": 0,
                               "description": "largest relative frequency change per mode, per cent"},
@@ -98,7 +102,7 @@ ELASTODYN = {
         "tolerance_percent": {"type": "number", "exclusiveMinimum": 0,
                               "description": "largest relative difference between the frequency ElastoDyn derives "
                                              "from the file's polynomial and the FE frequency, per cent"},
-        "rpm": {"type": "number", "minimum": 0, "description": "rotor speed, rpm (default the main file's)"},
+        "rpm": {**_RPM, "description": "rotor speed, rpm (default the main file's)"},
     },
 }
 

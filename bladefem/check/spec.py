@@ -142,11 +142,22 @@ def _requirement(index: int, entry: dict[str, Any], folder: Path, models: dict[s
                        source=str(path), line=line)
 
 
+def _finite(data: Any, key: tuple, path: Path, lines: dict) -> None:
+    """An InputError at the first number that is not finite (the schema's bounds let NaN through)."""
+    items = data.items() if isinstance(data, dict) else enumerate(data) if isinstance(data, list) else ()
+    for name, value in items:
+        if isinstance(value, float) and not math.isfinite(value):
+            raise InputError(f"must be a finite number, got {value}", file=str(path), line=lines.get((*key, name)),
+                             field=".".join(map(str, (*key, name))))
+        _finite(value, (*key, name), path, lines)
+
+
 def read_spec(path: str | Path) -> Spec:
     """Read and validate a spec file; :class:`InputError` names the file, line and field of the first problem."""
     path = Path(path)
     data, lines = load_yaml(path)
     _schema_errors(data, path, lines)
+    _finite(data, (), path, lines)
     folder = path.parent
     models = {name: _model(name, entry, folder, path, lines) for name, entry in data["models"].items()}
     requirements = [_requirement(i, entry, folder, models, path, lines)

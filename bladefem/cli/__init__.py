@@ -16,8 +16,12 @@ from types import ModuleType
 from typing import NoReturn
 
 from ..errors import InputError, SolveError
+from ..files import note_input, recording_inputs
 
 __all__ = ["COMMANDS", "Parser", "build_parser", "main"]
+
+#: argparse names of the input files given on the command line (outputs may not name them)
+INPUT_ARGUMENTS = ("input", "main", "spec", "elastodyn_main", "plan", "nrel5mw", "schedule", "aero", "aerodyn")
 
 #: subcommand -> (module in bladefem.cli that adds it, one-line help shown by ``bladefem --help``)
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -109,8 +113,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exit:         # --help, --version, or a usage error already printed on one line
         return int(exit.code or 0)
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), recording_inputs():
             warnings.showwarning = one_line_warning
+            for name in INPUT_ARGUMENTS:
+                if isinstance(getattr(args, name, None), str):
+                    note_input(getattr(args, name))
             follow_openfast_deck(args)
             return int(args.run(args) or 0)
     except InputError as error:

@@ -124,10 +124,11 @@ def check_aeroelastic_options(args: argparse.Namespace) -> None:
 
 def read_deck(path: str, taken: frozenset[str] = frozenset()):
     """The OpenFAST deck (with aerodynamics) of ``path``, with the ways forward ``taken`` (:func:`leave_out`)."""
-    from ..formats._labels import Labels
     from ..builders.openfast_fst import read_openfast_deck
+    from ..builders.turbine_deck import is_openfast_deck
+    from ..formats._labels import Labels
 
-    if Path(path).is_file() and not Labels.read(path).has("CompElast"):
+    if Path(path).is_file() and not is_openfast_deck(path) and Labels.read(path).has("NumBl", "TwrFile"):
         raise InputError("aerodynamics come from an OpenFAST main file (.fst) naming ElastoDyn, AeroDyn and "
                          "InflowWind: give that instead of an ElastoDyn file", file=path, field="--wind-speed")
     deck = read_openfast_deck(path, leave_out=taken)

@@ -123,7 +123,7 @@ def run_campbell(args: argparse.Namespace) -> int:
     if args.operating_rpm is None and deck_rpm:
         args.operating_rpm = (deck_rpm, deck_rpm)
     options.check_sweep(args.rpm, args.n_modes, args.elements)
-    options.check_output(args.plot)
+    options.check_output(args.plot, "--plot")
     if args.vtk:
         options.check_folder(args.vtk, "--vtk")
     model = read_structure(args)

@@ -22,6 +22,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_check_command(args: argparse.Namespace) -> int:
+    import os
     import sys
 
     from ..errors import InputError
@@ -31,10 +32,34 @@ def run_check_command(args: argparse.Namespace) -> int:
         return 0
     if args.spec is None:
         raise InputError("give a spec file (or --schema)", field="SPEC.yaml")
-    from ..check import run_check
+    from pathlib import Path
+
+    from ..check import evaluate, read_spec
+    from ..check.baseline import read_entries
     from ..check.report import dumps, junit_xml, table
-    from ..files import write_atomic
-    outcomes = run_check(args.spec, update_baseline=args.update_baseline)
+    from ..files import check_writable, note_input, recorded_input, write_atomic
+    spec = read_spec(args.spec)
+    for model in spec.models.values():           # the files the spec names are inputs: never an output
+        for path in (model.input, model.elastodyn_main):
+            if path is not None:
+                note_input(path)
+    baselines: dict[str, Path] = {}                  # one per file, however spelled
+    for requirement in spec.requirements:
+        if "file" in requirement.parameters:
+            baselines.setdefault(os.path.realpath(requirement.parameters["file"]), requirement.parameters["file"])
+    for requirement in spec.requirements:
+        if "file" in requirement.parameters and recorded_input(requirement.parameters["file"]) is not None:
+            raise requirement.error("the baseline file is the spec or a model's input: name a file of its own",
+                                    "file")
+    for baseline in baselines.values():
+        note_input(baseline)
+        read_entries(baseline)                       # checked as the input it is, before anything is computed
+    if args.junit:
+        check_writable(args.junit, field="--junit")
+        if os.path.realpath(args.junit) in baselines:   # a baseline not yet written is no input yet, but will be
+            raise InputError("is a baseline file of the spec: write the JUnit XML elsewhere", file=args.junit,
+                             field="--junit")
+    outcomes = evaluate(spec, update_baseline=args.update_baseline)
     if args.junit:
         write_atomic(args.junit, junit_xml(outcomes))
     print(dumps(outcomes) if args.json else table(outcomes), end="" if args.json else "\n")

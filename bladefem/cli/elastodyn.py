@@ -93,7 +93,8 @@ def _check(args: argparse.Namespace) -> None:
     if args.backup and not args.write:
         raise InputError("--backup needs --write FILE.dat", field="--backup")
     if args.write and not args.dry_run:
-        options.check_output(args.write)
+        from ..files import check_writable
+        check_writable(args.write, field="--write", replaces_input=True)   # an in-place update of its coefficients
 
 
 def _part(args: argparse.Namespace) -> str | None:
@@ -283,6 +284,6 @@ def _update(path: str, result: Any, dry_run: bool, backup: bool = False) -> None
                                     fromfile=path, tofile=f"{path} (updated)")
         sys.stdout.write("\n" + "".join(diff))
         return
-    write_atomic(Path(path), new, encoding=text_encoding(path), backup=backup)
+    write_atomic(Path(path), new, encoding=text_encoding(path), backup=backup, replaces_input=True)
     changed = sum(a != b for a, b in zip(old.splitlines(), new.splitlines()))
     print(f"\n# updated {path}: {changed} coefficient lines changed, every other byte kept")

@@ -101,10 +101,11 @@ def check_folder(path: str, field: str = "--output") -> None:
     check_writable(folder / "probe")
 
 
-def check_output(path: str | None) -> None:
-    """Fail now, not after the computation, when an output file cannot be written (read-only, a folder...)."""
+def check_output(path: str | None, field: str | None = None) -> None:
+    """Fail now, not after the computation, when an output file (of the option ``field``) cannot be written
+    (an input of the command, read-only, a folder...)."""
     if path:
-        check_writable(path)
+        check_writable(path, field=field)
 
 
 #: Options that only blades take, and only towers (argparse dest -> option)
@@ -163,3 +164,34 @@ def emit(text: str, output: str | None) -> None:
         print(f"# written to {Path(output)}", file=sys.stderr)
     else:
         sys.stdout.write(text)
+
+
+def check_turbine_bounds(args: argparse.Namespace) -> None:
+    """Refuse option values past what is physical (:mod:`bladefem.limits` says why each bound is where it is)."""
+    from ..limits import (
+        MAX_RPM,
+        MAX_RTOL,
+        MAX_SHEAR_EXPONENT,
+        MAX_WIND_SPEED,
+        MAX_YAW_DAMPING,
+        MAX_YAW_STIFFNESS,
+        MIN_RTOL,
+    )
+    if args.pitch_deg is not None and abs(args.pitch_deg) > 180:
+        raise InputError(f"must lie between -180 and 180 deg, got {args.pitch_deg:g}", field="--pitch-deg")
+    if args.rpm is not None and args.rpm > MAX_RPM:
+        raise InputError(f"rotor speed must lie between 0 and {MAX_RPM:g} rpm (MAX_RPM), got {args.rpm:g}",
+                         field="--rpm")
+    if args.rtol is not None and not MIN_RTOL <= args.rtol <= MAX_RTOL:
+        raise InputError(f"must lie between {MIN_RTOL:g} and {MAX_RTOL:g} (MIN_RTOL, MAX_RTOL), got {args.rtol:g}",
+                         field="--rtol")
+    if args.wind_speed is not None and max(args.wind_speed) > MAX_WIND_SPEED:
+        raise InputError(f"at most {MAX_WIND_SPEED:g} m/s (MAX_WIND_SPEED), got {max(args.wind_speed):g}",
+                         field="--wind-speed")
+    if args.shear_exp is not None and abs(args.shear_exp) > MAX_SHEAR_EXPONENT:
+        raise InputError(f"must lie between -{MAX_SHEAR_EXPONENT:g} and {MAX_SHEAR_EXPONENT:g}, got "
+                         f"{args.shear_exp:g}", field="--shear-exp")
+    for name, largest in (("yaw_stiffness", MAX_YAW_STIFFNESS), ("yaw_damping", MAX_YAW_DAMPING)):
+        if getattr(args, name) is not None and getattr(args, name) > largest:
+            raise InputError(f"must be at most {largest:g} (past it the yaw is locked: --dof yaw=off), got "
+                             f"{getattr(args, name):g}", field="--" + name.replace("_", "-"))

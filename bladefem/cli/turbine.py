@@ -30,7 +30,7 @@ from .aeroelastic import (
     wants_aeroelastic,
 )
 from .aeroelastic import wind_speeds as wind_speeds_type
-from .options import check_output, emit, rpm_sweep
+from .options import check_output, check_turbine_bounds, emit, rpm_sweep
 
 if TYPE_CHECKING:
     import numpy as np
@@ -153,12 +153,19 @@ def check_options(args: argparse.Namespace) -> None:
     if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
         raise InputError(f"the figure's format goes by its suffix: one of {', '.join(PLOT_SUFFIXES)}",
                          file=args.plot, field="--plot")
-    check_output(args.output)
-    check_output(args.plot)
+    check_output(args.output, "--output")
+    check_output(args.plot, "--plot")
     if args.no_aero:
         for name in AERO_ONLY:
             if getattr(args, name) is not None:
                 raise InputError("has no effect with --no-aero", field="--" + name.replace("_", "-"))
+    if args.elastodyn_compatible:
+        for option, value, wrong in (("--shapes", args.shapes, "fe"), ("--tower-shapes", args.tower_shapes, "fe"),
+                                     ("--damping", args.damping, "rna")):
+            if value == wrong:
+                raise InputError(f"--elastodyn-compatible takes ElastoDyn's own choice here, not '{wrong}'",
+                                 field=option)
+    check_turbine_bounds(args)
     if args.simulate and args.wind_speed is not None:
         if len(args.wind_speed) > 1:
             raise InputError("--simulate takes one wind speed", field="--wind-speed")
@@ -218,6 +225,24 @@ def parse_initial(entries: list[str], dofs: tuple[str, ...]) -> tuple[dict[str, 
     return conditions, coordinates
 
 
+def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
+    """Parse the deck's chain of files (nothing computed yet) and refuse an output that names one of them."""
+    from ..files import input_problem, note_input
+    from ..formats.elastodyn_main import read_elastodyn_main
+    from ..builders.openfast_fst import read_openfast_deck
+    from ..builders.turbine_deck import is_openfast_deck
+
+    main = read_openfast_deck(args.main).elastodyn if is_openfast_deck(args.main) else read_elastodyn_main(args.main)
+    keys = [f"BldFile({i + 1})" for i in range(len(main.blade_files))] + ["TwrFile"]
+    for key, file in zip(keys, (*main.blade_files, main.tower_file)):
+        problem = input_problem(file)
+        if problem is not None:                     # a folder, a link loop or a pipe says so, at the line naming it
+            raise InputError(f"{problem}: {file}", file=main.path, line=main.key_lines.get(key), field=key)
+        note_input(file)
+    check_output(args.output, "--output")
+    check_output(args.plot, "--plot")
+
+
 def build_model(args: argparse.Namespace):
     """The deck's turbine (:class:`~bladefem.builders.turbine_deck.TurbineDeck`) and its model, with the options."""
     from ..builders.turbine_deck import read_turbine_deck
@@ -246,6 +271,7 @@ def run(args: argparse.Namespace) -> int:
 
     check_options(args)
     check_aeroelastic_options(args)
+    refuse_overwriting_inputs(args)
     if wants_aeroelastic(args):
         return run_aeroelastic(args)
     deck, params, model = build_model(args)

@@ -26,6 +26,11 @@ from ._label_table import spellings
 #: BModes writes ``rot_rpm:`` (a colon after the key) and sometimes ``"file" : key``; both are accepted.
 KEY_LINE = re.compile(r"""^(?P<lead>\s*)(?P<value>"[^"]*"|'[^']*'|[^\s"',]+)(?P<gap>\s+(?::\s*)?)"""
                       r"""(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?):?(?=\s|$)""")
+#: A line with several values before a key name (``1 2   TwrPotent``): not a ``value key`` line, but a mistake in
+#: one when the key is asked for (a key named in a heading or a comment is preceded by words, not values)
+_VALUE = r"""(?:[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?|true|false|t|f|default|"[^"]*")"""
+CROWDED_LINE = re.compile(rf"""^\s*(?:{_VALUE}\s+){{2,}}(?P<key>[A-Za-z_][A-Za-z0-9_]*(?:\(\d+\))?)(?=\s|$)""",
+                          re.IGNORECASE)
 TRUE_WORDS = ("true", "t", ".true.")
 FALSE_WORDS = ("false", "f", ".false.")
 
@@ -51,6 +56,8 @@ class FastText:
     #: how the file's bytes decode ("utf-8", or "latin-1" for legacy files); write it back the same way
     encoding: str = "utf-8"
     _lower: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
+    #: key name (lower case) -> line of a line with several values before that key (see :data:`CROWDED_LINE`)
+    crowded: dict[str, int] = field(default_factory=dict)
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> FastText:
@@ -72,8 +79,11 @@ class FastText:
     def parse(cls, path: str, text: str) -> FastText:
         lines = text.splitlines(keepends=True)
         keys: dict[str, KeyValue] = {}
+        crowded: dict[str, int] = {}
         for number, line in enumerate(lines, start=1):
             match = KEY_LINE.match(line)
+            if match is None and (extra := CROWDED_LINE.match(line)):
+                crowded.setdefault(extra["key"].lower(), number)
             if match is None or match["key"] in keys:
                 continue
             value = match["value"]
@@ -81,7 +91,16 @@ class FastText:
                 value = value[1:-1]
             keys[match["key"]] = KeyValue(value, number, match.start("value"), match.end("value"),
                                           match.start("key"))
-        return cls(path, lines, keys)
+        return cls(path, lines, keys, crowded=crowded)
+
+    def refuse_crowded(self, key: str) -> None:
+        """An InputError when ``key``, absent as a ``value key`` line, has a line with several values before it."""
+        line = self.crowded.get(key.lower())
+        if line is not None:
+            values = self.lines[line - 1].split()
+            count = next(i for i, word in enumerate(values) if word.lower() == key.lower())
+            raise self.error(f"expected one value before {key}, found {count} ({' '.join(values[:count])})", line,
+                             key)
 
     # -- errors -------------------------------------------------------------------------------------------------
     def error(self, message: str, line: int | None = None, field: str | None = None) -> InputError:
@@ -111,13 +130,19 @@ class FastText:
     def find(self, key: str) -> KeyValue:
         written = self.spelled(key)
         if written is None:
+            for name in spellings(key):
+                self.refuse_crowded(name)
             names = spellings(key)
             also = f" (also looked for {', '.join(names[1:])})" if names[1:] else ""
             raise self.error("missing key" + also, line=len(self.lines) or None, field=key)
         return self.keys[written]
 
     def has(self, key: str) -> bool:
-        return self.spelled(key) is not None
+        if self.spelled(key) is None:
+            for name in spellings(key):
+                self.refuse_crowded(name)
+            return False
+        return True
 
     # -- typed values -------------------------------------------------------------------------------------------
     def float(self, key: str, *, positive: bool = False, non_negative: bool = False) -> float:
@@ -230,10 +255,16 @@ def to_float(text: str, error, line: int | None, key: str) -> float:
 
 
 def to_int(text: str, error, line: int | None, key: str) -> int:
+    """An integer (``3``, or ``3.0``), at most :data:`~bladefem.limits.MAX_MAGNITUDE` in size."""
     try:
-        return int(text)
+        value = int(text)
     except ValueError:
         pass
+    else:
+        if abs(value) > MAX_MAGNITUDE:
+            raise error(f"must be at most {MAX_MAGNITUDE:g} in magnitude, got {text[:20]}"
+                        f"{'...' if len(text) > 20 else ''}", line, key)
+        return value
     value = to_float(text, error, line, key)
     if value != int(value):
         raise error(f"expected an integer, got '{text}'", line, key)

@@ -12,6 +12,8 @@ import os
 from pathlib import Path
 
 from ..errors import InputError
+from ..files import input_problem
+from ._label_table import spellings
 from ._fast_format import FALSE_WORDS, TRUE_WORDS, FastText, KeyValue, to_float, to_int
 
 
@@ -39,6 +41,9 @@ class Labels:
             written = self.text.spelled(name)
             if written is not None:
                 return written
+        for name in names:
+            for spelling in spellings(name):
+                self.text.refuse_crowded(spelling)
         return None
 
     def has(self, *names: str) -> bool:
@@ -104,7 +109,8 @@ class Labels:
     def existing_file(self, *names: str) -> Path:
         """:meth:`file`, which must exist."""
         path = self.file(*names)
-        if not path.is_file():
+        problem = input_problem(path)
+        if problem is not None:
             key, entry = self.entry(*names)
-            raise self.error(f"file not found: {path}", entry.line, key)
+            raise self.error(f"{problem}: {path}", entry.line, key)
         return path

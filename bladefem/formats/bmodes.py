@@ -347,8 +347,8 @@ def read_bmodes_sections(path: str | os.PathLike, source: FastText | None = None
     first = header + 1
     if first <= len(text.lines) and text.lines[first - 1].lstrip().startswith("("):
         first += 1
-    lines = tuple(range(first, first + count))
-    table = np.array([row(text, number, SECTION_COLUMNS) for number in lines])
+    table = np.array([row(text, number, SECTION_COLUMNS) for number in range(first, first + count)])
+    lines = tuple(range(first, first + count))            # each read: a count beyond the file failed above
     columns = {name: table[:, i].copy() for i, name in enumerate(SECTION_COLUMNS)}
     _check_sections(text, columns, lines)
     for name in ANGLE_COLUMNS:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 from ..files import write_atomic
+from ..limits import MAX_GEARBOX_RATIO, MAX_TURBINE_LENGTH
 from ._fast_format import (
     FastText,
     degrees_exact,
@@ -181,7 +182,15 @@ def read_elastodyn_main(path: str | Path) -> ElastoDynMain:
     )
 
 
+#: Bounds of the layout's lengths and the gearbox ratio (see :mod:`bladefem.limits`)
+BOUNDED = {**dict.fromkeys(("TipRad", "HubRad", "TowerHt", "TowerBsHt", "OverHang", "Twr2Shft", "HubCM"),
+                           MAX_TURBINE_LENGTH), "GBRatio": MAX_GEARBOX_RATIO}
+
+
 def _scalar(text: FastText, key: str, kind: str) -> float:
+    if key in BOUNDED and abs(text.float(key)) > BOUNDED[key]:
+        raise text.error(f"must be at most {BOUNDED[key]:g} in magnitude (see bladefem.limits), got "
+                         f"{text.string(key)}", text.line_of(key), key)
     if kind == "deg":
         return math.radians(text.float(key))
     if kind == "rpm":

@@ -12,12 +12,12 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..files import decode_utf8, read_input
 
 
 @dataclass(frozen=True)
@@ -42,10 +42,7 @@ class Schedule:
 def read_schedule(path: str | os.PathLike) -> Schedule:
     """The schedule of a file (module description); every mistake is an :class:`InputError` naming its line."""
     path = str(path)
-    try:
-        text = Path(path).read_text()
-    except OSError as error:
-        raise InputError(f"cannot read the schedule: {error.strerror or error}", file=path) from None
+    text = decode_utf8(read_input(path), path)
     rows: list[tuple[float, float, float]] = []
     for number, line in enumerate(text.splitlines(), start=1):
         words = line.replace(",", " ").split()

@@ -209,8 +209,12 @@ def parse_yaml(text: str, path: str = "<input>") -> tuple[Any, dict[Key, int]]:
         mark = getattr(error, "problem_mark", None)
         problem = getattr(error, "problem", None) or str(error).splitlines()[0]
         where = f" (column {mark.column + 1})" if mark is not None else ""
-        raise InputError(f"invalid YAML: {problem}{where}", file=path,
-                         line=None if mark is None else mark.line + 1) from None
+        line = None if mark is None else mark.line + 1
+        if isinstance(error, yaml.reader.ReaderError):      # a character YAML refuses: its position, no mark
+            code = error.character if isinstance(error.character, int) else ord(error.character[:1] or "\0")
+            problem = f"character U+{code:04X} is not allowed in YAML (a control character or not text)"
+            line = text[:error.position].count("\n") + 1
+        raise InputError(f"invalid YAML: {problem}{where}", file=path, line=line) from None
     return builder.root, builder.lines
 
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ...errors import SolveError
 from .kane import TurbineModel
 from .mode_names import name_modes, participation
 from .parameters import BLADE_DOFS
@@ -166,6 +167,9 @@ def modes_of(A: NDArray, coordinates: list[str], stiffness: NDArray, mass: NDArr
              ) -> tuple[list[LinearMode], list[str]]:
     """Modes (one per complex-conjugate pair and per real eigenvalue) sorted by frequency, named by their
     participation (:mod:`.mode_names`), and the names of the rigid-body motions (below :data:`RIGID_HZ`)."""
+    if not np.isfinite(A).all():
+        raise SolveError("the linearized state matrix holds infinite or undefined values: a stiffness, damping or "
+                         "inertia of the deck is too extreme for double precision")
     values, vectors = np.linalg.eig(A)
     m = len(coordinates)
     rows = []
