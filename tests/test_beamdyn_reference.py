@@ -1,0 +1,67 @@
+"""The IEA-15MW BeamDyn blade against OpenFAST v5.0.0 linearized with BeamDyn (tests/data/openfast/beamdyn): the
+straightened blade, parked, hub held, gravity off.
+
+BeamDyn is a geometrically exact beam with transverse shear. bladefem condenses the shear out of the section
+(Euler-Bernoulli with every coupling), so it sits above BeamDyn by what shear deformation is worth on this blade.
+Both halves of that statement are checked: a Timoshenko beam with the same six-by-six sections
+(tests/timoshenko_reference.py) reproduces BeamDyn, and bladefem's excess over BeamDyn is the excess it has over
+that Timoshenko beam. The tolerances: BeamDyn's own discretization changes the first six modes by up to 0.07 %
+from order_elem 10 to 14 (both stored), the Timoshenko reference is converged to 5e-5 at 40 elements; 0.3 % leaves
+room for the two codes' different interpolation of the 26 stations (BeamDyn's trapezoidal quadrature at the
+stations, linear interpolation here).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from iea15_beamdyn import DATA, key_points
+from timoshenko_reference import timoshenko_blade_frequencies
+
+from bladefem.builders.section_axes import full_sections_from_beamdyn
+from bladefem.modal import modes
+from bladefem.sections import Blade
+
+REFERENCE = Path(__file__).resolve().parent / "data" / "openfast" / "beamdyn" / "linearizations.json"
+
+
+def beamdyn(turbine: str, rpm: float, axis: str, order: int) -> np.ndarray:
+    runs = json.loads(REFERENCE.read_text())["runs"]
+    run = next(r for r in runs if (r["turbine"], r["rpm"], r["reference_axis"], r["order_elem"]) ==
+               (turbine, rpm, axis, order))
+    return np.array(run["frequencies_hz"])
+
+
+def straightened_iea15():
+    """The BeamDyn file's sections on the straightened axis the reference ran (key points' x and y set to 0, so
+    the length is the last key point's z, 117.0 m), the twist as the key points give it."""
+    lines = (DATA / "IEA-15-240-RWT_BeamDyn_blade.dat").read_text().splitlines()
+    start = next(i for i, line in enumerate(lines) if "DISTRIBUTED PROPERTIES" in line) + 1
+    rows = [[float(v) for v in line.split()] for line in lines[start:] if line.strip()]
+    eta = np.array([rows[i][0] for i in range(0, len(rows), 13)])
+    K = np.array([rows[i + 1:i + 7] for i in range(0, len(rows), 13)])
+    M = np.array([rows[i + 7:i + 13] for i in range(0, len(rows), 13)])
+    points = key_points()
+    span = eta * points[-1, 2]
+    twist = np.radians(np.interp(span, points[:, 2], points[:, 3]))
+    return full_sections_from_beamdyn(span, 0.5 * (K + np.swapaxes(K, 1, 2)), M, twist)
+
+
+def test_the_reference_is_converged_in_beamdyn_element_order():
+    coarse, fine = beamdyn("iea15", 0.0, "straight", 10), beamdyn("iea15", 0.0, "straight", 14)
+    assert np.max(np.abs(coarse[:6] / fine[:6] - 1)) < 1e-3
+
+
+def test_beamdyn_is_a_timoshenko_beam_and_bladefem_leaves_out_its_shear():
+    reference = beamdyn("iea15", 0.0, "straight", 14)[:6]
+    sections = straightened_iea15()
+    timoshenko = timoshenko_blade_frequencies(sections.span, sections.stiffness, sections.mass, sections.twist, 6, 40)
+    assert timoshenko == pytest.approx(reference, rel=3e-3)
+    result = modes(Blade(sections.table()), 0.0, 6)
+    assert result.kinds == ["flap", "edge", "flap", "edge", "flap", "torsion"]
+    excess = result.frequencies_hz / reference - 1
+    assert excess == pytest.approx(result.frequencies_hz / timoshenko - 1, abs=3e-3)
+    assert excess[0] > 0.015 and excess[2] > 0.04            # the named cause is large: shear deformation
