@@ -110,15 +110,15 @@ def hawc2_sections(subset: StSubset, body: MainBody | None, st_path: str = "") -
 
 
 def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
-                     precone: float = 0.0, pitch: float = 0.0) -> Blade:
+                     precone: float = 0.0, pitch: float = 0.0, sections: str = "full") -> Blade:
     """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
-    named in the notes)."""
-    sections = hawc2_sections(subset, body, st_path)
-    table, reduction = sections.table()
+    named in the notes); ``sections`` ``"full"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    six = hawc2_sections(subset, body, st_path)
+    table, reduction = six.table(sections)
     layout = "fully populated (FPM)" if subset.fpm else "isotropic"
     notes = [f"HAWC2 {layout} st file {Path(st_path).name or 'memory'}"]
     if body is not None:
-        notes.append(sections.curvature_note(f"HAWC2 blade (body '{body.name}', c2_def)")
+        notes.append(six.curvature_note(f"HAWC2 blade (body '{body.name}', c2_def)")
                      + "; sections moved along the chord from the half-chord line to the pitch axis (body z)")
     else:
         notes.append("HAWC2 st file without its htc: untwisted (give the .htc with the blade's c2_def for the twist)")

@@ -32,14 +32,17 @@ Dropped, and named with their size in :func:`reduction_notes`: the extension-twi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..sections import SectionTable
+from ..sections import FullSections, SectionTable
+from .section_axes import full_sections_from_beamdyn
 
+#: How six-by-six sections reach the FE: the whole matrices (default) or bladefem's diagonal reduction
+SECTION_MODELS = ("full", "reduced")
 #: Couplings and offsets smaller than this (fraction of sqrt(K_ii K_jj), or m) are not mentioned in the notes.
 NOTE_THRESHOLD = 0.01
 
@@ -248,9 +251,31 @@ class SixBySixBlade:
     lines: tuple[int, ...] | None = None
     field: str = ""
 
-    def table(self) -> tuple[SectionTable, list[str]]:
-        """bladefem's diagonal section table and the notes on what it drops (:func:`section_table`)."""
-        return section_table(self.span, self.stiffness, self.mass, self.twist, self.source, self.lines, self.field)
+    def full(self, chord: NDArray[np.float64] | None = None) -> FullSections:
+        """The whole six-by-six sections in bladefem's section frame (:mod:`bladefem.builders.section_axes`), with
+        the chord (m) at the stations for drawing."""
+        return full_sections_from_beamdyn(self.span, self.stiffness, self.mass, self.twist, source=self.source,
+                                          chord=chord)
+
+    def table(self, model: str = "full", chord: NDArray[np.float64] | None = None) -> tuple[SectionTable, list[str]]:
+        """The section table the FE takes and the notes on what it keeps and drops. ``model``: ``"full"`` (the
+        default) carries the whole six-by-six matrices (:class:`~bladefem.sections.FullSections`: every coupling,
+        the transverse shear condensed); ``"reduced"`` is bladefem's diagonal beam (:func:`section_table`), which
+        drops the couplings the notes name."""
+        if model not in SECTION_MODELS:
+            raise InputError(f"sections must be one of {', '.join(SECTION_MODELS)}, got '{model}'",
+                             field="--sections")
+        reduced, dropped = section_table(self.span, self.stiffness, self.mass, self.twist, self.source, self.lines,
+                                         self.field)
+        if model == "reduced":
+            if chord is not None:
+                reduced = replace(reduced, chord=chord)
+            return reduced, ["sections reduced (--sections reduced): " + dropped[0]] + dropped[1:]
+        kept = [note.split("neglected: ", 1)[1] for note in dropped if "neglected: " in note]
+        notes = ["full six-by-six sections in the FE (tension and shear centres, principal axes, extension-twist "
+                 "and bend-twist couplings, the whole section mass); transverse shear condensed (slender beam)"
+                 + (f"; --sections reduced (bladefem's diagonal beam) would drop {kept[0]}" if kept else "")]
+        return self.full(chord).table(), notes
 
     def curvature_note(self, what: str) -> str:
         return (f"{what}: straight beam of the reference axis's arc length {self.span[-1]:.6g} m (prebend up to "

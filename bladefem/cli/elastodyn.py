@@ -19,6 +19,7 @@ from typing import Any
 
 from ..errors import InputError
 from . import options
+from .inputs import add_sections_option
 
 DEFAULT_BLADE_NODES = 17
 DEFAULT_TOWER_NODES = 20
@@ -73,6 +74,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     geometry.add_argument("--top-mass", type=options.non_negative, metavar="KG", help="tower-top point mass, kg")
     geometry.add_argument("--htc", metavar="FILE",
                           help="HAWC2 .htc file whose blade body (c2_def) gives a HAWC2 st INPUT its twist")
+    add_sections_option(geometry)
     parser.set_defaults(run=run)
 
 
@@ -144,7 +146,8 @@ def run(args: argparse.Namespace) -> int:
     kind = detect_format(args.input)
     wanted = _part(args)
     geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
-                        tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc)
+                        tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc,
+                        sections=args.sections)
     model = read_model(args.input, wanted, geometry)
     part = "blade" if isinstance(model, Blade) else "tower"
     if wanted is not None and part != wanted:
