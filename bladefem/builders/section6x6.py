@@ -9,7 +9,8 @@ frame turned by the twist. bladefem's section frame is ``eta = -y`` (toward the 
 The reduction (what today's beam can hold, per station):
 
 1. The transverse shear is condensed (shear forces zero, the slender-beam limit):
-   ``Kc = K[2:, 2:] - K[2:, :2] K[:2, :2]^-1 K[:2, 2:]``; without shear stiffness the block is kept as it is.
+   ``Kc = K[2:, 2:] - K[2:, :2] K[:2, :2]^-1 K[:2, 2:]``; without shear stiffness the block is kept as it is
+   (:func:`bladefem.sections.full_section.condensed`, the one definition, through the axes' mapping).
 2. Tension centre from the axial-bending coupling, ``y_C = Kc34 / EA``, ``x_C = -Kc35 / EA`` (the convention of
    openfast_toolbox converters/beam.py ``KK``: ``K34 = EA y_C``, ``K35 = -EA x_C``); the bending stiffness about it
    is the Schur complement ``H = Kc[4:6, 4:6] - Kc[4:6, 3] Kc[3, 4:6] / EA``.
@@ -38,8 +39,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..sections import FullSections, SectionTable
-from .section_axes import full_sections_from_beamdyn
+from ..sections import FullSections, SectionTable, full_section
+from .section_axes import from_beamdyn_axes, full_sections_from_beamdyn
 
 #: How six-by-six sections reach the FE: the whole matrices (default) or bladefem's diagonal reduction
 SECTION_MODELS = ("full", "reduced")
@@ -66,22 +67,22 @@ class Reduced:
     dropped: dict[str, NDArray[np.float64]]
 
 
-def condensed(K: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The 4x4 (extension, bending x, bending y, torsion) with the shear condensed out, shape (..., 4, 4)."""
-    shear = K[..., :2, :2]
-    out = K[..., 2:, 2:].copy()
-    has = np.linalg.det(shear) > 0
-    if np.any(has):
-        coupling = K[has][:, :2, 2:]
-        out[has] -= np.swapaxes(coupling, -1, -2) @ np.linalg.solve(shear[has], coupling)
-    return out
+def _classical_in_beamdyn_axes(K: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The 4x4 (extension, bending x, bending y, torsion) in BeamDyn's axes with the shear condensed out, shape
+    (n, 4, 4): :func:`bladefem.sections.full_section.condensed` taken through the axes' mapping."""
+    C = np.moveaxis(full_section.condensed(np.moveaxis(from_beamdyn_axes(K), 0, -1)), -1, 0)
+    # bladefem's classical strains (epsilon, kappa_x, kappa_eta, kappa_zeta) are BeamDyn's (extension, torsion,
+    # -bending about y, bending about x)
+    S = np.zeros((4, 4))
+    S[0, 0], S[1, 3], S[2, 2], S[3, 1] = 1.0, 1.0, -1.0, 1.0
+    return S @ C @ S.T
 
 
 def reduce(K: NDArray[np.float64], M: NDArray[np.float64]) -> Reduced:
     """Reduce (n, 6, 6) stiffness and mass matrices (BeamDyn's axes) to bladefem's diagonal section."""
     K = np.asarray(K, dtype=float)
     M = np.asarray(M, dtype=float)
-    Kc = condensed(K)
+    Kc = _classical_in_beamdyn_axes(K)
     EA = Kc[:, 0, 0]
     axial = EA > 0
     safe = np.where(axial, EA, 1.0)
@@ -175,58 +176,6 @@ def section_table(span: NDArray[np.float64], K: NDArray[np.float64], M: NDArray[
     if table.torsion_stiffness is None:
         notes.append("no torsional stiffness (K66) at every station: torsionally rigid")
     return table, notes
-
-
-def translation(x: NDArray[np.float64] | float, y: NDArray[np.float64] | float) -> NDArray[np.float64]:
-    """``T`` with ``T^T K T`` the section matrix ``K`` taken about the point (x, y) instead of the origin (the
-    convention of openfast_toolbox converters/beam.py ``CrossSectionTranslationMatrix``), shape (..., 6, 6)."""
-    x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
-    T = np.broadcast_to(np.eye(6), x.shape + (6, 6)).copy()
-    T[..., 0, 5], T[..., 1, 5], T[..., 2, 3], T[..., 2, 4] = y, -x, -y, x
-    return T
-
-
-def rotation(angle: NDArray[np.float64] | float) -> NDArray[np.float64]:
-    """``R`` with ``R K R^T`` the section matrix in axes turned by ``angle`` (rad) about +z (openfast_toolbox
-    ``CrossSectionRotationMatrix``), shape (..., 6, 6)."""
-    angle = np.asarray(angle, dtype=float)
-    c, s = np.cos(angle), np.sin(angle)
-    R = np.zeros(angle.shape + (6, 6))
-    for k in (0, 3):
-        R[..., k, k] = R[..., k + 1, k + 1] = c
-        R[..., k, k + 1], R[..., k + 1, k] = s, -s
-        R[..., k + 2, k + 2] = 1.0
-    return R
-
-
-def about_reference(K: NDArray[np.float64], x: NDArray[np.float64], y: NDArray[np.float64],
-                    angle: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Section matrices given about the point (x, y) in axes turned by ``angle`` (rad), taken back to the origin
-    and the reference axes."""
-    R = rotation(angle)
-    T = translation(-np.asarray(x), -np.asarray(y))
-    return np.swapaxes(T, -1, -2) @ np.swapaxes(R, -1, -2) @ K @ R @ T
-
-
-def stiffness_matrix(EA, EI_x, EI_y, GJ, GA_x, GA_y, tension_centre, shear_centre, angle) -> NDArray[np.float64]:
-    """(n, 6, 6) stiffness about the origin from principal-axis properties: extension and bending about the tension
-    centre (x, y) in axes turned by ``angle``; shear and torsion about the shear centre in the same axes."""
-    EA = np.asarray(EA, dtype=float)
-    bending = np.zeros(EA.shape + (6, 6))
-    bending[..., 2, 2], bending[..., 3, 3], bending[..., 4, 4] = EA, EI_x, EI_y
-    shear = np.zeros_like(bending)
-    shear[..., 0, 0], shear[..., 1, 1], shear[..., 5, 5] = GA_x, GA_y, GJ
-    return (about_reference(bending, *tension_centre, angle) + about_reference(shear, *shear_centre, angle))
-
-
-def mass_matrix(m, x_g, y_g, i_x, i_y, angle) -> NDArray[np.float64]:
-    """(n, 6, 6) mass matrix about the origin (BeamDyn's form, input_files.rst) from the mass per length ``m``, the
-    centre of mass (x_g, y_g) and the rotary inertias about it, ``i_x`` and ``i_y`` about axes turned by ``angle``."""
-    m = np.asarray(m, dtype=float)
-    local = np.zeros(m.shape + (6, 6))
-    local[..., 0, 0] = local[..., 1, 1] = local[..., 2, 2] = m
-    local[..., 3, 3], local[..., 4, 4], local[..., 5, 5] = i_x, i_y, np.asarray(i_x) + np.asarray(i_y)
-    return about_reference(local, x_g, y_g, angle)
 
 
 @dataclass(frozen=True, eq=False)

@@ -40,6 +40,13 @@ def from_beamdyn_axes(matrices: NDArray[np.float64]) -> NDArray[np.float64]:
     return P @ np.asarray(matrices, dtype=float) @ P.T
 
 
+def to_beamdyn_axes(matrices: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Section matrices (..., 6, 6) in bladefem's axes and order, in BeamDyn's (the inverse of
+    :func:`from_beamdyn_axes`)."""
+    P = beamdyn_permutation()
+    return P.T @ np.asarray(matrices, dtype=float) @ P
+
+
 def full_sections_from_beamdyn(span: NDArray[np.float64], stiffness: NDArray[np.float64],
                                mass: NDArray[np.float64], twist: NDArray[np.float64],
                                source: str = "", chord: NDArray[np.float64] | None = None) -> FullSections:

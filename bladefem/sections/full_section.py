@@ -77,10 +77,19 @@ def _transfer(eta: float, zeta: float) -> NDArray:
     return A
 
 
+def about_reference(matrix: NDArray, point: tuple[float, float] = (0.0, 0.0), angle: float = 0.0) -> NDArray:
+    """A 6x6 section matrix given about ``point`` ``(eta, zeta)`` (m) in axes turned by ``angle`` (rad, like the
+    twist) from the section axes, taken to the reference axis in the section axes: ``A^T R K R^T A`` (``R`` turns
+    force and moment components, ``A`` moves the strains, :func:`_transfer`)."""
+    turned, A = _rotation6(angle), _transfer(*point)
+    return A.T @ turned @ np.asarray(matrix, dtype=float) @ turned.T @ A
+
+
 def stiffness_matrix(axial: float, torsion: float, flap: float, edge: float, shear_chord: float,
                      shear_normal: float, tension_centre: tuple[float, float] = (0.0, 0.0),
                      principal_angle: float = 0.0, shear_centre: tuple[float, float] = (0.0, 0.0),
-                     extension_twist: float = 0.0, flap_twist: float = 0.0, edge_twist: float = 0.0) -> NDArray:
+                     extension_twist: float = 0.0, flap_twist: float = 0.0, edge_twist: float = 0.0,
+                     shear_angle: float = 0.0) -> NDArray:
     """The 6x6 section stiffness about the reference axis from engineering constants.
 
     axial : EA, N; torsion : GJ about the shear centre, N m^2
@@ -89,13 +98,12 @@ def stiffness_matrix(axial: float, torsion: float, flap: float, edge: float, she
     shear_chord, shear_normal : shear stiffnesses k GA along ``eta`` and ``zeta`` at the shear centre, N
     tension_centre, shear_centre : ``(eta, zeta)`` positions, m
     principal_angle : the principal axes turned from the section axes, rad (positive like the twist)
+    shear_angle : the axes of the two shear stiffnesses turned from the section axes, rad (HAWC2 gives them in the
+        principal axes)
     extension_twist : K[0, 3], N m; flap_twist, edge_twist : K[3, 4], K[3, 5], N m^2 (about the reference axis)
     """
-    turned = _rotation6(principal_angle)
-    bending = turned @ np.diag([axial, 0.0, 0.0, 0.0, flap, edge]) @ turned.T
-    shear = np.diag([0.0, shear_chord, shear_normal, torsion, 0.0, 0.0])
-    A_t, A_s = _transfer(*tension_centre), _transfer(*shear_centre)
-    K = A_t.T @ bending @ A_t + A_s.T @ shear @ A_s
+    K = (about_reference(np.diag([axial, 0.0, 0.0, 0.0, flap, edge]), tension_centre, principal_angle)
+         + about_reference(np.diag([0.0, shear_chord, shear_normal, torsion, 0.0, 0.0]), shear_centre, shear_angle))
     K[0, 3] += extension_twist
     K[3, 4] += flap_twist
     K[3, 5] += edge_twist
@@ -129,11 +137,15 @@ def _assembled_mass(m: NDArray, S: NDArray, J: NDArray) -> NDArray:
 
 def condensed(K: NDArray) -> NDArray:
     """The classical 4x4 over ``(epsilon, kappa_x, kappa_eta, kappa_zeta)``: the Schur complement of the shear
-    block of the 6x6 ``K`` (leading axes (6, 6), any trailing axes)."""
+    block of the 6x6 ``K`` (leading axes (6, 6), any trailing axes). A section without shear stiffness (a zero or
+    singular shear block: files that give none mean the beam is rigid in shear) keeps its classical block."""
     K = np.moveaxis(np.asarray(K, dtype=float), (0, 1), (-2, -1))
     c, s = np.ix_(CLASSICAL, CLASSICAL), np.ix_(SHEAR, SHEAR)
-    Kcs = K[..., list(CLASSICAL), :][..., list(SHEAR)]
-    C = K[(...,) + c] - Kcs @ np.linalg.solve(K[(...,) + s], np.swapaxes(Kcs, -1, -2))
+    shear = K[(...,) + s]
+    has = np.linalg.det(shear) > 0
+    Kcs = K[..., list(CLASSICAL), :][..., list(SHEAR)] * has[..., None, None]
+    shear = np.where(has[..., None, None], shear, np.eye(2))
+    C = K[(...,) + c] - Kcs @ np.linalg.solve(shear, np.swapaxes(Kcs, -1, -2))
     return np.moveaxis(C, (-2, -1), (0, 1))
 
 
