@@ -40,6 +40,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..sections import FullSections, SectionTable, full_section
+from ..sections.principal import principal_axes
 from .section_axes import from_beamdyn_axes, full_sections_from_beamdyn
 
 #: How six-by-six sections reach the FE: the whole matrices (default) or bladefem's diagonal reduction
@@ -90,11 +91,12 @@ def reduce(K: NDArray[np.float64], M: NDArray[np.float64]) -> Reduced:
     x_c = np.where(axial, -Kc[:, 0, 2] / safe, 0.0)
     H = Kc[:, 1:3, 1:3] - np.where(axial, 1.0, 0.0)[:, None, None] * (
         Kc[:, 1:3, 0][:, :, None] * Kc[:, 0, 1:3][:, None, :]) / safe[:, None, None]
-    difference = H[:, 0, 0] - H[:, 1, 1]
-    theta = 0.5 * np.arctan2(2 * H[:, 0, 1], np.abs(difference)) * np.where(difference < 0, -1.0, 1.0)
+    # bladefem's (kappa_eta, kappa_zeta) are BeamDyn's (-bending about y, bending about x); theta turns about +z,
+    # the principal angle about -z (like the twist)
+    B = np.stack([np.stack([H[:, 1, 1], -H[:, 0, 1]], -1), np.stack([-H[:, 0, 1], H[:, 0, 0]], -1)], -2)
+    angle, flap, edge = principal_axes(B)
+    theta = -angle
     c, s = np.cos(theta), np.sin(theta)
-    edge = c**2 * H[:, 0, 0] + 2 * c * s * H[:, 0, 1] + s**2 * H[:, 1, 1]
-    flap = s**2 * H[:, 0, 0] - 2 * c * s * H[:, 0, 1] + c**2 * H[:, 1, 1]
     m = M[:, 0, 0]
     y_g = M[:, 2, 3] / m
     x_g = -M[:, 2, 4] / m

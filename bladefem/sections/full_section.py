@@ -33,7 +33,7 @@ mark a step (the value above it is taken there).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -289,7 +289,7 @@ class FullSections:
         axes, is in the matrices only), the chordwise tension-centre and centre-of-mass offsets, the inertias about
         the centre of mass in the section axes."""
         C = np.moveaxis(condensed(np.moveaxis(self.stiffness, 0, -1)), -1, 0)         # (n, 4, 4)
-        bending = C[:, 2:, 2:] - C[:, 2:, :2] @ np.linalg.solve(C[:, :2, :2], C[:, :2, 2:])
+        bending = self.bending()
         M = np.moveaxis(self.mass, 0, -1)
         m = M[0, 0]
         c = first_moment(M) / m
@@ -300,6 +300,12 @@ class FullSections:
                     flap_inertia=np.maximum(J[2, 2], 0.0), edge_inertia=np.maximum(J[1, 1], 0.0),  # round-off of m c^2
                     twist=self.twist)
 
+    def bending(self) -> NDArray:
+        """(stations, 2, 2) bending stiffness over the curvatures ``(kappa_eta, kappa_zeta)`` about the tension
+        centre, extension and twist free (axial force and torque zero), in the section axes, N m^2."""
+        C = np.moveaxis(condensed(np.moveaxis(self.stiffness, 0, -1)), -1, 0)
+        return C[:, 2:, 2:] - C[:, 2:, :2] @ np.linalg.solve(C[:, :2, :2], C[:, :2, 2:])
+
     def table(self) -> SectionTable:
         """A :class:`~bladefem.sections.table.SectionTable` that carries these sections (the FE takes stiffness
         and mass from them) with the summary columns (:meth:`summary`)."""
@@ -307,6 +313,16 @@ class FullSections:
 
         return SectionTable(span=self.span, chord=self.chord, pitch_axis=self.pitch_axis, full=self,
                             source=self.source, **self.summary())
+
+    def with_stiffness_scaled(self, strain: int, factor: float | NDArray) -> FullSections:
+        """A copy whose stiffness for generalised strain ``strain`` (0 extension, 3 twist rate, 4 and 5 the
+        curvatures about ``eta`` and ``zeta``) is multiplied by ``factor`` (one number or one per station): the
+        diagonal entry by ``factor``, its couplings by ``sqrt(factor)``, so every coupling coefficient
+        ``K_ij / sqrt(K_ii K_jj)`` and the positive definiteness are kept (``K' = D K D``)."""
+        root = np.broadcast_to(np.sqrt(np.asarray(factor, dtype=float)), self.span.shape)
+        D = np.ones((len(self.span), 6))
+        D[:, strain] = root
+        return replace(self, stiffness=D[:, :, None] * self.stiffness * D[:, None, :])
 
     def scaled(self, mass: float = 1.0, stiffness: float = 1.0) -> FullSections:
         """A copy with the mass and stiffness matrices multiplied by the given factors."""
