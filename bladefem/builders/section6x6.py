@@ -23,8 +23,10 @@ The reduction (what today's beam can hold, per station):
 6. Shear centre (kept for reference in the table) from ``K[:3, :3]^-1 K[:3, 3:]`` (openfast_toolbox
    ``ComputeShearCenter``).
 
-:class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis), the
-record a full six-by-six beam model takes; its ``table()`` is this reduction.
+:class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis). Its
+``table()`` gives the FE the whole matrices by default (:meth:`SixBySixBlade.full`, through
+:mod:`bladefem.builders.section_axes` onto :class:`~bladefem.sections.FullSections`); ``table("reduced")`` is this
+reduction.
 
 Dropped, and named with their size in :func:`reduction_notes`: the extension-twist and bend-twist couplings left in
 ``Kc`` (36, 46, 56 after the principal rotation), the thickness-wise tension-centre and centre-of-mass offsets
