@@ -15,11 +15,12 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from bladefem.builders.detect import read_model
 from bladefem.modal import modes
 from bladefem.sections import Blade, FullSections, full_sections_from_table
-from bladefem.sections.full_section import CLASSICAL, SHEAR, condensed
+from bladefem.sections.full_section import CLASSICAL, SHEAR, about_reference, condensed
 
 DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
 #: the first six modes, by kind and order
@@ -94,17 +95,30 @@ def decoupled_torsion(full: FullSections) -> FullSections:
     return replace(full, stiffness=K)
 
 
+def in_frame_of(full: FullSections, matrices: NDArray, twist: NDArray) -> NDArray:
+    """Section matrices given in a frame turned by ``twist`` (rad), in the section frame of ``full``."""
+    return np.array([about_reference(m, (0.0, 0.0), d) for m, d in zip(matrices, twist - full.twist)])
+
+
 def contributions(turbine: str = "IEA-15MW", source: str = "BeamDyn", rpm: float = 0.0) -> dict[str, tuple]:
-    """First six frequencies of: the full sections; the full stiffness with the reduction's mass; the full mass
-    with the twist rate uncoupled; the reduction written back as six-by-six matrices; the reduction."""
+    """First six frequencies of: the full sections; the full stiffness with the reduction's mass; the reduction's
+    stiffness with the full mass; the full mass turned with the principal axes (as the diagonal beam, whose one
+    angle turns both, places it); the full sections with the twist rate uncoupled; the reduction written back as
+    six-by-six matrices; the reduction. The reduction's matrices are turned into the full sections' frame (the
+    reduction's twist holds the principal angle)."""
     full_blade = blade(turbine, source, "full")
     reduced_blade = blade(turbine, source, "reduced")
     full = full_blade.sections.full
     as_matrices = full_sections_from_table(reduced_blade.sections)
     variants = {
         "full six-by-six": full_blade,
-        "full stiffness, reduced mass": with_sections(full_blade, replace(full, mass=as_matrices.mass)),
-        "full mass, twist uncoupled": with_sections(full_blade, decoupled_torsion(full)),
+        "full stiffness, reduced mass": with_sections(full_blade, replace(
+            full, mass=in_frame_of(full, as_matrices.mass, as_matrices.twist))),
+        "reduced stiffness, full mass": with_sections(full_blade, replace(
+            full, stiffness=in_frame_of(full, as_matrices.stiffness, as_matrices.twist))),
+        "full, mass turned with the principal axes": with_sections(full_blade, replace(
+            full, mass=in_frame_of(full, full.mass, reduced_blade.sections.twist))),
+        "full, twist uncoupled": with_sections(full_blade, decoupled_torsion(full)),
         "reduced, as six-by-six matrices": with_sections(full_blade, as_matrices),
         "reduced (diagonal beam)": reduced_blade,
     }
