@@ -52,7 +52,8 @@ def test_document_tables_are_current(computed):
 
 def test_document_claims_hold(computed):
     by = {(r.turbine, r.source, r.sections, r.rpm > 0): np.array(r.hz) for r in computed}
-    # the section model moves the IEA-15MW's first six by under 0.1 % (measured 0.08 %, HAWC2 torsion), the IEA-22MW's bending by up to 0.21 % (held to 0.25 %)
+    # the section model moves the IEA-15MW's first six by under 0.1 % (measured 0.08 %, HAWC2 torsion), the
+    # IEA-22MW's bending by up to 0.21 % (held to 0.25 %)
     for source in iea_blades.INPUTS["IEA-15MW"]:
         for rated in (False, True):
             full, reduced = by[("IEA-15MW", source, "full", rated)], by[("IEA-15MW", source, "reduced", rated)]

@@ -147,3 +147,25 @@ def test_sections_option_on_the_command_line():
     assert "sections reduced (--sections reduced)" in reduced.stdout
     bad = run("--sections", "diagonal")
     assert bad.returncode == 2
+
+
+def test_a_section_the_full_model_cannot_take_is_refused_with_its_line_and_the_way_out(tmp_path):
+    # station 1 without shear stiffness (rows and columns 1 and 2 zero): the reduction condenses it (a shear-rigid
+    # section), the full model needs a positive definite 6x6 and refuses it naming the station's line and the option
+    for name in (BD15.name, "IEA-15-240-RWT_BeamDyn_blade.dat"):
+        (tmp_path / name).write_text((BD15.parent / name).read_text())
+    blade_file = tmp_path / "IEA-15-240-RWT_BeamDyn_blade.dat"
+    lines = blade_file.read_text().splitlines()
+    first = next(i for i, line in enumerate(lines) if "DISTRIBUTED PROPERTIES" in line) + 2       # K row 1
+    for row in range(6):
+        values = lines[first + row].split()
+        for column in range(6):
+            if row < 2 or column < 2:
+                values[column] = "0.0"
+        lines[first + row] = "  ".join(values)
+    blade_file.write_text("\n".join(lines) + "\n")
+    with pytest.raises(InputError, match="--sections reduced") as error:
+        read_model(tmp_path / BD15.name)
+    # the station's line (its eta, 1-based: the line before K row 1)
+    assert error.value.line == first and error.value.file.endswith("IEA-15-240-RWT_BeamDyn_blade.dat")
+    assert read_model(tmp_path / BD15.name, sections="reduced").sections.full is None

@@ -35,6 +35,7 @@ Dropped, and named with their size in :func:`reduction_notes`: the extension-twi
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -228,7 +229,15 @@ class SixBySixBlade:
         notes = ["full six-by-six sections in the FE (tension and shear centres, principal axes, extension-twist "
                  "and bend-twist couplings, the whole section mass); transverse shear condensed (slender beam)"
                  + (f"; --sections reduced (bladefem's diagonal beam) would drop {kept[0]}" if kept else "")]
-        return self.full(chord).table(), notes
+        try:
+            full = self.full(chord)
+        except InputError as error:
+            station = re.search(r"\(station (\d+)\)", error.message)
+            line = self.lines[int(station.group(1)) - 1] if station and self.lines else error.line
+            raise InputError(f"{error.message}: the whole section cannot go into the FE (--sections reduced "
+                             "condenses it to bladefem's diagonal beam)", file=error.file, line=line,
+                             field=self.field or error.field) from None
+        return full.table(), notes
 
     def curvature_note(self, what: str) -> str:
         return (f"{what}: straight beam of the reference axis's arc length {self.span[-1]:.6g} m (prebend up to "

@@ -21,7 +21,6 @@ The curvature of the reference axis (prebend, sweep) is not modelled: the beam i
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
