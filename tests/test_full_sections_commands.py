@@ -62,6 +62,13 @@ requirements:
     assert done.returncode == 0, done.stdout + done.stderr
     spec.write_text(spec.read_text().replace("[0.50, 0.56]", "[0.60, 0.70]"))
     assert bladefem("check", str(spec)).returncode == 1
+    # the spec chooses the section model like --sections; a value outside the two is a schema error (exit 2)
+    reduced = spec.read_text().replace("operating_rpm", "sections: reduced, operating_rpm")
+    spec.write_text(reduced.replace("[0.60, 0.70]", "[0.50, 0.56]"))
+    assert bladefem("check", str(spec)).returncode == 0
+    spec.write_text(reduced.replace("sections: reduced", "sections: diagonal"))
+    done = bladefem("check", str(spec))
+    assert done.returncode == 2 and "sections" in done.stderr
 
 
 def test_elastodyn_reduction_of_full_sections():
