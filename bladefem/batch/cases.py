@@ -73,7 +73,29 @@ def station_fractions(model: Path, main: Path | None) -> np.ndarray:
     return sections.span / sections.length
 
 
+#: the generalised strain of each stiffness column in six-by-six sections (:mod:`bladefem.sections.full_section`)
+FULL_STRAINS = {"axial_stiffness": 0, "torsion_stiffness": 3, "flap_stiffness": 4, "edge_stiffness": 5}
+
+
+def _scaled_full(sections: Any, name: str, factor: Any) -> Any:
+    """Six-by-six sections scaled: ``mass`` the whole mass matrix, ``stiffness`` the whole stiffness, a stiffness
+    column its strain's diagonal entry (its couplings by the square root: the coupling coefficients kept; flap and
+    edge are the bending about the section's chordwise and thickness axes)."""
+    full = sections.full
+    factor = np.broadcast_to(np.asarray(factor, dtype=float), sections.span.shape)
+    if name == "mass":
+        return replace(full, mass=full.mass * factor[:, None, None]).table()
+    if name == "stiffness":
+        return replace(full, stiffness=full.stiffness * factor[:, None, None]).table()
+    if name in FULL_STRAINS:
+        return full.with_stiffness_scaled(FULL_STRAINS[name], factor).table()
+    raise InputError(f"six-by-six sections have no '{name}' column to scale (their rotary inertias are in the mass "
+                     "matrix: mass_scale scales it whole)", field=f"{name}_scale")
+
+
 def _scaled(sections: Any, name: str, factor: Any) -> Any:
+    if sections.full is not None:
+        return _scaled_full(sections, name, factor)
     names = STIFFNESSES if name == "stiffness" else (name,)
     changes = {}
     for column in names:

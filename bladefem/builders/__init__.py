@@ -4,10 +4,11 @@ where axes, units, reductions and defaults are decided.
 
 :func:`bladefem.builders.detect.read_model` chooses the reader by extension and content;
 :func:`bladefem.builders.openfast_fst.read_openfast_deck` reads a whole OpenFAST deck (AeroDyn, airfoil polars,
-InflowWind, ServoDyn onto the aerodynamic and control records). :mod:`.section6x6` reduces a six-by-six section
-(BeamDyn's axes) to bladefem's diagonal section and names what it drops; :mod:`.beamdyn` and :mod:`.hawc2` map those
-formats' records onto a :class:`~bladefem.sections.Blade`; :mod:`.section_axes` maps six-by-six sections in
-BeamDyn's axes onto bladefem's :class:`~bladefem.sections.FullSections` (the whole section in the FE).
+InflowWind, ServoDyn onto the aerodynamic and control records). :mod:`.section6x6` holds every six-by-six blade
+(BeamDyn's axes) and gives the FE its sections: whole by default, through the one mapping of :mod:`.section_axes`
+onto bladefem's :class:`~bladefem.sections.FullSections`, or reduced to bladefem's diagonal section with the notes
+on what that drops (``sections="reduced"``); :mod:`.beamdyn`, :mod:`.hawc2` and :mod:`.windio_model` map those
+formats' records onto a :class:`~bladefem.sections.Blade`.
 """
 
 __all__: list[str] = []

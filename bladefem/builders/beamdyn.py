@@ -3,9 +3,9 @@
 The length is the arc length of the key points' polyline (BeamDyn fits a curve through them; the difference is the
 chord error of that polyline); the stations sit at ``eta`` times that length. The twist is BeamDyn's
 ``initial_twist`` interpolated in arc length: positive turns the leading edge upwind in both codes (BeamDyn twists
-about -z, docs/source/user/beamdyn/input_files.rst). The 6x6 sections are reduced by
-:mod:`bladefem.builders.section6x6`; the curvature of the reference axis (prebend ``kp_xr``, sweep ``kp_yr``) is
-named in the notes, the blade is straight.
+about -z, docs/source/user/beamdyn/input_files.rst). The 6x6 sections go to the FE whole (or, on request,
+reduced) by :mod:`bladefem.builders.section6x6`; the curvature of the reference axis (prebend ``kp_xr``, sweep
+``kp_yr``) is named in the notes, the blade is straight.
 """
 
 from __future__ import annotations
@@ -34,12 +34,13 @@ def beamdyn_sections(primary: BeamDynPrimary, blade: BeamDynBlade) -> SixBySixBl
 
 
 def blade_from_beamdyn(primary: BeamDynPrimary, blade: BeamDynBlade, hub_radius: float = 0.0,
-                       precone: float = 0.0, pitch: float = 0.0) -> Blade:
-    """The blade of a BeamDyn primary and blade file; hub radius in m (BeamDyn has none), angles in rad."""
-    sections = beamdyn_sections(primary, blade)
-    table, notes = sections.table()
-    notes = [sections.curvature_note(f"BeamDyn blade from {Path(primary.path).name or 'memory'} and "
-                                     f"{Path(blade.path).name or 'memory'}")] + notes
+                       precone: float = 0.0, pitch: float = 0.0, sections: str = "full") -> Blade:
+    """The blade of a BeamDyn primary and blade file; hub radius in m (BeamDyn has none), angles in rad;
+    ``sections`` ``"full"`` (the whole 6x6 in the FE) or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    six = beamdyn_sections(primary, blade)
+    table, notes = six.table(sections)
+    notes = [six.curvature_note(f"BeamDyn blade from {Path(primary.path).name or 'memory'} and "
+                                f"{Path(blade.path).name or 'memory'}")] + notes
     if hub_radius == 0.0:
         notes.append("hub radius 0 (BeamDyn files do not give it: --hub-radius sets it)")
     return Blade(sections=table, hub_radius=hub_radius, precone=precone, pitch=pitch,

@@ -31,7 +31,9 @@ from ..formats.hawc2_htc import MainBody
 from ..formats.hawc2_st import StSubset
 from ..sections import Blade
 from .beamdyn import key_point_arc_length
-from .section6x6 import SixBySixBlade, about_reference, mass_matrix, stiffness_matrix
+from ..sections.full_section import about_reference, mass_matrix, stiffness_matrix
+from .section6x6 import SixBySixBlade
+from .section_axes import from_beamdyn_axes, to_beamdyn_axes
 
 #: HAWC2 section axes -> BeamDyn's, for vectors (forces, moments): (x, y, z)_BD = Q (x, y, z)_H2
 Q3 = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
@@ -39,9 +41,10 @@ Q = np.kron(np.eye(2), Q3)
 
 
 def _inertia_about_centre_of_mass(subset: StSubset) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Principal rotary inertias about the centre of mass (kg m) and their axes' angle (rad, about +z, BeamDyn's
-    axes) from the radii of gyration, which the format gives about the elastic centre in the principal bending axes
-    (``ri_y`` for rotation about BeamDyn's ``x``): turned to the section axes and moved to the centre of mass by the
+    """Rotary inertias per length about the centre of mass in the section axes (kg m): edgewise (rotation about
+    BeamDyn's ``x``), flapwise (about ``y``) and the product term (BeamDyn's mass-matrix entry ``M45``), from the
+    radii of gyration, which the format gives about the elastic centre in the principal bending axes (``ri_y`` for
+    rotation about BeamDyn's ``x``): turned to the section axes and moved to the centre of mass by the
     parallel-axis theorem (which adds a product of inertia)."""
     c = subset.column
     m, pitch = c("m"), np.radians(c("pitch"))
@@ -52,32 +55,29 @@ def _inertia_about_centre_of_mass(subset: StSubset) -> tuple[np.ndarray, np.ndar
     turn[:, 0, 0], turn[:, 0, 1], turn[:, 1, 0], turn[:, 1, 1] = cos, sin, -sin, cos
     section = np.swapaxes(turn, 1, 2) @ about_elastic @ turn          # the mass matrix's rotary block about E
     dx, dy = c("y_cg") - c("y_e"), -(c("x_cg") - c("x_e"))           # centre of mass from the elastic centre
-    section[:, 0, 0] -= m * dy**2
-    section[:, 1, 1] -= m * dx**2
-    section[:, 0, 1] += m * dx * dy
-    section[:, 1, 0] += m * dx * dy
-    difference = section[:, 0, 0] - section[:, 1, 1]
-    angle = 0.5 * np.arctan2(2 * section[:, 0, 1], np.abs(difference)) * np.where(difference < 0, -1.0, 1.0)
-    cos, sin = np.cos(angle), np.sin(angle)
-    i_x = cos**2 * section[:, 0, 0] + 2 * cos * sin * section[:, 0, 1] + sin**2 * section[:, 1, 1]
-    i_y = sin**2 * section[:, 0, 0] - 2 * cos * sin * section[:, 0, 1] + cos**2 * section[:, 1, 1]
-    return i_x, i_y, angle
+    return section[:, 0, 0] - m * dy**2, section[:, 1, 1] - m * dx**2, section[:, 0, 1] + m * dx * dy
 
 
 def sections_in_beamdyn_axes(subset: StSubset) -> tuple[np.ndarray, np.ndarray]:
-    """(n, 6, 6) stiffness and mass of a subset, about the half-chord point in BeamDyn's axes."""
+    """(n, 6, 6) stiffness and mass of a subset, about the half-chord point in BeamDyn's axes. Built in
+    bladefem's section axes (:mod:`bladefem.sections.full_section`), where HAWC2's ``(x, y)`` is ``(eta, zeta)``
+    and its structural pitch, a turn about +z, is minus bladefem's principal angle."""
     c = subset.column
-    pitch = np.radians(c("pitch"))
+    angle = -np.radians(c("pitch"))
     m = c("m")
-    mass = mass_matrix(m, c("y_cg"), -c("x_cg"), *_inertia_about_centre_of_mass(subset))
+    edge, flap, product = _inertia_about_centre_of_mass(subset)
+    mass = np.array([mass_matrix(m[i], (c("x_cg")[i], c("y_cg")[i]), flap[i], edge[i], product[i])
+                     for i in range(len(m))])
     if subset.fpm:
-        stiffness_h2 = about_reference(subset.stiffness(), c("x_e"), c("y_e"), pitch)
-        stiffness = Q @ stiffness_h2 @ Q.T
+        local = from_beamdyn_axes(Q @ subset.stiffness() @ Q.T)
+        stiffness = np.array([about_reference(k, (e, z), a) for k, e, z, a in zip(local, c("x_e"), c("y_e"), angle)])
     else:
         E, G, A = c("E"), c("G"), c("A")
-        stiffness = stiffness_matrix(E * A, E * c("I_y"), E * c("I_x"), G * c("I_p"), c("k_y") * G * A,
-                                     c("k_x") * G * A, (c("y_e"), -c("x_e")), (c("y_sh"), -c("x_sh")), pitch)
-    return stiffness, mass
+        stiffness = np.array([stiffness_matrix(
+            E[i] * A[i], G[i] * c("I_p")[i], E[i] * c("I_x")[i], E[i] * c("I_y")[i], c("k_x")[i] * G[i] * A[i],
+            c("k_y")[i] * G[i] * A[i], tension_centre=(c("x_e")[i], c("y_e")[i]), principal_angle=angle[i],
+            shear_centre=(c("x_sh")[i], c("y_sh")[i]), shear_angle=angle[i]) for i in range(len(m))])
+    return to_beamdyn_axes(stiffness), to_beamdyn_axes(mass)
 
 
 def hawc2_sections(subset: StSubset, body: MainBody | None, st_path: str = "") -> SixBySixBlade:
@@ -101,24 +101,24 @@ def hawc2_sections(subset: StSubset, body: MainBody | None, st_path: str = "") -
         # projection of its chordwise distance d toward the trailing edge (BeamDyn's y), -x = d cos(twist); the
         # pitch axis is then at the c2 point less d along the chord, (y - d sin(twist), 0) in BeamDyn's root axes
         chordwise = -np.interp(at, arc / arc[-1], points[:, 0]) / np.cos(twist)
-        zeros = np.zeros_like(span)
-        stiffness = about_reference(stiffness, zeros, chordwise, zeros)
-        mass = about_reference(mass, zeros, chordwise, zeros)
+        stiffness, mass = (to_beamdyn_axes(np.array([about_reference(k, (-d, 0.0)) for k, d in
+                                                     zip(from_beamdyn_axes(matrices), chordwise)]))
+                           for matrices in (stiffness, mass))
         axis[:, 0] = np.interp(at, arc / arc[-1], points[:, 1]) - chordwise * np.sin(twist)
         axis[:, 2] = np.interp(at, arc / arc[-1], points[:, 2])
     return SixBySixBlade(span, stiffness, mass, twist, axis, source=st_path, lines=subset.lines)
 
 
 def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
-                     precone: float = 0.0, pitch: float = 0.0) -> Blade:
+                     precone: float = 0.0, pitch: float = 0.0, sections: str = "full") -> Blade:
     """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
-    named in the notes)."""
-    sections = hawc2_sections(subset, body, st_path)
-    table, reduction = sections.table()
+    named in the notes); ``sections`` ``"full"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    six = hawc2_sections(subset, body, st_path)
+    table, reduction = six.table(sections)
     layout = "fully populated (FPM)" if subset.fpm else "isotropic"
     notes = [f"HAWC2 {layout} st file {Path(st_path).name or 'memory'}"]
     if body is not None:
-        notes.append(sections.curvature_note(f"HAWC2 blade (body '{body.name}', c2_def)")
+        notes.append(six.curvature_note(f"HAWC2 blade (body '{body.name}', c2_def)")
                      + "; sections moved along the chord from the half-chord line to the pitch axis (body z)")
     else:
         notes.append("HAWC2 st file without its htc: untwisted (give the .htc with the blade's c2_def for the twist)")

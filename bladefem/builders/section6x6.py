@@ -9,7 +9,8 @@ frame turned by the twist. bladefem's section frame is ``eta = -y`` (toward the 
 The reduction (what today's beam can hold, per station):
 
 1. The transverse shear is condensed (shear forces zero, the slender-beam limit):
-   ``Kc = K[2:, 2:] - K[2:, :2] K[:2, :2]^-1 K[:2, 2:]``; without shear stiffness the block is kept as it is.
+   ``Kc = K[2:, 2:] - K[2:, :2] K[:2, :2]^-1 K[:2, 2:]``; without shear stiffness the block is kept as it is
+   (:func:`bladefem.sections.full_section.condensed`, the one definition, through the axes' mapping).
 2. Tension centre from the axial-bending coupling, ``y_C = Kc34 / EA``, ``x_C = -Kc35 / EA`` (the convention of
    openfast_toolbox converters/beam.py ``KK``: ``K34 = EA y_C``, ``K35 = -EA x_C``); the bending stiffness about it
    is the Schur complement ``H = Kc[4:6, 4:6] - Kc[4:6, 3] Kc[3, 4:6] / EA``.
@@ -22,8 +23,10 @@ The reduction (what today's beam can hold, per station):
 6. Shear centre (kept for reference in the table) from ``K[:3, :3]^-1 K[:3, 3:]`` (openfast_toolbox
    ``ComputeShearCenter``).
 
-:class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis), the
-record a full six-by-six beam model takes; its ``table()`` is this reduction.
+:class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis). Its
+``table()`` gives the FE the whole matrices by default (:meth:`SixBySixBlade.full`, through
+:mod:`bladefem.builders.section_axes` onto :class:`~bladefem.sections.FullSections`); ``table("reduced")`` is this
+reduction.
 
 Dropped, and named with their size in :func:`reduction_notes`: the extension-twist and bend-twist couplings left in
 ``Kc`` (36, 46, 56 after the principal rotation), the thickness-wise tension-centre and centre-of-mass offsets
@@ -32,14 +35,19 @@ Dropped, and named with their size in :func:`reduction_notes`: the extension-twi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import re
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..sections import SectionTable
+from ..sections import FullSections, SectionTable, full_section
+from ..sections.principal import principal_axes
+from .section_axes import from_beamdyn_axes, full_sections_from_beamdyn
 
+#: How six-by-six sections reach the FE: the whole matrices (default) or bladefem's diagonal reduction
+SECTION_MODELS = ("full", "reduced")
 #: Couplings and offsets smaller than this (fraction of sqrt(K_ii K_jj), or m) are not mentioned in the notes.
 NOTE_THRESHOLD = 0.01
 
@@ -63,22 +71,22 @@ class Reduced:
     dropped: dict[str, NDArray[np.float64]]
 
 
-def condensed(K: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The 4x4 (extension, bending x, bending y, torsion) with the shear condensed out, shape (..., 4, 4)."""
-    shear = K[..., :2, :2]
-    out = K[..., 2:, 2:].copy()
-    has = np.linalg.det(shear) > 0
-    if np.any(has):
-        coupling = K[has][:, :2, 2:]
-        out[has] -= np.swapaxes(coupling, -1, -2) @ np.linalg.solve(shear[has], coupling)
-    return out
+def _classical_in_beamdyn_axes(K: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The 4x4 (extension, bending x, bending y, torsion) in BeamDyn's axes with the shear condensed out, shape
+    (n, 4, 4): :func:`bladefem.sections.full_section.condensed` taken through the axes' mapping."""
+    C = np.moveaxis(full_section.condensed(np.moveaxis(from_beamdyn_axes(K), 0, -1)), -1, 0)
+    # bladefem's classical strains (epsilon, kappa_x, kappa_eta, kappa_zeta) are BeamDyn's (extension, torsion,
+    # -bending about y, bending about x)
+    S = np.zeros((4, 4))
+    S[0, 0], S[1, 3], S[2, 2], S[3, 1] = 1.0, 1.0, -1.0, 1.0
+    return S @ C @ S.T
 
 
 def reduce(K: NDArray[np.float64], M: NDArray[np.float64]) -> Reduced:
     """Reduce (n, 6, 6) stiffness and mass matrices (BeamDyn's axes) to bladefem's diagonal section."""
     K = np.asarray(K, dtype=float)
     M = np.asarray(M, dtype=float)
-    Kc = condensed(K)
+    Kc = _classical_in_beamdyn_axes(K)
     EA = Kc[:, 0, 0]
     axial = EA > 0
     safe = np.where(axial, EA, 1.0)
@@ -86,11 +94,12 @@ def reduce(K: NDArray[np.float64], M: NDArray[np.float64]) -> Reduced:
     x_c = np.where(axial, -Kc[:, 0, 2] / safe, 0.0)
     H = Kc[:, 1:3, 1:3] - np.where(axial, 1.0, 0.0)[:, None, None] * (
         Kc[:, 1:3, 0][:, :, None] * Kc[:, 0, 1:3][:, None, :]) / safe[:, None, None]
-    difference = H[:, 0, 0] - H[:, 1, 1]
-    theta = 0.5 * np.arctan2(2 * H[:, 0, 1], np.abs(difference)) * np.where(difference < 0, -1.0, 1.0)
+    # bladefem's (kappa_eta, kappa_zeta) are BeamDyn's (-bending about y, bending about x); theta turns about +z,
+    # the principal angle about -z (like the twist)
+    B = np.stack([np.stack([H[:, 1, 1], -H[:, 0, 1]], -1), np.stack([-H[:, 0, 1], H[:, 0, 0]], -1)], -2)
+    angle, flap, edge = principal_axes(B)
+    theta = -angle
     c, s = np.cos(theta), np.sin(theta)
-    edge = c**2 * H[:, 0, 0] + 2 * c * s * H[:, 0, 1] + s**2 * H[:, 1, 1]
-    flap = s**2 * H[:, 0, 0] - 2 * c * s * H[:, 0, 1] + c**2 * H[:, 1, 1]
     m = M[:, 0, 0]
     y_g = M[:, 2, 3] / m
     x_g = -M[:, 2, 4] / m
@@ -174,58 +183,6 @@ def section_table(span: NDArray[np.float64], K: NDArray[np.float64], M: NDArray[
     return table, notes
 
 
-def translation(x: NDArray[np.float64] | float, y: NDArray[np.float64] | float) -> NDArray[np.float64]:
-    """``T`` with ``T^T K T`` the section matrix ``K`` taken about the point (x, y) instead of the origin (the
-    convention of openfast_toolbox converters/beam.py ``CrossSectionTranslationMatrix``), shape (..., 6, 6)."""
-    x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
-    T = np.broadcast_to(np.eye(6), x.shape + (6, 6)).copy()
-    T[..., 0, 5], T[..., 1, 5], T[..., 2, 3], T[..., 2, 4] = y, -x, -y, x
-    return T
-
-
-def rotation(angle: NDArray[np.float64] | float) -> NDArray[np.float64]:
-    """``R`` with ``R K R^T`` the section matrix in axes turned by ``angle`` (rad) about +z (openfast_toolbox
-    ``CrossSectionRotationMatrix``), shape (..., 6, 6)."""
-    angle = np.asarray(angle, dtype=float)
-    c, s = np.cos(angle), np.sin(angle)
-    R = np.zeros(angle.shape + (6, 6))
-    for k in (0, 3):
-        R[..., k, k] = R[..., k + 1, k + 1] = c
-        R[..., k, k + 1], R[..., k + 1, k] = s, -s
-        R[..., k + 2, k + 2] = 1.0
-    return R
-
-
-def about_reference(K: NDArray[np.float64], x: NDArray[np.float64], y: NDArray[np.float64],
-                    angle: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Section matrices given about the point (x, y) in axes turned by ``angle`` (rad), taken back to the origin
-    and the reference axes."""
-    R = rotation(angle)
-    T = translation(-np.asarray(x), -np.asarray(y))
-    return np.swapaxes(T, -1, -2) @ np.swapaxes(R, -1, -2) @ K @ R @ T
-
-
-def stiffness_matrix(EA, EI_x, EI_y, GJ, GA_x, GA_y, tension_centre, shear_centre, angle) -> NDArray[np.float64]:
-    """(n, 6, 6) stiffness about the origin from principal-axis properties: extension and bending about the tension
-    centre (x, y) in axes turned by ``angle``; shear and torsion about the shear centre in the same axes."""
-    EA = np.asarray(EA, dtype=float)
-    bending = np.zeros(EA.shape + (6, 6))
-    bending[..., 2, 2], bending[..., 3, 3], bending[..., 4, 4] = EA, EI_x, EI_y
-    shear = np.zeros_like(bending)
-    shear[..., 0, 0], shear[..., 1, 1], shear[..., 5, 5] = GA_x, GA_y, GJ
-    return (about_reference(bending, *tension_centre, angle) + about_reference(shear, *shear_centre, angle))
-
-
-def mass_matrix(m, x_g, y_g, i_x, i_y, angle) -> NDArray[np.float64]:
-    """(n, 6, 6) mass matrix about the origin (BeamDyn's form, input_files.rst) from the mass per length ``m``, the
-    centre of mass (x_g, y_g) and the rotary inertias about it, ``i_x`` and ``i_y`` about axes turned by ``angle``."""
-    m = np.asarray(m, dtype=float)
-    local = np.zeros(m.shape + (6, 6))
-    local[..., 0, 0] = local[..., 1, 1] = local[..., 2, 2] = m
-    local[..., 3, 3], local[..., 4, 4], local[..., 5, 5] = i_x, i_y, np.asarray(i_x) + np.asarray(i_y)
-    return about_reference(local, x_g, y_g, angle)
-
-
 @dataclass(frozen=True, eq=False)
 class SixBySixBlade:
     """A blade as six-by-six sections in BeamDyn's axes, whichever file it came from (BeamDyn, HAWC2, windIO): what
@@ -248,9 +205,39 @@ class SixBySixBlade:
     lines: tuple[int, ...] | None = None
     field: str = ""
 
-    def table(self) -> tuple[SectionTable, list[str]]:
-        """bladefem's diagonal section table and the notes on what it drops (:func:`section_table`)."""
-        return section_table(self.span, self.stiffness, self.mass, self.twist, self.source, self.lines, self.field)
+    def full(self, chord: NDArray[np.float64] | None = None) -> FullSections:
+        """The whole six-by-six sections in bladefem's section frame (:mod:`bladefem.builders.section_axes`), with
+        the chord (m) at the stations for drawing."""
+        return full_sections_from_beamdyn(self.span, self.stiffness, self.mass, self.twist, source=self.source,
+                                          chord=chord)
+
+    def table(self, model: str = "full", chord: NDArray[np.float64] | None = None) -> tuple[SectionTable, list[str]]:
+        """The section table the FE takes and the notes on what it keeps and drops. ``model``: ``"full"`` (the
+        default) carries the whole six-by-six matrices (:class:`~bladefem.sections.FullSections`: every coupling,
+        the transverse shear condensed); ``"reduced"`` is bladefem's diagonal beam (:func:`section_table`), which
+        drops the couplings the notes name."""
+        if model not in SECTION_MODELS:
+            raise InputError(f"sections must be one of {', '.join(SECTION_MODELS)}, got '{model}'",
+                             field="--sections")
+        reduced, dropped = section_table(self.span, self.stiffness, self.mass, self.twist, self.source, self.lines,
+                                         self.field)
+        if model == "reduced":
+            if chord is not None:
+                reduced = replace(reduced, chord=chord)
+            return reduced, ["sections reduced (--sections reduced): " + dropped[0]] + dropped[1:]
+        kept = [note.split("neglected: ", 1)[1] for note in dropped if "neglected: " in note]
+        notes = ["full six-by-six sections in the FE (tension and shear centres, principal axes, extension-twist "
+                 "and bend-twist couplings, the whole section mass); transverse shear condensed (slender beam)"
+                 + (f"; --sections reduced (bladefem's diagonal beam) would drop {kept[0]}" if kept else "")]
+        try:
+            full = self.full(chord)
+        except InputError as error:
+            station = re.search(r"\(station (\d+)\)", error.message)
+            line = self.lines[int(station.group(1)) - 1] if station and self.lines else error.line
+            raise InputError(f"{error.message}: the whole section cannot go into the FE (--sections reduced "
+                             "condenses it to bladefem's diagonal beam)", file=error.file, line=line,
+                             field=self.field or error.field) from None
+        return full.table(), notes
 
     def curvature_note(self, what: str) -> str:
         return (f"{what}: straight beam of the reference axis's arc length {self.span[-1]:.6g} m (prebend up to "

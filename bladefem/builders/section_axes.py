@@ -40,11 +40,18 @@ def from_beamdyn_axes(matrices: NDArray[np.float64]) -> NDArray[np.float64]:
     return P @ np.asarray(matrices, dtype=float) @ P.T
 
 
+def to_beamdyn_axes(matrices: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Section matrices (..., 6, 6) in bladefem's axes and order, in BeamDyn's (the inverse of
+    :func:`from_beamdyn_axes`)."""
+    P = beamdyn_permutation()
+    return P.T @ np.asarray(matrices, dtype=float) @ P
+
+
 def full_sections_from_beamdyn(span: NDArray[np.float64], stiffness: NDArray[np.float64],
                                mass: NDArray[np.float64], twist: NDArray[np.float64],
-                               source: str = "") -> FullSections:
+                               source: str = "", chord: NDArray[np.float64] | None = None) -> FullSections:
     """Six-by-six sections from BeamDyn-axes matrices: ``span`` in m along the reference axis from the root,
     ``stiffness`` and ``mass`` of shape (stations, 6, 6) in SI, ``twist`` BeamDyn's initial twist at the stations
-    in rad."""
+    in rad; ``chord`` (m, for drawing) at the stations."""
     return FullSections(span=span, stiffness=from_beamdyn_axes(stiffness), mass=from_beamdyn_axes(mass),
-                        twist=np.asarray(twist, dtype=float), source=source)
+                        twist=np.asarray(twist, dtype=float), chord=chord, source=source)

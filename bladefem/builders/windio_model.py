@@ -10,7 +10,8 @@ BeamDyn blade file's 6x6 at the same station (tests/test_beam_formats.py). So: `
 edgewise, ``K55`` about ``y`` flapwise; ``cm_y`` is chordwise (toward the trailing edge, reaching 0.88 m on the
 IEA-15MW), ``cm_x`` thickness-wise; ``i_edge``, ``i_flap``, ``i_cp``, ``i_plr`` are BeamDyn's ``M44``, ``M55``,
 ``-M45``, ``M66``, about the reference axis (equal to the BeamDyn file's entries). The 6x6 stiffness and mass are
-built from them and reduced by :mod:`bladefem.builders.section6x6`, which names what bladefem's beam drops.
+built from them and go to the FE whole (or, with ``sections="reduced"``, as bladefem's diagonal beam) through
+:mod:`bladefem.builders.section6x6`, which names what the reduction drops.
 
 Tower axes (turbine_schema.yaml, the tower's ``reference_axis``): ``x`` downwind, ``y`` lateral, ``z`` up, so
 fore-aft bending (about ``y``) is ``K55`` and side-side bending ``K44`` (the IEA towers are round, ``K44 = K55``: the
@@ -20,7 +21,6 @@ The curvature of the reference axis (prebend, sweep) is not modelled: the beam i
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -92,15 +92,15 @@ def windio_sections(turbine: WindIOTurbine) -> SixBySixBlade:
                          lines=(line,) * len(x) if line else None, field=".".join(key))
 
 
-def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0) -> Blade:
-    """A :class:`Blade` from the windIO blade; ``pitch`` in rad."""
-    sections = windio_sections(turbine)
-    table, reduction = sections.table()
+def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0, sections: str = "full") -> Blade:
+    """A :class:`Blade` from the windIO blade; ``pitch`` in rad; ``sections`` ``"full"`` (the whole 6x6 in the FE)
+    or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    six = windio_sections(turbine)
     beam = turbine.blade
-    if beam.chord is not None:
-        table = replace(table, chord=np.interp(table.span / beam.length, beam.chord.grid, beam.chord.values))
+    chord = None if beam.chord is None else np.interp(six.span / beam.length, beam.chord.grid, beam.chord.values)
+    table, reduction = six.table(sections, chord=chord)
     check_section_values(table)
-    notes = [sections.curvature_note(f"windIO blade from {Path(turbine.path).name or 'memory'}")] + reduction
+    notes = [six.curvature_note(f"windIO blade from {Path(turbine.path).name or 'memory'}")] + reduction
     return Blade(sections=table, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
                  name=f"{turbine.name} blade", notes=tuple(notes))
 

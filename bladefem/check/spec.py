@@ -92,13 +92,15 @@ def _schema_errors(data: Any, path: Path, lines: dict) -> None:
     raise InputError(f"spec schema: {error.message}", file=str(path), line=line, field=field_name)
 
 
-def _geometry(entry: dict[str, Any]) -> dict[str, float]:
+def _geometry(entry: dict[str, Any]) -> dict[str, Any]:
     geometry = {}
     for key, name, scale in (("tip_radius_m", "tip_radius", 1.0), ("hub_radius_m", "hub_radius", 1.0),
                              ("precone_deg", "precone", math.pi / 180), ("pitch_deg", "pitch", math.pi / 180),
                              ("tip_mass_kg", "tip_mass", 1.0)):
         if key in entry:
             geometry[name] = float(entry[key]) * scale
+    if "sections" in entry:
+        geometry["sections"] = entry["sections"]
     return geometry
 
 

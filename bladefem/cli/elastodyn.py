@@ -19,6 +19,7 @@ from typing import Any
 
 from ..errors import InputError
 from . import options
+from .inputs import add_sections_option
 
 DEFAULT_BLADE_NODES = 17
 DEFAULT_TOWER_NODES = 20
@@ -73,6 +74,12 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     geometry.add_argument("--top-mass", type=options.non_negative, metavar="KG", help="tower-top point mass, kg")
     geometry.add_argument("--htc", metavar="FILE",
                           help="HAWC2 .htc file whose blade body (c2_def) gives a HAWC2 st INPUT its twist")
+    add_sections_option(geometry)
+    parser.add_argument("--elastodyn-compatible", nargs="?", const="twisted", choices=("twisted", "untwisted"),
+                        help="blades: compute the FE modes on what ElastoDyn can hold (mass on the axis, principal "
+                             "flap and edge stiffnesses about the tension centre turned by the twist plus the "
+                             "principal angle, no offsets, no torsion); 'untwisted' also drops the twist (OpenFAST's "
+                             "guidance for mode-shape fits). Default: the FE modes of the blade as given")
     parser.set_defaults(run=run)
 
 
@@ -145,9 +152,12 @@ def run(args: argparse.Namespace) -> int:
     kind = detect_format(args.input)
     wanted = _part(args)
     geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
-                        tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc)
+                        tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc,
+                        sections=args.sections)
     model = read_model(args.input, wanted, geometry)
     part = "blade" if isinstance(model, Blade) else "tower"
+    if args.elastodyn_compatible:
+        model = _elastodyn_compatible(model, args.elastodyn_compatible == "twisted", args.input)
     if wanted is not None and part != wanted:
         raise InputError(f"INPUT describes a {part}, not a {wanted}", file=args.input, field="--part")
     main_path = _main_file(args, kind)
@@ -173,6 +183,20 @@ def run(args: argparse.Namespace) -> int:
                              "written (--force writes it anyway)", file=args.write, field="--write")
         _update(args.write, result, args.dry_run, args.backup)
     return 0
+
+
+def _elastodyn_compatible(model: Any, twisted: bool, path: str) -> Any:
+    """The blade with :func:`bladefem.sections.principal.elastodyn_sections`, named in its notes."""
+    from ..sections import Blade
+    from ..sections.principal import elastodyn_sections
+
+    if not isinstance(model, Blade):
+        raise InputError("--elastodyn-compatible applies to blades", file=path, field="--elastodyn-compatible")
+    note = ("--elastodyn-compatible: FE modes of ElastoDyn's section model (mass on the pitch axis, principal flap "
+            "and edge stiffnesses about the tension centre, " + ("turned by the twist plus the principal angle"
+                                                                  if twisted else "untwisted")
+            + "; no offsets, no torsion)")
+    return model.with_(sections=elastodyn_sections(model.sections, twisted), notes=model.notes + (note,))
 
 
 def frequency_error(fit: Any) -> float:

@@ -40,10 +40,23 @@ def add_blade_options(parser: argparse.ArgumentParser) -> None:
                                "TowerHt and the rotor-nacelle body (tower) from")
     geometry.add_argument("--htc", metavar="FILE",
                           help="HAWC2 .htc file whose blade body (c2_def) gives a HAWC2 st INPUT its twist")
+    add_sections_option(geometry)
     geometry.add_argument("--root", choices=ROOTS, help="root condition (default: from the case, else cantilever)")
     add_tower_options(parser)
     parser.add_argument("--elements", type=options.elements, metavar="N",
                         help="target number of elements along the span (default: refined until converged)")
+
+
+#: how six-by-six blade sections reach the FE (:data:`bladefem.builders.section6x6.SECTION_MODELS`)
+SECTION_MODELS: tuple[str, ...] = ("full", "reduced")
+
+
+def add_sections_option(group: argparse._ActionsContainer) -> None:
+    group.add_argument("--sections", choices=SECTION_MODELS,
+                       help="six-by-six blades (BeamDyn, HAWC2, windIO): 'full' (default) puts the whole 6x6 "
+                            "stiffness and mass in the FE (every coupling; shear condensed), 'reduced' bladefem's "
+                            "diagonal beam (tension centre, principal axes, chordwise c.m.; drops the couplings the "
+                            "notes name)")
 
 
 def add_tower_options(parser: argparse.ArgumentParser) -> None:
@@ -140,6 +153,7 @@ def read_structure(args: argparse.Namespace) -> object:
     else:
         geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, tip_mass=args.tip_mass,
                             elastodyn_main=args.elastodyn_main, htc=getattr(args, "htc", None),
+                            sections=getattr(args, "sections", None),
                             precone=None if args.precone_deg is None else math.radians(args.precone_deg),
                             pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
         model = read_model(args.input, part, geometry)

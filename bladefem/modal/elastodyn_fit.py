@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..sections import Blade, SectionTable
+from ..sections.principal import elastodyn_sections
 from .elastodyn_integrals import (  # noqa: F401 - re-exported
     centrifugal_load,
     elastodyn_forms,
@@ -278,10 +279,12 @@ def blade_coefficients(blade: Blade, rpm: float, *, nodes: int = 17, n_modes: in
                        preserve_frequency: bool = True) -> ElastoDynCoefficients:
     """ElastoDyn blade coefficients (flap 1, flap 2, edge 1) from the FE modes at ``rpm`` (rpm); ``nodes`` is
     ElastoDyn's BldNodes; ``shipped`` coefficients, if given, are evaluated against the same modes;
-    ``preserve_frequency`` constrains each fit to the FE frequency (see :func:`fit_modes`)."""
+    ``preserve_frequency`` constrains each fit to the FE frequency (see :func:`fit_modes`). ElastoDyn's own
+    integrals take what its blade file holds (:func:`bladefem.sections.principal.elastodyn_sections`: for
+    six-by-six sections the principal stiffnesses about the tension centre, the principal angle in the twist)."""
     from . import modes
     result = modes(blade, rpm, n_modes, elements)
-    beam = BeamIntegrals(blade.sections, blade.tip_mass.mass if blade.tip_mass is not None else 0.0,
+    beam = BeamIntegrals(elastodyn_sections(blade.sections), blade.tip_mass.mass if blade.tip_mass is not None else 0.0,
                          blade.hub_radius, blade.precone, rpm * math.pi / 30.0, pitch=blade.pitch)
     fits, compared = fit_modes(result, beam, BLADE_MODES, nodes, shipped, min_tip_ratio, preserve_frequency)
     return ElastoDynCoefficients(fits, rpm, nodes, False, compared, result.notes)

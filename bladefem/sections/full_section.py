@@ -33,7 +33,7 @@ mark a step (the value above it is taken there).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -77,10 +77,19 @@ def _transfer(eta: float, zeta: float) -> NDArray:
     return A
 
 
+def about_reference(matrix: NDArray, point: tuple[float, float] = (0.0, 0.0), angle: float = 0.0) -> NDArray:
+    """A 6x6 section matrix given about ``point`` ``(eta, zeta)`` (m) in axes turned by ``angle`` (rad, like the
+    twist) from the section axes, taken to the reference axis in the section axes: ``A^T R K R^T A`` (``R`` turns
+    force and moment components, ``A`` moves the strains, :func:`_transfer`)."""
+    turned, A = _rotation6(angle), _transfer(*point)
+    return A.T @ turned @ np.asarray(matrix, dtype=float) @ turned.T @ A
+
+
 def stiffness_matrix(axial: float, torsion: float, flap: float, edge: float, shear_chord: float,
                      shear_normal: float, tension_centre: tuple[float, float] = (0.0, 0.0),
                      principal_angle: float = 0.0, shear_centre: tuple[float, float] = (0.0, 0.0),
-                     extension_twist: float = 0.0, flap_twist: float = 0.0, edge_twist: float = 0.0) -> NDArray:
+                     extension_twist: float = 0.0, flap_twist: float = 0.0, edge_twist: float = 0.0,
+                     shear_angle: float = 0.0) -> NDArray:
     """The 6x6 section stiffness about the reference axis from engineering constants.
 
     axial : EA, N; torsion : GJ about the shear centre, N m^2
@@ -89,13 +98,12 @@ def stiffness_matrix(axial: float, torsion: float, flap: float, edge: float, she
     shear_chord, shear_normal : shear stiffnesses k GA along ``eta`` and ``zeta`` at the shear centre, N
     tension_centre, shear_centre : ``(eta, zeta)`` positions, m
     principal_angle : the principal axes turned from the section axes, rad (positive like the twist)
+    shear_angle : the axes of the two shear stiffnesses turned from the section axes, rad (HAWC2 gives them in the
+        principal axes)
     extension_twist : K[0, 3], N m; flap_twist, edge_twist : K[3, 4], K[3, 5], N m^2 (about the reference axis)
     """
-    turned = _rotation6(principal_angle)
-    bending = turned @ np.diag([axial, 0.0, 0.0, 0.0, flap, edge]) @ turned.T
-    shear = np.diag([0.0, shear_chord, shear_normal, torsion, 0.0, 0.0])
-    A_t, A_s = _transfer(*tension_centre), _transfer(*shear_centre)
-    K = A_t.T @ bending @ A_t + A_s.T @ shear @ A_s
+    K = (about_reference(np.diag([axial, 0.0, 0.0, 0.0, flap, edge]), tension_centre, principal_angle)
+         + about_reference(np.diag([0.0, shear_chord, shear_normal, torsion, 0.0, 0.0]), shear_centre, shear_angle))
     K[0, 3] += extension_twist
     K[3, 4] += flap_twist
     K[3, 5] += edge_twist
@@ -129,11 +137,15 @@ def _assembled_mass(m: NDArray, S: NDArray, J: NDArray) -> NDArray:
 
 def condensed(K: NDArray) -> NDArray:
     """The classical 4x4 over ``(epsilon, kappa_x, kappa_eta, kappa_zeta)``: the Schur complement of the shear
-    block of the 6x6 ``K`` (leading axes (6, 6), any trailing axes)."""
+    block of the 6x6 ``K`` (leading axes (6, 6), any trailing axes). A section without shear stiffness (a zero or
+    singular shear block: files that give none mean the beam is rigid in shear) keeps its classical block."""
     K = np.moveaxis(np.asarray(K, dtype=float), (0, 1), (-2, -1))
     c, s = np.ix_(CLASSICAL, CLASSICAL), np.ix_(SHEAR, SHEAR)
-    Kcs = K[..., list(CLASSICAL), :][..., list(SHEAR)]
-    C = K[(...,) + c] - Kcs @ np.linalg.solve(K[(...,) + s], np.swapaxes(Kcs, -1, -2))
+    shear = K[(...,) + s]
+    has = np.linalg.det(shear) > 0
+    Kcs = K[..., list(CLASSICAL), :][..., list(SHEAR)] * has[..., None, None]
+    shear = np.where(has[..., None, None], shear, np.eye(2))
+    C = K[(...,) + c] - Kcs @ np.linalg.solve(shear, np.swapaxes(Kcs, -1, -2))
     return np.moveaxis(C, (-2, -1), (0, 1))
 
 
@@ -277,7 +289,7 @@ class FullSections:
         axes, is in the matrices only), the chordwise tension-centre and centre-of-mass offsets, the inertias about
         the centre of mass in the section axes."""
         C = np.moveaxis(condensed(np.moveaxis(self.stiffness, 0, -1)), -1, 0)         # (n, 4, 4)
-        bending = C[:, 2:, 2:] - C[:, 2:, :2] @ np.linalg.solve(C[:, :2, :2], C[:, :2, 2:])
+        bending = self.bending()
         M = np.moveaxis(self.mass, 0, -1)
         m = M[0, 0]
         c = first_moment(M) / m
@@ -288,6 +300,12 @@ class FullSections:
                     flap_inertia=np.maximum(J[2, 2], 0.0), edge_inertia=np.maximum(J[1, 1], 0.0),  # round-off of m c^2
                     twist=self.twist)
 
+    def bending(self) -> NDArray:
+        """(stations, 2, 2) bending stiffness over the curvatures ``(kappa_eta, kappa_zeta)`` about the tension
+        centre, extension and twist free (axial force and torque zero), in the section axes, N m^2."""
+        C = np.moveaxis(condensed(np.moveaxis(self.stiffness, 0, -1)), -1, 0)
+        return C[:, 2:, 2:] - C[:, 2:, :2] @ np.linalg.solve(C[:, :2, :2], C[:, :2, 2:])
+
     def table(self) -> SectionTable:
         """A :class:`~bladefem.sections.table.SectionTable` that carries these sections (the FE takes stiffness
         and mass from them) with the summary columns (:meth:`summary`)."""
@@ -295,6 +313,16 @@ class FullSections:
 
         return SectionTable(span=self.span, chord=self.chord, pitch_axis=self.pitch_axis, full=self,
                             source=self.source, **self.summary())
+
+    def with_stiffness_scaled(self, strain: int, factor: float | NDArray) -> FullSections:
+        """A copy whose stiffness for generalised strain ``strain`` (0 extension, 3 twist rate, 4 and 5 the
+        curvatures about ``eta`` and ``zeta``) is multiplied by ``factor`` (one number or one per station): the
+        diagonal entry by ``factor``, its couplings by ``sqrt(factor)``, so every coupling coefficient
+        ``K_ij / sqrt(K_ii K_jj)`` and the positive definiteness are kept (``K' = D K D``)."""
+        root = np.broadcast_to(np.sqrt(np.asarray(factor, dtype=float)), self.span.shape)
+        D = np.ones((len(self.span), 6))
+        D[:, strain] = root
+        return replace(self, stiffness=D[:, :, None] * self.stiffness * D[:, None, :])
 
     def scaled(self, mass: float = 1.0, stiffness: float = 1.0) -> FullSections:
         """A copy with the mass and stiffness matrices multiplied by the given factors."""

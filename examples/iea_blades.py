@@ -1,0 +1,150 @@
+"""The IEA-15MW and IEA-22MW blades' first six modes from every format bladefem reads, through both section models
+(the whole six-by-six in the FE, and the diagonal reduction), parked and at rated rotor speed; and what the
+reduction's dropped terms each contribute. ``python examples/iea_blades.py`` prints the tables of docs/iea-blades.md.
+
+Rated rotor speeds are the turbines' controller settings (ROSCO ``PC_RefSpd``, gearbox ratio 1): IEA-15MW 0.79168
+rad/s = 7.560 rpm, IEA-22MW 0.72086 rad/s = 6.884 rpm (IEA-22-280-RWT at 022e8f8, OpenFAST/IEA-22-280-RWT-Monopile/
+IEA-22-280-RWT_DISCON.IN). Hub radii from the ElastoDyn main files: 3.97 m and 4.2 m. Clamped root, no precone, no
+gravity, straight blade (the prebend is not modelled), mesh refined until converged.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from bladefem.builders.detect import read_model
+from bladefem.modal import modes
+from bladefem.sections import Blade, FullSections, full_sections_from_table
+from bladefem.sections.full_section import CLASSICAL, SHEAR, about_reference, condensed
+
+DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
+#: the first six modes, by kind and order
+SIX = (("flap", 1), ("edge", 1), ("flap", 2), ("edge", 2), ("flap", 3), ("torsion", 1))
+RATED_RPM = {"IEA-15MW": 0.79168 * 60 / (2 * math.pi), "IEA-22MW": 0.72086 * 60 / (2 * math.pi)}
+HUB_RADIUS = {"IEA-15MW": 3.97, "IEA-22MW": 4.2}
+INPUTS = {
+    "IEA-15MW": {
+        "BeamDyn": (DATA / "iea15" / "beamdyn" / "IEA-15-240-RWT_BeamDyn.dat", {}),
+        "HAWC2 FPM st + htc": (DATA / "iea15" / "hawc2" / "IEA_15MW_RWT_Blade_st_FPM.st",
+                               {"htc": DATA / "iea15" / "hawc2" / "IEA_15MW_RWT_WTG_bodies_noFPM.htc"}),
+        "HAWC2 isotropic st + htc": (DATA / "iea15" / "hawc2" / "IEA_15MW_RWT_Blade_st_noFPM.st",
+                                     {"htc": DATA / "iea15" / "hawc2" / "IEA_15MW_RWT_WTG_bodies_noFPM.htc"}),
+        "windIO 2.x": (DATA / "iea15" / "windio" / "IEA-15-240-RWT_windio2_blade.yaml", {}),
+        "windIO 1.x": (DATA / "iea15" / "windio" / "IEA-15-240-RWT_windio1.yaml", {}),
+    },
+    "IEA-22MW": {
+        "BeamDyn": (DATA / "iea22" / "beamdyn" / "IEA-22-280-RWT_BeamDyn.dat", {}),
+        "HAWC2 st + htc": (DATA / "iea22" / "hawc2" / "iea_22mw_rwt_steps_blade1.htc", {}),
+        "windIO 2.x": (DATA / "iea22" / "windio" / "IEA-22-280-RWT_windio2_blade.yaml", {}),
+    },
+}
+
+
+@dataclass(frozen=True)
+class Row:
+    turbine: str
+    source: str
+    sections: str
+    rpm: float
+    hz: tuple[float, ...]
+
+
+def blade(turbine: str, source: str, sections: str) -> Blade:
+    path, options = INPUTS[turbine][source]
+    return read_model(path, hub_radius=HUB_RADIUS[turbine], sections=sections, **options)
+
+
+def first_six(model: Blade, rpm: float) -> tuple[float, ...]:
+    """Frequencies (Hz) of flap 1-3, edge 1-2, torsion 1 (by the modes' kinds)."""
+    result = modes(model, rpm, 12)
+    found: dict[str, list[float]] = {}
+    for kind, hz in zip(result.kinds, result.frequencies_hz):
+        found.setdefault(kind, []).append(float(hz))
+    return tuple(found[kind][order - 1] for kind, order in SIX)
+
+
+def rows() -> list[Row]:
+    out = []
+    for turbine, sources in INPUTS.items():
+        for source in sources:
+            for sections in ("full", "reduced"):
+                model = blade(turbine, source, sections)
+                for rpm in (0.0, RATED_RPM[turbine]):
+                    out.append(Row(turbine, source, sections, rpm, first_six(model, rpm)))
+    return out
+
+
+def with_sections(model: Blade, full: FullSections) -> Blade:
+    return model.with_(sections=full.table())
+
+
+def decoupled_torsion(full: FullSections) -> FullSections:
+    """The same sections with the twist rate uncoupled from extension and bending in the classical (shear-
+    condensed) stiffness: what the reduction drops of the stiffness besides the thickness-wise tension centre."""
+    C = np.moveaxis(condensed(np.moveaxis(full.stiffness, 0, -1)), -1, 0)
+    C[:, 1, [0, 2, 3]] = C[:, [0, 2, 3], 1] = 0.0
+    K = np.zeros_like(full.stiffness)
+    K[:, np.ix_(CLASSICAL, CLASSICAL)[0], np.ix_(CLASSICAL, CLASSICAL)[1]] = C
+    s = np.ix_(SHEAR, SHEAR)
+    K[:, s[0], s[1]] = full.stiffness[:, s[0], s[1]]
+    return replace(full, stiffness=K)
+
+
+def in_frame_of(full: FullSections, matrices: NDArray, twist: NDArray) -> NDArray:
+    """Section matrices given in a frame turned by ``twist`` (rad), in the section frame of ``full``."""
+    return np.array([about_reference(m, (0.0, 0.0), d) for m, d in zip(matrices, twist - full.twist)])
+
+
+def contributions(turbine: str = "IEA-15MW", source: str = "BeamDyn", rpm: float = 0.0) -> dict[str, tuple]:
+    """First six frequencies of: the full sections; the full stiffness with the reduction's mass; the reduction's
+    stiffness with the full mass; the full mass turned with the principal axes (as the diagonal beam, whose one
+    angle turns both, places it); the full sections with the twist rate uncoupled; the reduction written back as
+    six-by-six matrices; the reduction. The reduction's matrices are turned into the full sections' frame (the
+    reduction's twist holds the principal angle)."""
+    full_blade = blade(turbine, source, "full")
+    reduced_blade = blade(turbine, source, "reduced")
+    full = full_blade.sections.full
+    as_matrices = full_sections_from_table(reduced_blade.sections)
+    variants = {
+        "full six-by-six": full_blade,
+        "full stiffness, reduced mass": with_sections(full_blade, replace(
+            full, mass=in_frame_of(full, as_matrices.mass, as_matrices.twist))),
+        "reduced stiffness, full mass": with_sections(full_blade, replace(
+            full, stiffness=in_frame_of(full, as_matrices.stiffness, as_matrices.twist))),
+        "full, mass turned with the principal axes": with_sections(full_blade, replace(
+            full, mass=in_frame_of(full, full.mass, reduced_blade.sections.twist))),
+        "full, twist uncoupled": with_sections(full_blade, decoupled_torsion(full)),
+        "reduced, as six-by-six matrices": with_sections(full_blade, as_matrices),
+        "reduced (diagonal beam)": reduced_blade,
+    }
+    return {name: first_six(model, rpm) for name, model in variants.items()}
+
+
+def table(rows_: list[Row]) -> str:
+    lines = ["| blade, file | sections | rpm | flap 1 | edge 1 | flap 2 | edge 2 | flap 3 | torsion 1 |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows_:
+        lines.append(f"| {r.turbine} {r.source} | {r.sections} | {r.rpm:.3f} | "
+                     + " | ".join(f"{v:.4f}" for v in r.hz) + " |")
+    return "\n".join(lines)
+
+
+def contribution_table(values: dict[str, tuple]) -> str:
+    base = np.array(values["full six-by-six"])
+    lines = ["| model | flap 1 | edge 1 | flap 2 | edge 2 | flap 3 | torsion 1 |", "|---|---|---|---|---|---|---|"]
+    for name, hz in values.items():
+        cells = [f"{v:.4f}" if name == "full six-by-six" else f"{100 * (v / b - 1):+.3f} %"
+                 for v, b in zip(hz, base)]
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    print(table(rows()))
+    print()
+    print(contribution_table(contributions()))
