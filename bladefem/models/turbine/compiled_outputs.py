@@ -35,7 +35,7 @@ if njit is not None:                                   # module-level kernels: n
         rho_w, bias_w, RD_w, Z_w, frame_w = work[0][0], work[0][2], work[0][3], work[0][4], work[0][5]
         hub_J, hub = work[0][7], work[0][8]
         state = work[1]
-        a_rho, a_vel, a_force, a_moment, summary = state[0], state[1], state[8], state[9], state[10]
+        a_rho, a_vel, a_force, a_moment, summary = state[0], state[1], state[7], state[8], state[9]
         k = RD_w.shape[3]
         g_index = np.argmax(np.abs(generator))
         out = np.zeros((times.shape[0], 15))
