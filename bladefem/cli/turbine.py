@@ -264,12 +264,24 @@ def run(args: argparse.Namespace) -> int:
         sweep = np.array([rpm]) if args.linearize else args.campbell
         return linearize_command(model, free, sweep, azimuth, conditions.nacelle_yaw, args)
     overrides, coordinates = parse_initial(args.initial or [], model.dofs)
+    check_bounds(model, conditions.with_(**overrides).rotor_speed, args)
     q0, u0, notes = initial_state(model, free, conditions.with_(**overrides))
     for name, value in coordinates.items():
         q0[model.dofs.index(name)] = value
     for note in notes:
         print(f"# {note}")
     return simulate_command(model, free, q0, u0, args)
+
+
+def check_bounds(model, rotor_speed: float, args: argparse.Namespace) -> None:
+    """Refuse, before a simulation starts, a supersonic blade tip and a generator rated beyond the rotor
+    (:mod:`bladefem.models.turbine.watch`)."""
+    from ..models.turbine.watch import check_generator, check_rotor_speed
+
+    field = "--rpm" if args.rpm is not None else "--initial RotSpeed" if "RotSpeed=" in " ".join(
+        args.initial or []) else "RotSpeed"
+    check_rotor_speed(model, rotor_speed, field)
+    check_generator(model)
 
 
 def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace) -> int:
@@ -301,7 +313,7 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
     from ..models.turbine.simulate import (
-        DivergenceError,
+        SimulationStopped,
         UnstableStep,
         output_times,
         plot_outputs,
@@ -326,8 +338,8 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
                               progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
-    except DivergenceError as error:
-        raise InputError(str(error), field="--step" if method == "RK4" else "--rtol") from None
+    except SimulationStopped as stop:
+        return stopped(stop, args)
     text = table_text(result)
     if args.output:
         write_atomic(args.output, text)
@@ -338,6 +350,26 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     if args.plot:
         plot_outputs(result, args.plot)
     return 0
+
+
+def stopped(stop, args: argparse.Namespace) -> int:
+    """A run ended early (a physical bound, divergence, Ctrl-C): the rows computed up to then written whole (to
+    --output, else stdout), one line on stderr saying why and where the rows went; exit 1 (130 for Ctrl-C)."""
+    from ..files import write_atomic
+    from ..models.turbine.simulate import table_text
+
+    result = stop.result
+    where = ""
+    if result is not None and len(result.time):
+        text = table_text(result)
+        if args.output:
+            write_atomic(args.output, text)
+            where = f"; {len(result.time)} rows up to t = {result.time[-1]:g} s written to {Path(args.output)}"
+        else:
+            sys.stdout.write(text)
+            where = f"; {len(result.time)} rows up to t = {result.time[-1]:g} s written"
+    print(f"bladefem: {'' if stop.exit_code == 130 else 'error: '}{stop}{where}", file=sys.stderr)
+    return stop.exit_code
 
 
 class SimulationProgress:
