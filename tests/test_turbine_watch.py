@@ -145,7 +145,7 @@ def test_deflection_past_the_blade_exits_1_with_the_rows(tmp_path, capsys):
 @needs_numba
 def test_ctrl_c_ends_the_run_within_a_second(tmp_path):
     """SIGINT during a long --simulate: exit 130 within a second, one line, the rows computed so far written
-    whole (the compiled kernel returns every 2000 right-hand sides to look for it)."""
+    whole (the compiled kernel returns every 500 right-hand sides to look for it)."""
     out = tmp_path / "out.csv"
     command = [sys.executable, "-m", "bladefem", "turbine", str(CASE / FST), "--wind-speed", "11.4", "--quiet"]
     subprocess.run([*command, "--simulate", "0.1", "-o", str(out)], env=ENV, check=True, capture_output=True,
@@ -184,3 +184,19 @@ def test_compile_notice_only_when_numba_compiles(tmp_path):
     second = subprocess.run([sys.executable, "-c", script, str(tmp_path)], env=env, capture_output=True, text=True,
                             timeout=300)
     assert second.returncode == 0 and second.stderr == ""
+
+
+def test_numba_is_a_core_dependency():
+    """pip install . brings numba (issue 23 item 2): the 'fast' extra is no longer needed."""
+    import tomllib
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    assert any(requirement.startswith("numba") for requirement in project["dependencies"])
+
+
+def test_the_slow_path_says_so(monkeypatch, capsys):
+    """Without the compiled kernels (BLADEFEM_NO_NUMBA, or numba missing) --simulate says at start that it runs the
+    numpy equations, about 100 times slower (issue 23 item 2: it was silent)."""
+    monkeypatch.setenv("BLADEFEM_NO_NUMBA", "1")
+    assert main(["turbine", str(CASE / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"), "--simulate", "0.05",
+                 "--elastodyn-compatible", "--dof", "tower1", "--quiet", "--method", "RK45"]) == 0
+    assert "numpy equations, about 100 times slower" in capsys.readouterr().err

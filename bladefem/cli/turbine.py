@@ -322,6 +322,9 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     )
 
     method = args.method or "auto"
+    if not hasattr(model.fast_equations(), "integrate"):
+        print("# numba is switched off (BLADEFEM_NO_NUMBA) or not installed: the numpy equations, about 100 times "
+              "slower", file=sys.stderr)
     if method in ("DP54", "DP853") and not hasattr(model.fast_equations(), "integrate"):
         raise InputError(f"{method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
                          field="--method")

@@ -153,7 +153,7 @@ class CompiledEquations:
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
                   index: NDArray, order: int = 8, limit: NDArray | None = None,
                   watch: Callable[..., str | None] | None = None,
-                  budget: int = 2000) -> Integration:
+                  budget: int | None = None) -> Integration:
         """Adaptive Dormand-Prince 8(5,3) (``order=8``) or 5(4) (``order=5``) from ``times[0]`` to ``times[-1]``
         with dense output and the load channels at ``times``; stops at the first state beyond ``limit`` (per state,
         default none) or not finite. The compiled kernel returns after at most ``budget`` right-hand sides; between
@@ -162,7 +162,8 @@ class CompiledEquations:
         the output rows the call wrote may stop the run with a reason."""
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
-        from .watch import interruptible
+        from .watch import BUDGET, interruptible
+        budget = BUDGET if budget is None else budget
         kernel, tableau = (dop853_chunk, _dop853_tableau()) if order == 8 else (dp54_chunk, _dp54_tableau())
         times = np.ascontiguousarray(times, dtype=float)
         x = np.ascontiguousarray(x0, dtype=float)

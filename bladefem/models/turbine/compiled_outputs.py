@@ -27,12 +27,15 @@ if njit is not None:                                   # module-level kernels: n
         """The :data:`COLUMNS` at each output row (:func:`output_row`)."""
         out = np.zeros((times.shape[0], len(COLUMNS)))
         for row in range(times.shape[0]):
-            output_row(times[row], states[row], q0, u0, index, data, work, hub_radius, blade, out[row])
+            q, u = full_state(times[row], states[row], q0, u0, index)
+            M, f = equations(q, u, data, work)
+            output_row(q, u, M, f, index, data, work, hub_radius, blade, out[row])
         return out
 
     @njit(cache=True)
-    def output_row(time, x, q0, u0, index, data, work, hub_radius, blade, out):
-        """Fill ``out`` with the :data:`COLUMNS` at the free state ``x`` at ``time``. Root moments of ``blade``:
+    def output_row(q, u, M, f, index, data, work, hub_radius, blade, out):
+        """Fill ``out`` with the :data:`COLUMNS` at (q, u), given the equations ``M du/dt = f`` there (whose kernel
+        has just left that state's motion and loads in ``work``). Root moments of ``blade``:
         ``sum (r - r_root) x (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for loads toward
         the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
         gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
@@ -47,8 +50,6 @@ if njit is not None:                                   # module-level kernels: n
         k = RD_w.shape[3]
         g_index = np.argmax(np.abs(generator))
         a, load, arm, force, moment = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
-        q, u = full_state(time, x, q0, u0, index)
-        M, f = equations(q, u, data, work)
         du = np.zeros(n)
         free = free_accelerations(M, f, index)
         for i in range(index.shape[0]):

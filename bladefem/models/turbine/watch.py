@@ -47,9 +47,9 @@ MIN_DISK_WIND = 1.0
 MAX_RATE = 1e5
 #: Wind speed of the generator's power bound, m/s.
 MAX_WIND = 70.0
-#: Right-hand sides of one compiled integrator call: a few tenths of a second, so that Ctrl-C and the bounds are
-#: checked a few times a second.
-BUDGET = 2000
+#: Right-hand sides of one compiled integrator call: about 0.1 s (a few tenths on a loaded machine), so that Ctrl-C
+#: and the bounds are checked often; the Python between calls costs about 1e-3 of it.
+BUDGET = 500
 
 
 class SimulationStopped(RuntimeError):
