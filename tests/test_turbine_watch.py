@@ -216,3 +216,17 @@ def test_the_slow_path_says_so(monkeypatch, capsys):
     assert main(["turbine", str(CASE / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"), "--simulate", "0.05",
                  "--elastodyn-compatible", "--dof", "tower1", "--quiet", "--method", "RK45"]) == 0
     assert "numpy equations, about 100 times slower" in capsys.readouterr().err
+
+
+def test_kernel_cache_goes_stale_with_any_kernel_source():
+    """numba stamps a cached function with its own file only: a kernel calling another file's kernel kept the old
+    callee after that file changed (the compiled path then ran old physics). bladefem's kernels carry the hash of
+    every kernel source in their cache stamp, and a change of any of them changes it."""
+    pytest.importorskip("numba")
+    from bladefem import numba_cache
+    from bladefem.models.turbine import compiled_loads
+    locator = compiled_loads.add_aero._cache._impl.locator
+    assert getattr(type(locator), "bladefem", False)
+    assert locator.get_source_stamp()[1] == numba_cache.sources_hash()
+    paths = [path for pattern in numba_cache.KERNEL_SOURCES for path in numba_cache.PACKAGE.glob(pattern)]
+    assert {"bem.py", "compiled_loads.py", "control.py"} <= {path.name for path in paths}

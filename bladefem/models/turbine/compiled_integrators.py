@@ -22,6 +22,11 @@ except ImportError:                                    # pragma: no cover - numb
     njit = None
 
 if njit is not None:
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
+
+if njit is not None:
     from .compiled_kernels import free_accelerations, full_state, store_row
     from .compiled_loads import equations
     from .compiled_outputs import output_row

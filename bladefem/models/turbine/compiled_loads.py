@@ -21,6 +21,11 @@ try:
 except ImportError:                                    # pragma: no cover - numba is optional
     njit = None
 
+if njit is not None:
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
+
 #: columns of the rotor summary a call leaves in the state (``state[-1]``)
 HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")
 

@@ -11,6 +11,11 @@ try:
 except ImportError:                                    # pragma: no cover - numba is optional
     njit = None
 
+if njit is not None:
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
+
 #: columns of :func:`load_outputs` (SI): blade root moments (N m), low-speed-shaft thrust (N) and torque (N m),
 #: generator torque (N m), the aerodynamic rotor summary (compiled_loads.HUB), aerodynamic and damping power (W)
 COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_torque", "aero_thrust", "aero_torque",
