@@ -40,9 +40,9 @@ if njit is not None:                                   # module-level kernels: n
     @njit(cache=True)
     def output_row(q, u, M, f, index, data, work, hub_radius, blade, out):
         """Fill ``out`` with the :data:`COLUMNS` at (q, u), given the equations ``M du/dt = f`` there (whose kernel
-        has just left that state's motion and loads in ``work``). Root moments of ``blade``:
-        ``sum (r - r_root) x (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for loads toward
-        the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
+        has just left that state's motion and loads in ``work``). Root moments of ``blade``: ``sum (r - r_root) x
+        (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for
+        loads toward the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
         gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
         holds a locked generator at its speed."""
         structure, law = data[0], data[2]

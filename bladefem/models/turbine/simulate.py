@@ -143,8 +143,8 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
 
     method : 'auto' (:func:`auto_method`: the compiled Dormand-Prince 'DP853', or 'DP54' with aerodynamics, when
         numba is installed, else scipy's 'DOP853'), 'DP853' or 'DP54' (compiled Dormand-Prince 8(5,3) or 5(4),
-        numba only), a scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``, ``atol``), or 'RK4' with the fixed
-        ``step`` (s; refused with :class:`UnstableStep` beyond the stability limit of the fastest mode)
+        numba only), a scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``, ``atol``), or 'RK4'
+        with the fixed ``step`` (s; refused with :class:`UnstableStep` beyond the stability limit of the fastest mode)
     progress : called with the simulated time as the run advances (compiled integrators and RK4)
 
     A run that leaves a physical bound (:mod:`.watch`), diverges, or is interrupted with Ctrl-C (compiled
