@@ -193,21 +193,6 @@ def test_missing_main_file_is_an_input_error(tmp_path):
     assert "missing.dat" in str(error.value)
 
 
-def test_compile_notice_tells_the_user(capsys):
-    """Issue 10, defect 7: a first call slower than the threshold is announced on stderr, with its duration."""
-    import time
-
-    from bladefem.models.turbine import compiled
-
-    with compiled.compile_notice("test kernel"):
-        time.sleep(compiled.NOTICE_AFTER + 0.3)
-    err = capsys.readouterr().err
-    assert "compiling the test kernel with numba" in err and "compiled in" in err
-    with compiled.compile_notice("fast kernel"):
-        pass
-    assert capsys.readouterr().err == ""
-
-
 def test_model_reduction_example_runs(tmp_path):
     """The example's pipeline on a short record: both models run from the same state; the reduced model (tower
     first modes and first flap only) keeps the side-side motion's mean and misses part of its fluctuation."""

@@ -1,8 +1,9 @@
 """Optional numba compilation of the scalar aerodynamic kernels.
 
-The kernels are plain Python functions on floats and numpy arrays. With numba installed (the ``fast`` extra) they
-are compiled with ``@njit(cache=True)``; without it, or with the environment variable ``BLADEFEM_NO_NUMBA`` set,
-the same functions run as Python (same results, about a hundred times slower). Calls between kernels go through the
+The kernels are plain Python functions on floats and numpy arrays. With numba (a dependency) they are compiled
+with ``@njit(cache=True)`` (the cache made stale by any kernel source change, :mod:`bladefem.numba_cache`); without
+it, or with the environment variable ``BLADEFEM_NO_NUMBA`` set, the same functions run as Python (same results,
+about a hundred times slower). Calls between kernels go through the
 module globals, so a compiled kernel calls compiled kernels and a Python kernel calls Python kernels.
 """
 
@@ -14,6 +15,11 @@ try:
     from numba import njit
 except ImportError:                                    # pragma: no cover - numba is optional
     njit = None
+
+if njit is not None:
+    from ..numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
 
 #: True when the kernels of :mod:`bladefem.aero` are compiled.
 COMPILED = njit is not None and not os.environ.get("BLADEFEM_NO_NUMBA")

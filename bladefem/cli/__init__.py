@@ -129,6 +129,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     except BrokenPipeError:
         return 0
+    except KeyboardInterrupt:
+        print("bladefem: interrupted (Ctrl-C)", file=sys.stderr)
+        return 130
+    except SystemError as error:       # Ctrl-C that landed inside a compiled (numba) call
+        if not isinstance(error.__cause__ or error.__context__, KeyboardInterrupt):
+            raise
+        print("bladefem: interrupted (Ctrl-C)", file=sys.stderr)
+        return 130
     except OSError as error:           # e.g. an output folder that cannot be created
         where = f"{error.filename}: " if error.filename else ""
         print(f"bladefem: error: {where}{error.strerror or error}", file=sys.stderr)

@@ -307,6 +307,7 @@ def run(args: argparse.Namespace) -> int:
         sweep = np.array([rpm]) if args.linearize else args.campbell
         return linearize_command(model, free, sweep, azimuth, conditions.nacelle_yaw, args, operating_rpm=rpm)
     overrides, coordinates = parse_initial(args.initial or [], model.dofs)
+    check_bounds(model, conditions.with_(**overrides).rotor_speed, args)
     q0, u0, notes = initial_state(model, free, conditions.with_(**overrides))
     for name, value in coordinates.items():
         q0[model.dofs.index(name)] = value
@@ -324,6 +325,17 @@ def generator_line(generator, free: bool, rotor_speed: float) -> str | None:
         return "generator: ServoDyn's simple variable-speed torque law (VSContrl 1)"
     return (f"generator: locked at {rotor_speed * 30 / math.pi:g} rpm (GenDOF off); ServoDyn's torque law is not "
             "used")
+
+
+def check_bounds(model, rotor_speed: float, args: argparse.Namespace) -> None:
+    """Refuse, before a simulation starts, a supersonic blade tip and a generator rated beyond the rotor
+    (:mod:`bladefem.models.turbine.watch`)."""
+    from ..models.turbine.watch import check_generator, check_rotor_speed
+
+    field = "--rpm" if args.rpm is not None else "--initial RotSpeed" if "RotSpeed=" in " ".join(
+        args.initial or []) else "RotSpeed"
+    check_rotor_speed(model, rotor_speed, field)
+    check_generator(model)
 
 
 def linearize_command(model, free, sweep: np.ndarray, azimuth: float, yaw: float, args: argparse.Namespace,
@@ -359,7 +371,7 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
     from ..models.turbine.simulate import (
-        DivergenceError,
+        SimulationStopped,
         UnstableStep,
         output_times,
         plot_outputs,
@@ -368,6 +380,9 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     )
 
     method = args.method or "auto"
+    if not hasattr(model.fast_equations(), "integrate"):
+        print("# numba is switched off (BLADEFEM_NO_NUMBA) or not installed: the numpy equations, about 100 times "
+              "slower", file=sys.stderr)
     if method in ("DP54", "DP853") and not hasattr(model.fast_equations(), "integrate"):
         raise InputError(f"{method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
                          field="--method")
@@ -384,8 +399,8 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
                               progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
-    except DivergenceError as error:
-        raise InputError(str(error), field="--step" if method == "RK4" else "--rtol") from None
+    except SimulationStopped as stop:
+        return stopped(stop, args)
     text = table_text(result)
     if args.output:
         write_atomic(args.output, text)
@@ -408,6 +423,26 @@ def simulation_title(model, args: argparse.Namespace) -> str:
     if args.rpm is not None:
         parts.append(f"rotor held at {args.rpm:g} rpm")
     return ", ".join(parts)
+
+
+def stopped(stop, args: argparse.Namespace) -> int:
+    """A run ended early (a physical bound, divergence, Ctrl-C): the rows computed up to then written whole (to
+    --output, else stdout), one line on stderr saying why and where the rows went; exit 1 (130 for Ctrl-C)."""
+    from ..files import write_atomic
+    from ..models.turbine.simulate import table_text
+
+    result = stop.result
+    where = ""
+    if result is not None and len(result.time):
+        text = table_text(result)
+        if args.output:
+            write_atomic(args.output, text)
+            where = f"; {len(result.time)} rows up to t = {result.time[-1]:g} s written to {Path(args.output)}"
+        else:
+            sys.stdout.write(text)
+            where = f"; {len(result.time)} rows up to t = {result.time[-1]:g} s written"
+    print(f"bladefem: {'' if stop.exit_code == 130 else 'error: '}{stop}{where}", file=sys.stderr)
+    return stop.exit_code
 
 
 class SimulationProgress:

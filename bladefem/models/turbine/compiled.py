@@ -7,14 +7,14 @@ the root-moment outputs (``compiled_outputs``) call them. :func:`compiled_equati
 installed; tests check that both paths give the same mass matrix and forcing to rounding.
 
 numba compiles each kernel on its first use and caches it on disk (next to the sources, or in NUMBA_CACHE_DIR);
-only the kernels a run needs are compiled, and a notice goes to stderr while that takes more than a second.
+only the kernels a run needs are compiled, and a notice goes to stderr when a call compiles (not when it loads the
+cached machine code).
 """
 
 from __future__ import annotations
 
 import os
 import sys
-import threading
 import time
 from collections.abc import Callable
 from contextlib import contextmanager, nullcontext
@@ -28,45 +28,46 @@ try:
 except ImportError:                                    # pragma: no cover - numba is optional
     numba = None
 
-#: seconds a first call may take before the compile notice is shown
-NOTICE_AFTER = 1.0
-
-
 #: kernels called at least once in this process (compiled or loaded from the cache)
 _READY: set[str] = set()
 
 
-def first_call(kernel: str, what: str):
-    """:func:`compile_notice` around the first call of ``kernel`` in this process, nothing afterwards (a timer per
-    call would cost more than a right-hand side)."""
+def first_call(kernel: str, what: str, dispatcher, args: tuple, stream=None):
+    """:func:`compile_notice` around the first call of ``kernel`` in this process when numba will compile it (no
+    machine code for these argument types in this process or in numba's disk cache); nothing otherwise, and nothing
+    on later calls (a check per call would cost more than a right-hand side)."""
     if kernel in _READY:
         return nullcontext()
     _READY.add(kernel)
-    return compile_notice(what)
+    return compile_notice(what, stream) if will_compile(dispatcher, args) else nullcontext()
+
+
+def will_compile(dispatcher, args: tuple) -> bool:
+    """True when calling the numba ``dispatcher`` with ``args`` compiles: no overload for their types in this
+    process and none in the on-disk cache (the index entry numba's ``Dispatcher.compile`` looks up: signature,
+    CPU, bytecode hash, fresh source stamp). Reads numba internals; if they moved, says True (a notice too many)."""
+    try:
+        signature = tuple(dispatcher.typeof_pyval(a) for a in args)
+        if signature in dispatcher.overloads:
+            return False
+        cache = dispatcher._cache
+        key = cache._index_key(signature, dispatcher.targetctx.codegen())
+        return key not in cache._cache_file._load_index()
+    except Exception:                                  # numba's private cache API changed
+        return True
 
 
 @contextmanager
 def compile_notice(what: str, stream=None):
-    """Tell the user on stderr when a first kernel call (numba compilation) takes longer than a second, and how
-    long it took."""
+    """Tell the user on stderr that a kernel is being compiled, and how long it took."""
     stream = stream or sys.stderr
     start = time.perf_counter()
-    shown = threading.Event()
-
-    def notice() -> None:
-        shown.set()
-        print(f"bladefem: compiling the {what} with numba (first run only, cached afterwards; about a minute)...",
-              file=stream, flush=True)
-
-    timer = threading.Timer(NOTICE_AFTER, notice)
-    timer.daemon = True
-    timer.start()
+    print(f"bladefem: compiling the {what} with numba (first run only, cached afterwards)...", file=stream,
+          flush=True)
     try:
         yield
     finally:
-        timer.cancel()
-        if shown.is_set():
-            print(f"bladefem: compiled in {time.perf_counter() - start:.0f} s", file=stream, flush=True)
+        print(f"bladefem: compiled in {time.perf_counter() - start:.0f} s", file=stream, flush=True)
 
 
 def model_data(model) -> tuple:
@@ -104,14 +105,19 @@ def _dp54_tableau() -> tuple[NDArray, ...]:
 
 @dataclass
 class Integration:
-    """States at the output times (T, size), right-hand sides used, and, if it stopped early, the status (1: not
-    finite, 2: a coordinate beyond its limit, 3: step size underflow), time and index of the offending state."""
+    """States at the output times (T, size) and their load channels (T, len(compiled_outputs.COLUMNS)), the rows
+    computed, right-hand sides used, and, if it stopped early, the status (1: not finite, 2: a coordinate beyond its
+    limit, 3: step size underflow, 4: stopped by the watch, 5: interrupted), time, index of the offending state and
+    what the watch returned."""
 
     states: NDArray
+    loads: NDArray
+    rows: int
     evaluations: int
     status: int = 0
     time: float = 0.0
     offending: int = -1
+    reason: object = None
 
 
 class CompiledEquations:
@@ -133,57 +139,79 @@ class CompiledEquations:
 
     def __call__(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
         from .compiled_loads import equations
-        with first_call("equations", "turbine equations"):
-            return equations(np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float),
-                             self.loaded, self.all_work)
+        args = (np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.loaded,
+                self.all_work)
+        with first_call("equations", "turbine equations", equations, args):
+            return equations(*args)
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
         from .compiled_loads import derivative
-        with first_call("derivative", "turbine equations"):
-            return derivative(float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded,
-                              self.all_work)
+        args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work)
+        with first_call("derivative", "turbine equations", derivative, args):
+            return derivative(*args)
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
                   index: NDArray, order: int = 8, limit: NDArray | None = None,
-                  progress: Callable[[float], None] | None = None, chunks: int = 100) -> Integration:
+                  watch: Callable[..., str | None] | None = None,
+                  budget: int | None = None) -> Integration:
         """Adaptive Dormand-Prince 8(5,3) (``order=8``) or 5(4) (``order=5``) from ``times[0]`` to ``times[-1]``
-        with dense output at ``times``, in ``chunks`` pieces (``progress(t)`` after each); stops at the first
-        state beyond ``limit`` (per state, default none) or not finite."""
+        with dense output and the load channels at ``times``; stops at the first state beyond ``limit`` (per state,
+        default none) or not finite. The compiled kernel returns after at most ``budget`` right-hand sides; between
+        calls Ctrl-C is looked for (it only sets a flag while the kernel runs; the first call, which may compile,
+        is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
+        the output rows the call wrote may stop the run with a reason."""
         from .compiled_integrators import dop853_chunk, dp54_chunk
+        from .compiled_outputs import COLUMNS
+        from .watch import BUDGET, interruptible
+        budget = BUDGET if budget is None else budget
         kernel, tableau = (dop853_chunk, _dop853_tableau()) if order == 8 else (dp54_chunk, _dp54_tableau())
         times = np.ascontiguousarray(times, dtype=float)
         x = np.ascontiguousarray(x0, dtype=float)
         limit = np.full(len(x), np.inf) if limit is None else np.ascontiguousarray(limit, dtype=float)
         out = np.full((len(times), len(x)), np.nan)
         out[0] = x
+        loads = np.full((len(times), len(COLUMNS)), np.nan)
         index = np.ascontiguousarray(index, dtype=np.int64)
         q0, u0 = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float)
-        f = self.derivative(times[0], x, q0, u0, index)
-        t, h, next_out, evaluations = float(times[0]), min(1e-3, max(times[-1] - times[0], 1e-12)), 1, 1
-        ends = np.linspace(times[0], times[-1], chunks + 1)[1:]
-        ends[-1] = times[-1]
-        for end in ends:
-            with first_call(f"integrator {order}", "turbine integrator"):
-                t, x, f, h, next_out, count, status, bad = kernel(t, x, f, h, float(end), times, out, next_out,
-                                                                  float(rtol), float(atol), limit, tableau, q0, u0,
-                                                                  index, self.loaded, self.all_work)
-            evaluations += count
-            if status:
-                return Integration(out, evaluations, int(status), float(t), int(bad))
-            if progress is not None:
-                progress(t)
-        return Integration(out, evaluations)
+        t, h, rows, evaluations = float(times[0]), min(1e-3, max(times[-1] - times[0], 1e-12)), 1, 0
+        f, end = np.zeros(len(x)), float(times[-1])
+
+        def step(start: bool) -> tuple:
+            args = (t, x, f, h, end, budget, start, times, out, loads, rows, float(rtol), float(atol), limit,
+                    tableau, q0, u0, index, self.loaded, self.all_work, float(self.hub_radius))
+            with first_call(f"integrator {order}", "turbine simulation kernels", kernel, args):
+                return kernel(*args)
+
+        t_before, rows_before = t, 0
+        t, x, f, h, rows, count, status, bad = step(True)
+        evaluations += count
+        with interruptible() as interrupted:
+            while True:
+                if status:
+                    return Integration(out, loads, rows, evaluations, int(status), float(t), int(bad))
+                new = slice(rows_before, rows)
+                reason = watch(t_before, t, times[new], out[new], loads[new], count) if watch else None
+                if reason:
+                    return Integration(out, loads, rows, evaluations, 4, float(t), reason=reason)
+                if interrupted():
+                    return Integration(out, loads, rows, evaluations, 5, float(t))
+                if t >= end:
+                    return Integration(out, loads, rows, evaluations)
+                t_before, rows_before = t, rows
+                t, x, f, h, rows, count, status, bad = step(False)
+                evaluations += count
 
     def outputs(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
                 blade: int = 0) -> NDArray:
         """The load channels (T, len(compiled_outputs.COLUMNS)), SI, of ``blade``'s root and the rotor at every
         output row."""
         from .compiled_outputs import load_outputs
-        with first_call("outputs", "turbine outputs"):
-            return load_outputs(np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(states, dtype=float),
-                                np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
-                                np.ascontiguousarray(index, dtype=np.int64), self.loaded, self.all_work,
-                                float(self.hub_radius), blade)
+        args = (np.ascontiguousarray(times, dtype=float), np.ascontiguousarray(states, dtype=float),
+                np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
+                np.ascontiguousarray(index, dtype=np.int64), self.loaded, self.all_work, float(self.hub_radius),
+                blade)
+        with first_call("outputs", "turbine outputs", load_outputs, args):
+            return load_outputs(*args)
 
     def root_moments(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
                      blade: int = 0) -> NDArray:

@@ -1,12 +1,15 @@
 """Compiled adaptive Dormand-Prince integrators, 8(5,3) and 5(4), with dense output, over the compiled right-hand
 side.
 
-Each call advances one chunk of time, ``t -> t_end``; the steps are chosen by the error control alone and the
-states at the output times inside a step come from the method's continuous extension (DOP853: Hairer's 7th-order
-interpolant, three extra right-hand sides on the steps that hold an output time; DP54: the free 4th-order one), so
-the output interval does not constrain the step. After each accepted step the state is checked: non-finite values
-or a coordinate beyond its ``limit`` stop the chunk with a status (1: not finite, 2: beyond the limit, 3: step
-size underflow) and the index of the offending state.
+Each call advances from ``t`` towards ``t_end`` and returns there or after ``budget`` right-hand sides, whichever
+comes first (so that the caller regains control a few times a second, to look for Ctrl-C and watch the run); the
+first call (``start``) evaluates the derivative and the outputs at the initial state. The steps are chosen by the
+error control alone and the states at the output times inside a step come from the method's continuous extension
+(DOP853: Hairer's 7th-order interpolant, three extra right-hand sides on the steps that hold an output time; DP54:
+the free 4th-order one), so the output interval does not constrain the step; the load channels of each output row
+(:func:`.compiled_outputs.output_row`) are computed as the row is written. After each accepted step the state is
+checked: non-finite values or a coordinate beyond its ``limit`` stop the call with a status (1: not finite, 2:
+beyond the limit, 3: step size underflow) and the index of the offending state.
 """
 
 from __future__ import annotations
@@ -19,10 +22,32 @@ except ImportError:                                    # pragma: no cover - numb
     njit = None
 
 if njit is not None:
-    from .compiled_kernels import store_row
-    from .compiled_loads import derivative
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
+
+if njit is not None:
+    from .compiled_kernels import free_accelerations, full_state, store_row
+    from .compiled_loads import equations
+    from .compiled_outputs import output_row
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
+
+    @njit(cache=True)
+    def rate(t, x, q0, u0, index, data, work, hub_radius, row):
+        """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
+        same evaluation of the equations) if it is not empty."""
+        q, u = full_state(t, x, q0, u0, index)
+        M, f = equations(q, u, data, work)
+        size = index.shape[0]
+        out = np.empty(2 * size)
+        du = free_accelerations(M, f, index)
+        for i in range(size):
+            out[i] = x[size + i]
+            out[size + i] = du[i]
+        if row.shape[0]:
+            output_row(q, u, M, f, index, data, work, hub_radius, 0, row)
+        return out
 
     @njit(cache=True)
     def check_state(x, limit):
@@ -45,26 +70,30 @@ if njit is not None:                                   # module-level kernels: n
         return out
 
     @njit(cache=True)
-    def dop853_chunk(t, x, f0, h, t_end, times, out, next_out, rtol, atol, limit, tableau, q0, u0, index, data,
-                     work):
-        """DOP853 (Hairer's 8(5,3) with scipy's tableau ``(A, B, C, E3, E5, D)``) from t to t_end with the first
-        step h; fills ``out[k]`` for the output ``times[k] <= t_end``, k from ``next_out``. Returns
-        ``(t, x, f, h, next_out, evaluations, status, offending index)``."""
+    def dop853_chunk(t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol, limit, tableau, q0,
+                     u0, index, data, work, hub_radius):
+        """DOP853 (Hairer's 8(5,3) with scipy's tableau ``(A, B, C, E3, E5, D)``) from t to t_end (or ``budget``
+        right-hand sides) with the first step h; fills ``out[k]`` and ``loads[k]`` for the output ``times[k] <=
+        t_end``, k from ``next_out``; ``start``: f0 and the first row are computed here. Returns ``(t, x, f, h,
+        next_out, evaluations, status, offending index)``."""
         A, B, C, E3, E5, D = tableau
         size = x.shape[0]
         stages = B.shape[0]
         K = np.zeros((A.shape[0], size))
-        store_row(K, 0, f0)
         count = 0
-        while t < t_end:
+        if start:
+            f0 = rate(t, x, q0, u0, index, data, work, hub_radius, loads[0])
+            count += 1
+        store_row(K, 0, f0)
+        while t < t_end and count < budget:
             h = min(h, t_end - t)
             if h <= 1e-14 * max(1.0, abs(t)):
                 return t, x, K[0], h, next_out, count, 3, -1
             for s in range(1, stages):
                 stage = combination(x, h, A[s], K, s)
-                store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
+                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             new = combination(x, h, B, K, stages)
-            store_row(K, stages, derivative(t + h, new, q0, u0, index, data, work))
+            store_row(K, stages, rate(t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             count += stages
             e5, e3 = 0.0, 0.0
             for i in range(size):
@@ -81,7 +110,7 @@ if njit is not None:                                   # module-level kernels: n
                 if next_out < times.shape[0] and times[next_out] <= t_new:
                     for s in range(stages + 1, A.shape[0]):
                         stage = combination(x, h, A[s], K, s)
-                        store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
+                        store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
                         count += 1
                     F = np.zeros((7, size))
                     for i in range(size):
@@ -101,6 +130,8 @@ if njit is not None:                                   # module-level kernels: n
                             for r in range(7):
                                 y = (y + F[6 - r, i]) * (theta if r % 2 == 0 else 1.0 - theta)
                             out[next_out, i] = x[i] + y
+                        rate(times[next_out], out[next_out], q0, u0, index, data, work, hub_radius,
+                             loads[next_out])
                         next_out += 1
                 t = t_new
                 x = new
@@ -115,23 +146,26 @@ if njit is not None:                                   # module-level kernels: n
         return t, x, K[0], h, next_out, count, 0, -1
 
     @njit(cache=True)
-    def dp54_chunk(t, x, f0, h, t_end, times, out, next_out, rtol, atol, limit, tableau, q0, u0, index, data,
-                   work):
+    def dp54_chunk(t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol, limit, tableau, q0,
+                   u0, index, data, work, hub_radius):
         """Dormand-Prince 5(4) (scipy's RK45 scheme, tableau ``(A, B, C, E, P)``), as :func:`dop853_chunk`."""
         A, B, C, E, P = tableau
         size = x.shape[0]
         K = np.zeros((7, size))
-        store_row(K, 0, f0)
         count = 0
-        while t < t_end:
+        if start:
+            f0 = rate(t, x, q0, u0, index, data, work, hub_radius, loads[0])
+            count += 1
+        store_row(K, 0, f0)
+        while t < t_end and count < budget:
             h = min(h, t_end - t)
             if h <= 1e-14 * max(1.0, abs(t)):
                 return t, x, K[0], h, next_out, count, 3, -1
             for s in range(1, 6):
                 stage = combination(x, h, A[s], K, s)
-                store_row(K, s, derivative(t + C[s] * h, stage, q0, u0, index, data, work))
+                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             new = combination(x, h, B, K, 6)
-            store_row(K, 6, derivative(t + h, new, q0, u0, index, data, work))
+            store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             count += 6
             total = 0.0
             for i in range(size):
@@ -154,6 +188,7 @@ if njit is not None:                                   # module-level kernels: n
                                 value += K[j, i] * P[j, r]
                             y[i] += h * value * power
                     store_row(out, next_out, y)
+                    rate(times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
                     next_out += 1
                 t = t_new
                 x = new

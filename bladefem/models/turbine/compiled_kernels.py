@@ -14,6 +14,11 @@ try:
 except ImportError:                                    # pragma: no cover - numba is optional
     njit = None
 
+if njit is not None:
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
+
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 

@@ -3,11 +3,11 @@
 
 :func:`add_aero` runs after the structural kernel (:func:`.compiled_kernels.equations`), which leaves each blade's
 frame, shared partials ``Z = [J_apex; W_rotor; E_blade]`` and the apex position in ``work``: the aerodynamic nodes'
-kinematics follow from those (``omega = W u``, ``v_apex = J_apex u``), the node solver runs node by node (the
-previous inflow angle as its start), and the lumped loads add ``Z^T sum_p [F; rho x F + M; (R D)^T F]`` to the
-forcing. ``aero`` is the tuple of :func:`aero_data`; ``state`` the arrays of :func:`aero_state`. The kernels
-:func:`equations` and :func:`derivative` take ``data = (structure, aero, generator law)`` and ``work = (structural
-work, aero state)``.
+kinematics follow from those (``omega = W u``, ``v_apex = J_apex u``), the node solver runs node by node (from
+scratch, as the numpy twin: the loads are a function of the state alone), and the lumped loads add
+``Z^T sum_p [F; rho x F + M; (R D)^T F]`` to the forcing. ``aero`` is the tuple of :func:`aero_data`; ``state``
+the arrays of :func:`aero_state`. The kernels :func:`equations` and :func:`derivative` take ``data = (structure,
+aero, generator law)`` and ``work = (structural work, aero state)``.
 """
 
 from __future__ import annotations
@@ -20,6 +20,11 @@ try:
     from numba import njit
 except ImportError:                                    # pragma: no cover - numba is optional
     njit = None
+
+if njit is not None:
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
 
 #: columns of the rotor summary a call leaves in the state (``state[-1]``)
 HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")
@@ -53,12 +58,12 @@ def aero_data(model) -> tuple:
 
 def aero_state(blades: int, nodes: int, modes: int) -> tuple:
     """Per node: offset from the apex rho, absolute velocity (B, Na, 3), R D (B, Na, 3, k), the deflected normal
-    and span axis (B, Na, 3), the relative wind (B, Na, 3), the next guess (B, Na), the node solutions (B, Na, 13),
-    lumped forces and moments (B, Na, 3); the rotor summary (:data:`HUB`)."""
+    and span axis (B, Na, 3), the relative wind (B, Na, 3), the node solutions (B, Na, 13), lumped forces and
+    moments (B, Na, 3); the rotor summary (:data:`HUB`)."""
     shape = (blades, nodes, 3)
     return (np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 3, modes)), np.zeros(shape),
-            np.zeros(shape), np.zeros(shape), np.full((blades, nodes), np.nan), np.zeros((blades, nodes, 13)),
-            np.zeros(shape), np.zeros(shape), np.zeros(len(HUB)))
+            np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 13)), np.zeros(shape), np.zeros(shape),
+            np.zeros(len(HUB)))
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -131,8 +136,8 @@ if njit is not None:                                   # module-level kernels: n
         knots, values, coefs, start, count, options, scalars = aero[12], aero[13], aero[14], aero[15], aero[16], \
             aero[17], aero[18]
         Z_w, frame_w, shaft = work[4], work[5], work[8][3]
-        rho_w, RD_w, normal_w, span_w, rel_w, guess_w, out_w, force_w, moment_w, hub = state[0], state[2], \
-            state[3], state[4], state[5], state[6], state[7], state[8], state[9], state[10]
+        rho_w, RD_w, normal_w, span_w, rel_w, out_w, force_w, moment_w, hub = state[0], state[2], state[3], \
+            state[4], state[5], state[6], state[7], state[8], state[9]
         omega = node_kinematics(q, u, data, aero, work, state)
         B, k = frame_w.shape[0], RD_w.shape[3]
         # disk averages (AeroDyn's DiskAvgValues): relative wind, skew angle and direction, tip-speed ratio
@@ -184,12 +189,11 @@ if njit is not None:                                   # module-level kernels: n
                 phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
                     vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1], r_local[b, p] / tip[b],
                     chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start, count, options, scalars[0],
-                    guess_w[b, p])
+                    math.nan)
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl
                 row[7], row[8], row[9], row[10], row[11] = cd, cm, fn, ft, m
                 row[12] = 1.0 if valid else 0.0
-                guess_w[b, p] = phi_solved
             # lumped loads: forces by virtual work of linear loads (tridiagonal), moments by the trapezoidal rule
             shared = np.zeros(6 + k)
             for p in range(nodes):

@@ -11,6 +11,11 @@ try:
 except ImportError:                                    # pragma: no cover - numba is optional
     njit = None
 
+if njit is not None:
+    from ...numba_cache import install
+
+    install()                                          # cached kernels stale when any kernel source changes
+
 #: columns of :func:`load_outputs` (SI): blade root moments (N m), low-speed-shaft thrust (N) and torque (N m),
 #: generator torque (N m), the aerodynamic rotor summary (compiled_loads.HUB), aerodynamic and damping power (W)
 COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_torque", "aero_thrust", "aero_torque",
@@ -24,9 +29,20 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def load_outputs(times, states, q0, u0, index, data, work, hub_radius, blade):
-        """The :data:`COLUMNS` at each output row. Root moments of ``blade``: ``sum (r - r_root) x (m (g - a) +
-        F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for loads toward
-        the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
+        """The :data:`COLUMNS` at each output row (:func:`output_row`)."""
+        out = np.zeros((times.shape[0], len(COLUMNS)))
+        for row in range(times.shape[0]):
+            q, u = full_state(times[row], states[row], q0, u0, index)
+            M, f = equations(q, u, data, work)
+            output_row(q, u, M, f, index, data, work, hub_radius, blade, out[row])
+        return out
+
+    @njit(cache=True)
+    def output_row(q, u, M, f, index, data, work, hub_radius, blade, out):
+        """Fill ``out`` with the :data:`COLUMNS` at (q, u), given the equations ``M du/dt = f`` there (whose kernel
+        has just left that state's motion and loads in ``work``). Root moments of ``blade``: ``sum (r - r_root) x
+        (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for
+        loads toward the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
         gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
         holds a locked generator at its speed."""
         structure, law = data[0], data[2]
@@ -35,92 +51,87 @@ if njit is not None:                                   # module-level kernels: n
         rho_w, bias_w, RD_w, Z_w, frame_w = work[0][0], work[0][2], work[0][3], work[0][4], work[0][5]
         hub_J, hub = work[0][7], work[0][8]
         state = work[1]
-        a_rho, a_vel, a_force, a_moment, summary = state[0], state[1], state[8], state[9], state[10]
+        a_rho, a_vel, a_force, a_moment, summary = state[0], state[1], state[7], state[8], state[9]
         k = RD_w.shape[3]
         g_index = np.argmax(np.abs(generator))
-        out = np.zeros((times.shape[0], 15))
         a, load, arm, force, moment = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
-        for row in range(times.shape[0]):
-            q, u = full_state(times[row], states[row], q0, u0, index)
-            M, f = equations(q, u, data, work)
-            du = np.zeros(n)
-            free = free_accelerations(M, f, index)
-            for i in range(index.shape[0]):
-                du[index[i]] = free[i]
-            shaft = hub[3]
-            for r in range(3):
-                force[r] = 0.0
-                moment[r] = 0.0
-            omega = np.zeros(3)
-            for b in range(frame_w.shape[0]):
-                Z, R = Z_w[b], frame_w[b]
-                shared = np.zeros(6 + k)
-                for r in range(6 + k):
-                    for c in range(n):
-                        shared[r] += Z[r, c] * du[c]
-                if b == 0:
-                    for r in range(3):
-                        for c in range(n):
-                            omega[r] += Z[3 + r, c] * u[c]
-                blade_moment = np.zeros(3)
-                for p in range(rho_w.shape[1]):
-                    rho = rho_w[b, p]
-                    a[0] = shared[0] + shared[4] * rho[2] - shared[5] * rho[1]
-                    a[1] = shared[1] + shared[5] * rho[0] - shared[3] * rho[2]
-                    a[2] = shared[2] + shared[3] * rho[1] - shared[4] * rho[0]
-                    for r in range(3):
-                        for i in range(k):
-                            a[r] += RD_w[b, p, r, i] * shared[6 + i]
-                        load[r] = b_mass[p] * (gravity[r] - a[r] - bias_w[b, p, r])
-                        arm[r] = rho[r] - hub_radius * R[r, 0]
-                        force[r] += load[r]
-                    accumulate_moment(blade_moment, arm, load)
-                    accumulate_moment(moment, rho, load)
-                for p in range(a_rho.shape[1]):
-                    for r in range(3):
-                        arm[r] = a_rho[b, p, r] - hub_radius * R[r, 0]
-                        force[r] += a_force[b, p, r]
-                        blade_moment[r] += a_moment[b, p, r]
-                        moment[r] += a_moment[b, p, r]
-                    accumulate_moment(blade_moment, arm, a_force[b, p])
-                    accumulate_moment(moment, a_rho[b, p], a_force[b, p])
-                if b == blade:
-                    out[row, 0] = -(R[0, 1] * blade_moment[0] + R[1, 1] * blade_moment[1] + R[2, 1] * blade_moment[2])
-                    out[row, 1] = R[0, 2] * blade_moment[0] + R[1, 2] * blade_moment[1] + R[2, 2] * blade_moment[2]
-            # hub: point mass at its centre of mass, inertia about the shaft
-            spin = 0.0
-            for r in range(3):
-                value = hub[0, r]
+        du = np.zeros(n)
+        free = free_accelerations(M, f, index)
+        for i in range(index.shape[0]):
+            du[index[i]] = free[i]
+        shaft = hub[3]
+        for r in range(3):
+            force[r] = 0.0
+            moment[r] = 0.0
+        omega = np.zeros(3)
+        for b in range(frame_w.shape[0]):
+            Z, R = Z_w[b], frame_w[b]
+            shared = np.zeros(6 + k)
+            for r in range(6 + k):
                 for c in range(n):
-                    value += hub_J[r, c] * du[c]
-                    spin += Z_w[0, 3 + r, c] * du[c] * shaft[r]
-                load[r] = rigid_mass[2] * (gravity[r] - value)
-                force[r] += load[r]
-                spin += hub[2, r] * shaft[r]
-            accumulate_moment(moment, hub[1], load)
-            out[row, 2] = force[0] * shaft[0] + force[1] * shaft[1] + force[2] * shaft[2]
-            out[row, 3] = moment[0] * shaft[0] + moment[1] * shaft[1] + moment[2] * shaft[2] - inertias[1] * spin
-            # generator torque: the law's, less the generalized force that holds a locked generator
-            speed = 0.0
-            residual = -f[g_index]
+                    shared[r] += Z[r, c] * du[c]
+            if b == 0:
+                for r in range(3):
+                    for c in range(n):
+                        omega[r] += Z[3 + r, c] * u[c]
+            blade_moment = np.zeros(3)
+            for p in range(rho_w.shape[1]):
+                rho = rho_w[b, p]
+                a[0] = shared[0] + shared[4] * rho[2] - shared[5] * rho[1]
+                a[1] = shared[1] + shared[5] * rho[0] - shared[3] * rho[2]
+                a[2] = shared[2] + shared[3] * rho[1] - shared[4] * rho[0]
+                for r in range(3):
+                    for i in range(k):
+                        a[r] += RD_w[b, p, r, i] * shared[6 + i]
+                    load[r] = b_mass[p] * (gravity[r] - a[r] - bias_w[b, p, r])
+                    arm[r] = rho[r] - hub_radius * R[r, 0]
+                    force[r] += load[r]
+                accumulate_moment(blade_moment, arm, load)
+                accumulate_moment(moment, rho, load)
+            for p in range(a_rho.shape[1]):
+                for r in range(3):
+                    arm[r] = a_rho[b, p, r] - hub_radius * R[r, 0]
+                    force[r] += a_force[b, p, r]
+                    blade_moment[r] += a_moment[b, p, r]
+                    moment[r] += a_moment[b, p, r]
+                accumulate_moment(blade_moment, arm, a_force[b, p])
+                accumulate_moment(moment, a_rho[b, p], a_force[b, p])
+            if b == blade:
+                out[0] = -(R[0, 1] * blade_moment[0] + R[1, 1] * blade_moment[1] + R[2, 1] * blade_moment[2])
+                out[1] = R[0, 2] * blade_moment[0] + R[1, 2] * blade_moment[1] + R[2, 2] * blade_moment[2]
+        # hub: point mass at its centre of mass, inertia about the shaft
+        spin = 0.0
+        for r in range(3):
+            value = hub[0, r]
             for c in range(n):
-                speed += generator[c] * u[c]
-                residual += M[g_index, c] * du[c]
-            out[row, 4] = law_torque(law, speed) - residual / generator[g_index]
-            for i in range(8):
-                out[row, 5 + i] = summary[i]
-            power = 0.0
-            for b in range(a_rho.shape[0]):
-                for p in range(a_rho.shape[1]):
-                    for r in range(3):
-                        power += a_force[b, p, r] * a_vel[b, p, r] + a_moment[b, p, r] * omega[r]
-            out[row, 13] = power
-            damping = 0.0
-            for i in range(n):
-                for j in range(n):
-                    damping += u[i] * C[i, j] * u[j]
-            out[row, 14] = damping
-        return out
+                value += hub_J[r, c] * du[c]
+                spin += Z_w[0, 3 + r, c] * du[c] * shaft[r]
+            load[r] = rigid_mass[2] * (gravity[r] - value)
+            force[r] += load[r]
+            spin += hub[2, r] * shaft[r]
+        accumulate_moment(moment, hub[1], load)
+        out[2] = force[0] * shaft[0] + force[1] * shaft[1] + force[2] * shaft[2]
+        out[3] = moment[0] * shaft[0] + moment[1] * shaft[1] + moment[2] * shaft[2] - inertias[1] * spin
+        # generator torque: the law's, less the generalized force that holds a locked generator
+        speed = 0.0
+        residual = -f[g_index]
+        for c in range(n):
+            speed += generator[c] * u[c]
+            residual += M[g_index, c] * du[c]
+        out[4] = law_torque(law, speed) - residual / generator[g_index]
+        for i in range(8):
+            out[5 + i] = summary[i]
+        power = 0.0
+        for b in range(a_rho.shape[0]):
+            for p in range(a_rho.shape[1]):
+                for r in range(3):
+                    power += a_force[b, p, r] * a_vel[b, p, r] + a_moment[b, p, r] * omega[r]
+        out[13] = power
+        damping = 0.0
+        for i in range(n):
+            for j in range(n):
+                damping += u[i] * C[i, j] * u[j]
+        out[14] = damping
 
     @njit(cache=True)
     def accumulate_moment(total, arm, load):

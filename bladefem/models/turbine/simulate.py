@@ -16,12 +16,13 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from .outputs import CHANNELS, channels, load_row, plot_outputs, table_text, write_table
+from .outputs import CHANNELS, LOAD_COLUMNS, channels, load_row, plot_outputs, table_text, write_table
 from .parameters import coordinate_label
 from .system import FreeSystem
+from .watch import Interrupted, Monitor, SimulationStopped
 
-__all__ = ["CHANNELS", "METHODS", "DivergenceError", "SimulationResult", "UnstableStep", "plot_outputs",
-           "simulate", "table_text", "write_table"]
+__all__ = ["CHANNELS", "METHODS", "DivergenceError", "Interrupted", "SimulationResult", "SimulationStopped",
+           "UnstableStep", "plot_outputs", "simulate", "table_text", "write_table"]
 
 #: largest |lambda| h for which classical RK4 stays stable on an undamped mode (2 sqrt(2) on the imaginary axis)
 RK4_STABILITY = 2.8
@@ -33,12 +34,12 @@ class UnstableStep(ValueError):
     """A fixed step beyond the stability limit of the fastest mode."""
 
 
-class DivergenceError(RuntimeError):
-    """The time integration blew up: ``time`` (s), the coordinate and why."""
+class DivergenceError(SimulationStopped):
+    """The time integration blew up: ``time`` (s), the coordinate and why (and the rows up to then, ``result``)."""
 
-    def __init__(self, message: str, time: float, coordinate: str) -> None:
-        super().__init__(message)
-        self.time, self.coordinate = time, coordinate
+    def __init__(self, message: str, time: float, coordinate: str, result=None) -> None:
+        super().__init__(message, time, result)
+        self.coordinate = coordinate
 
 
 @dataclass(frozen=True)
@@ -141,10 +142,14 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     """Integrate from t = 0 to ``duration`` (s), outputs every ``dt_output`` s.
 
     method : 'auto' (:func:`auto_method`: the compiled Dormand-Prince 'DP853', or 'DP54' with aerodynamics, when
-        numba is installed, else scipy's 'DOP853'), 'DP853' or 'DP54' (compiled Dormand-Prince 8(5,3) or 5(4), numba only), a
-        scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``, ``atol``), or 'RK4' with the fixed
-        ``step`` (s; refused with :class:`UnstableStep` beyond the stability limit of the fastest mode)
+        numba is installed, else scipy's 'DOP853'), 'DP853' or 'DP54' (compiled Dormand-Prince 8(5,3) or 5(4),
+        numba only), a scipy ``solve_ivp`` method ('RK45', 'DOP853', ...; tolerances ``rtol``, ``atol``), or 'RK4'
+        with the fixed ``step`` (s; refused with :class:`UnstableStep` beyond the stability limit of the fastest mode)
     progress : called with the simulated time as the run advances (compiled integrators and RK4)
+
+    A run that leaves a physical bound (:mod:`.watch`), diverges, or is interrupted with Ctrl-C (compiled
+    integrators) raises :class:`SimulationStopped` (:class:`DivergenceError`, :class:`Interrupted`) carrying the
+    rows computed up to then (``result``).
     """
     times = output_times(duration, dt_output)
     compiled = system.model.fast_equations()
@@ -167,12 +172,8 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     if method in ("DP54", "DP853"):
         if not hasattr(compiled, "integrate"):
             raise RuntimeError(f"method '{method}' needs numba (pip install numba)")
-        run = compiled.integrate(times, system.initial_state(), rtol, atol, system.q0, system.u0, system.index,
-                                 order=8 if method == "DP853" else 5, limit=limit, progress=progress)
-        if run.status:
-            raise diverged(system, run.offending, run.time, run.status, method)
-        states, count[0] = run.states, run.evaluations
-    elif method == "RK4":
+        return compiled_run(system, compiled, times, rtol, atol, 8 if method == "DP853" else 5, limit, progress)
+    if method == "RK4":
         stable, dof = rk4_stable_step(system)
         if step > stable:
             raise UnstableStep(f"RK4 with a step of {step:g} s is unstable for the fastest mode ({dof}): the step must "
@@ -187,10 +188,54 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
         for t, x in zip(times, states):
             check(t, x)
     full = [system.full(t, x) for t, x in zip(times, states)]
-    q, u = np.array([a for a, _ in full]), np.array([b for _, b in full])
-    if hasattr(compiled, "outputs"):
-        loads = compiled.outputs(times, states, system.q0, system.u0, system.index)
-    else:
-        loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui)) for qi, ui in zip(q, u)])
+    loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui)) for qi, ui in full])
+    result = result_of(system, times, states, loads, count[0])
+    reason = Monitor(system.model, LOAD_COLUMNS, generator_free(system)).rows(times, result.u, loads)
+    if reason:
+        rows = int(np.searchsorted(times, reason[1], "right"))
+        raise SimulationStopped(reason[0], reason[1], result_of(system, times[:rows], states[:rows], loads[:rows],
+                                                                count[0]))
+    return result
+
+
+def generator_free(system: FreeSystem) -> bool:
+    """Whether the generator turns freely (not held at its speed)."""
+    return bool(system.free[system.model.dofs.index("generator_azimuth")])
+
+
+def result_of(system: FreeSystem, times: NDArray, states: NDArray, loads: NDArray, evaluations: int
+              ) -> SimulationResult:
+    """The :class:`SimulationResult` of the free states (T, 2 size) and load columns at ``times``."""
+    full = [system.full(t, x) for t, x in zip(times, states)]
+    q = np.array([a for a, _ in full]).reshape(len(times), system.model.n)
+    u = np.array([b for _, b in full]).reshape(len(times), system.model.n)
     return SimulationResult(time=times, q=q, u=u, dofs=system.model.dofs, free=system.free,
-                            outputs=channels(system.model, q, u, loads), evaluations=count[0], loads=loads)
+                            outputs=channels(system.model, q, u, loads), evaluations=evaluations, loads=loads)
+
+
+def compiled_run(system: FreeSystem, compiled, times: NDArray, rtol: float, atol: float, order: int,
+                 limit: NDArray, progress: Callable[[float], None] | None) -> SimulationResult:
+    """The compiled Dormand-Prince run, watched between kernel calls (:class:`.watch.Monitor`: physical bounds of
+    the new rows, step count) and stopped with the rows computed so far on a bound, a divergence or Ctrl-C."""
+    monitor = Monitor(system.model, LOAD_COLUMNS, generator_free(system))
+
+    def watch(start: float, end: float, row_times: NDArray, states: NDArray, loads: NDArray, count: int):
+        if progress is not None:
+            progress(end)
+        u = np.tile(system.u0, (len(row_times), 1))
+        u[:, system.index] = states[:, system.size:]
+        return monitor.rows(row_times, u, loads) or monitor.steps(count, start, end)
+
+    run = compiled.integrate(times, system.initial_state(), rtol, atol, system.q0, system.u0, system.index,
+                             order=order, limit=limit, watch=watch)
+    rows = run.rows if run.status != 4 else min(run.rows, int(np.searchsorted(times, run.reason[1], "right")))
+    result = result_of(system, times[:rows], run.states[:rows], run.loads[:rows], run.evaluations)
+    if run.status in (1, 2, 3):
+        error = diverged(system, run.offending, run.time, run.status, "DP54" if order == 5 else "DP853")
+        error.result = result
+        raise error
+    if run.status == 4:
+        raise SimulationStopped(run.reason[0], run.reason[1], result)
+    if run.status == 5:
+        raise Interrupted(f"interrupted (Ctrl-C) at t = {run.time:.4g} s", run.time, result)
+    return result

@@ -1,0 +1,67 @@
+"""numba's on-disk cache of bladefem's kernels, made stale by a change in any kernel source.
+
+numba keys a cached function by its own source file only: a kernel that calls a kernel of another file keeps its
+cached machine code, with the old callee inlined, after that file changes (a partial update of an editable install,
+a ``git pull``): the compiled path then silently runs old physics. :func:`install` puts, in front of numba's own
+cache locators, the same locators (the package's ``__pycache__`` when writable, else numba's user cache folder, or
+``NUMBA_CACHE_DIR``) for bladefem's files whose freshness stamp also holds a hash of every kernel source
+(:data:`KERNEL_SOURCES`). It uses numba's private ``CacheImpl._locator_classes``; where that moved, numba's own
+caching stays (the stale case included).
+"""
+
+from __future__ import annotations
+
+import hashlib
+from functools import cache
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parent
+#: The files whose numba kernels call one another, relative to the package.
+KERNEL_SOURCES = ("aero/*.py", "models/turbine/compiled*.py", "models/turbine/control.py")
+
+
+@cache
+def sources_hash() -> str:
+    """SHA-256 of the kernel sources' names and contents."""
+    digest = hashlib.sha256()
+    for pattern in KERNEL_SOURCES:
+        for path in sorted(PACKAGE.glob(pattern)):
+            digest.update(path.name.encode())
+            digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def _whole(base):
+    """``base`` locator for bladefem's files, stamped with the kernel sources' hash too."""
+
+    class Locator(base):
+        bladefem = True
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            if not Path(py_file).resolve().is_relative_to(PACKAGE):
+                return None
+            return super().from_function(py_func, py_file)
+
+        def get_source_stamp(self):
+            return super().get_source_stamp(), sources_hash()
+
+    Locator.__name__ = Locator.__qualname__ = f"Bladefem{base.__name__}"
+    return Locator
+
+
+def install() -> None:
+    """Put the locators in front of numba's (once per process); nothing without numba."""
+    try:
+        from numba.core import caching
+
+        def named(name: str):                            # numba 0.68 dropped the leading underscores
+            return getattr(caching, name, None) or getattr(caching, "_" + name)
+
+        classes = named("CacheImpl")._locator_classes
+        bases = tuple(named(name) for name in ("UserProvidedCacheLocator", "InTreeCacheLocator",
+                                               "UserWideCacheLocator"))
+    except (ImportError, AttributeError):                # numba missing, or its private API moved
+        return
+    if not any(getattr(locator, "bladefem", False) for locator in classes):
+        classes[:0] = [_whole(base) for base in bases]
