@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bladefem.io.turbine_deck import read_turbine_deck
+from bladefem.builders.turbine_deck import read_turbine_deck
 from bladefem.models.turbine import FreeSystem, TurbineModel
 
 pytest.importorskip("numba")

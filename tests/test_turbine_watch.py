@@ -90,7 +90,7 @@ def test_runaway_rotor_stops_at_the_speed_of_sound(tmp_path, capsys):
 def test_step_count_explosion_gives_up(monkeypatch):
     """More right-hand sides per simulated second than MAX_RATE (lowered here to 1000, a third of what rtol 1e-9
     needs) stops the run with the reason and the rows so far, instead of running on for hours."""
-    from bladefem.io.turbine_deck import read_turbine_deck
+    from bladefem.builders.turbine_deck import read_turbine_deck
     from bladefem.models.turbine import FreeSystem, TurbineModel
     from bladefem.models.turbine import watch
     from bladefem.models.turbine.initial import free_from_switches, initial_state
