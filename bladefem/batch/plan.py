@@ -33,7 +33,11 @@ DISTRIBUTIONS = ("normal", "uniform", "lognormal")
 MAX_CASES = 1_000_000
 
 _NUMBER = {"type": "number"}
-_NUMBERS = {"type": "array", "items": _NUMBER, "minItems": 1}
+#: what a grid may vary, and within which physical bounds (a scale factor within 1e-3..1e3 of the base section
+#: property, rotor speed up to the CLI's limit, pitch, cone and tip mass as a turbine can have them)
+GRID_BOUNDS: dict[str, tuple[float, float]] = {
+    **{f"{c}_scale": (1e-3, 1e3) for c in SCALES}, "tip_mass_kg": (0.0, 1e7), "precone_deg": (-45.0, 45.0),
+    "pitch_deg": (-180.0, 180.0), "rpm": (0.0, 1e5), "wind_speed_m_s": (0.0, 100.0)}
 PLAN_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "title": "bladefem batch plan",
@@ -60,15 +64,15 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "induction": {"enum": ["frozen", "quasi-steady"]},
             },
         },
-        "grid": {"type": "object", "minProperties": 1,
-                 "propertyNames": {"enum": [f"{c}_scale" for c in SCALES] + ["tip_mass_kg", "precone_deg",
-                                                                             "pitch_deg", "rpm", "wind_speed_m_s"]},
-                 "additionalProperties": _NUMBERS},
+        "grid": {"type": "object", "minProperties": 1, "additionalProperties": False,
+                 "properties": {name: {"type": "array", "minItems": 1,
+                                       "items": {"type": "number", "minimum": low, "maximum": high}}
+                                for name, (low, high) in GRID_BOUNDS.items()}},
         "samples": {
             "type": "object", "additionalProperties": False, "required": ["count", "seed", "properties"],
             "properties": {
                 "count": {"type": "integer", "minimum": 1, "maximum": MAX_CASES},
-                "seed": {"type": "integer", "minimum": 0},
+                "seed": {"type": "integer", "minimum": 0, "maximum": 2**63 - 1},
                 "properties": {
                     "type": "object", "minProperties": 1, "propertyNames": {"enum": list(SCALES)},
                     "additionalProperties": {
@@ -151,11 +155,12 @@ def _validate(data: Any, path: Path, lines: dict) -> None:
 
 
 def _line(lines: dict, where: tuple) -> int | None:
+    """The line of the plan entry at ``where`` (key path), else of the nearest entry holding it, else line 1."""
     while where:
         if where in lines:
             return lines[where]
         where = where[:-1]
-    return None
+    return lines.get((), 1)
 
 
 def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysis:
@@ -266,7 +271,7 @@ def factors(spec: dict[str, Any], z: np.ndarray) -> np.ndarray:
 
 
 def _sample_cases(samples: dict[str, Any], base: Path, stations: np.ndarray) -> list[dict[str, Any]]:
-    rng = np.random.default_rng(samples["seed"])
+    rng = np.random.default_rng(int(samples["seed"]))
     cases = []
     for _ in range(samples["count"]):
         inputs: dict[str, Any] = {}
