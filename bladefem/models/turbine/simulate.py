@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.integrate import solve_ivp
 
 from .outputs import CHANNELS, LOAD_COLUMNS, channels, load_row, plot_outputs, table_text, write_table
 from .parameters import coordinate_label
@@ -115,11 +114,12 @@ def rk4_stable_step(system: FreeSystem) -> tuple[float, str]:
     return RK4_STABILITY / abs(values[fastest]), f"{coordinate_label(dof)}, {abs(values[fastest]) / 2 / np.pi:.3g} Hz"
 
 
-def runge_kutta4(rhs, x0: NDArray, times: NDArray, step: float, check: Callable[[float, NDArray], None]) -> NDArray:
+def runge_kutta4(rhs, states: list[NDArray], times: NDArray, step: float,
+                 check: Callable[[float, NDArray], None]) -> None:
     """Classical fixed-step 4th-order Runge-Kutta (ElastoDyn's Method = 1) with steps no larger than ``step`` (s)
-    landing on every output time; ``check(t, x)`` after each output step."""
-    states = [x0]
-    x, t = x0, times[0]
+    landing on every output time; the state at each output time appended to ``states`` (which holds the initial
+    one), so that an interrupted run keeps the rows done; ``check(t, x)`` after each output step."""
+    x, t = states[-1], times[0]
     for target in times[1:]:
         count = max(1, int(np.ceil((target - t) / step - 1e-9)))
         h = (target - t) / count
@@ -131,9 +131,27 @@ def runge_kutta4(rhs, x0: NDArray, times: NDArray, step: float, check: Callable[
             x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
             t += h
         t = target
-        check(t, x)
         states.append(x)
-    return np.array(states)
+        check(t, x)
+
+
+def scipy_steps(method: str, rhs, states: list[NDArray], times: NDArray, rtol: float, atol: float,
+                check: Callable[[float, NDArray], None]) -> None:
+    """scipy's ``method`` (RK45, DOP853) stepped as ``solve_ivp`` steps it, each output time taken from the step's
+    dense output as it passes, appended to ``states`` (so that an interrupted run keeps the rows done)."""
+    from scipy import integrate
+
+    solver = getattr(integrate, method)(rhs, times[0], states[-1], times[-1], rtol=rtol, atol=atol)
+    k = len(states)
+    while k < len(times):
+        solver.step()
+        if solver.status == "failed":
+            raise RuntimeError(f"time integration failed at t = {solver.t:.4g} s")
+        dense = solver.dense_output()
+        while k < len(times) and (times[k] <= solver.t or solver.status == "finished"):
+            states.append(dense(times[k]))
+            check(times[k], states[-1])
+            k += 1
 
 
 def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol: float = 1e-6,
@@ -147,8 +165,8 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
         with the fixed ``step`` (s; refused with :class:`UnstableStep` beyond the stability limit of the fastest mode)
     progress : called with the simulated time as the run advances (compiled integrators and RK4)
 
-    A run that leaves a physical bound (:mod:`.watch`), diverges, or is interrupted with Ctrl-C (compiled
-    integrators) raises :class:`SimulationStopped` (:class:`DivergenceError`, :class:`Interrupted`) carrying the
+    A run that leaves a physical bound (:mod:`.watch`), diverges, or is interrupted with Ctrl-C (every
+    integrator) raises :class:`SimulationStopped` (:class:`DivergenceError`, :class:`Interrupted`) carrying the
     rows computed up to then (``result``).
     """
     times = output_times(duration, dt_output)
@@ -178,15 +196,20 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
         if step > stable:
             raise UnstableStep(f"RK4 with a step of {step:g} s is unstable for the fastest mode ({dof}): the step must "
                              f"be below {stable:.3g} s")
-        states = runge_kutta4(rhs, system.initial_state(), times, step, check)
-    else:
-        solution = solve_ivp(rhs, (0.0, times[-1]), system.initial_state(), method=method, t_eval=times,
-                             rtol=rtol, atol=atol)
-        if not solution.success:
-            raise RuntimeError(f"time integration failed: {solution.message}")
-        states = solution.y.T
-        for t, x in zip(times, states):
-            check(t, x)
+    done = [system.initial_state()]
+    try:
+        if method == "RK4":
+            runge_kutta4(rhs, done, times, step, check)
+        else:
+            scipy_steps(method, rhs, done, times, rtol, atol, check)
+    except KeyboardInterrupt:
+        rows = len(done)
+        partial = np.array(done)
+        loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui))
+                          for qi, ui in (system.full(t, x) for t, x in zip(times[:rows], partial))])
+        raise Interrupted(f"interrupted (Ctrl-C) at t = {times[rows - 1]:.4g} s", float(times[rows - 1]),
+                          result_of(system, times[:rows], partial, loads, count[0])) from None
+    states = np.array(done)
     full = [system.full(t, x) for t, x in zip(times, states)]
     loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui)) for qi, ui in full])
     result = result_of(system, times, states, loads, count[0])
