@@ -27,7 +27,7 @@ if njit is not None:
     install()                                          # cached kernels stale when any kernel source changes
 
 if njit is not None:
-    from .compiled_kernels import free_accelerations, full_state, store_row
+    from .compiled_kernels import full_state, state_rate, store_row
     from .compiled_loads import equations
     from .compiled_outputs import output_row
 
@@ -39,12 +39,7 @@ if njit is not None:                                   # module-level kernels: n
         same evaluation of the equations) if it is not empty."""
         q, u = full_state(t, x, q0, u0, index)
         M, f = equations(q, u, data, work)
-        size = index.shape[0]
-        out = np.empty(2 * size)
-        du = free_accelerations(M, f, index)
-        for i in range(size):
-            out[i] = x[size + i]
-            out[size + i] = du[i]
+        out = state_rate(x, M, f, index)
         if row.shape[0]:
             output_row(q, u, M, f, index, data, work, hub_radius, 0, row)
         return out

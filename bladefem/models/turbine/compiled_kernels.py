@@ -387,6 +387,17 @@ if njit is not None:                                   # module-level kernels: n
         return solve_spd(Mf, ff)
 
     @njit(cache=True)
+    def state_rate(x, M, f, index):
+        """dx/dt of the free state x = (q_f, u_f): its rates, then the free accelerations from M and f."""
+        size = index.shape[0]
+        out = np.empty(2 * size)
+        du = free_accelerations(M, f, index)
+        for i in range(size):
+            out[i] = x[size + i]
+            out[size + i] = du[i]
+        return out
+
+    @njit(cache=True)
     def full_state(t, x, q0, u0, index):
         """All coordinates and rates at time t for the free state x (locked ones move on at their initial
         rate)."""

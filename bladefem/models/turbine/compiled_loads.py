@@ -69,7 +69,7 @@ def aero_state(blades: int, nodes: int, modes: int) -> tuple:
 if njit is not None:                                   # module-level kernels: numba caches them on disk
     from ...aero.bem import node_loads
     from ...aero.performance import induction_weight
-    from .compiled_kernels import beam_node, free_accelerations, full_state
+    from .compiled_kernels import beam_node, full_state, state_rate
     from . import control
     from .compiled_kernels import equations as structural_equations
 
@@ -253,10 +253,4 @@ if njit is not None:                                   # module-level kernels: n
         """dx/dt of the free coordinates x = (q_f, u_f)."""
         q, u = full_state(t, x, q0, u0, index)
         M, f = equations(q, u, data, work)
-        size = index.shape[0]
-        out = np.empty(2 * size)
-        du = free_accelerations(M, f, index)
-        for i in range(size):
-            out[i] = x[size + i]
-            out[size + i] = du[i]
-        return out
+        return state_rate(x, M, f, index)
