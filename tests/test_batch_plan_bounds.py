@@ -42,3 +42,23 @@ def test_a_plan_without_its_model_names_the_plan(tmp_path, capsys):
 def test_every_grid_name_has_its_bounds():
     assert set(GRID_BOUNDS) >= {"mass_scale", "rpm", "wind_speed_m_s", "pitch_deg", "precone_deg", "tip_mass_kg"}
     assert all(low < high for low, high in GRID_BOUNDS.values())
+
+
+def test_a_turbine_plan_takes_the_ways_forward_of_a_modern_deck(tmp_path):
+    """The IEA-15MW monopile deck (HydroDyn, SubDyn, unsteady aerodynamics, a DISCON controller) in a batch plan:
+    refused case by case without the ways forward, linearized parked with foundation: rigid, quasi_steady: true
+    and a fixed rotor speed (the command line's --foundation rigid --quasi-steady --rpm)."""
+    import pyarrow.dataset as ds
+    from deck_copies import deck_copy
+
+    deck = deck_copy("iea15", tmp_path) / "IEA-15-240-RWT-Monopile" / "IEA-15-240-RWT-Monopile.fst"
+    plan = tmp_path / "plan.yaml"
+    plan.write_text(f"model: {deck}\nanalysis: {{type: turbine_linearize, rpm: 0, wind_speed_m_s: 0, "
+                    "foundation: rigid, quasi_steady: true}\ngrid:\n  pitch_deg: [0, 5]\n")
+    assert main(["batch", str(plan), "-o", str(tmp_path / "out"), "--workers", "1", "--quiet"]) == 0
+    table = ds.dataset(tmp_path / "out", format="parquet").to_table().to_pandas()
+    assert set(table["status"]) == {"ok"} and len(set(table["case_index"])) == 2 and len(table) > 20
+    bare = tmp_path / "bare.yaml"
+    bare.write_text(f"model: {deck}\nanalysis: {{type: turbine_linearize, rpm: 0, wind_speed_m_s: 0}}\n"
+                    "grid:\n  pitch_deg: [0]\n")
+    assert main(["batch", str(bare), "-o", str(tmp_path / "bare_out"), "--workers", "1", "--quiet"]) == 1

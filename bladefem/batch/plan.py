@@ -62,6 +62,9 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "dt": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
                 "statistics_from_s": {"type": "number", "minimum": 0},
                 "induction": {"enum": ["frozen", "quasi-steady"]},
+                "foundation": {"enum": ["rigid"]},
+                "quasi_steady": {"type": "boolean"},
+                "elastodyn_blades": {"type": "boolean"},
             },
         },
         "grid": {"type": "object", "minProperties": 1, "additionalProperties": False,
@@ -118,6 +121,9 @@ class Analysis:
     dt: float = 0.05
     statistics_from: float = 0.0
     induction: str = "frozen"
+    #: the command line's ways forward the deck needs (``--foundation rigid``, ``--quasi-steady``,
+    #: ``--elastodyn-blades``): what bladefem does not model is left out, and said so, instead of refused
+    leave_out: tuple[str, ...] = ()
 
     def key(self) -> dict[str, Any]:
         key = {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
@@ -126,7 +132,7 @@ class Analysis:
         if self.type in TURBINE_ANALYSES:
             key.update(wind_speed=self.wind_speed, turbine_rpm=self.turbine_rpm, pitch_deg=self.pitch_deg,
                        seconds=self.seconds, dt=self.dt, statistics_from=self.statistics_from,
-                       induction=self.induction)
+                       induction=self.induction, leave_out=list(self.leave_out))
         return key
 
 
@@ -175,9 +181,13 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
     rpm = entry.get("rpm")
     if isinstance(rpm, list):
         raise refuse("a turbine analysis takes one rotor speed (rpm)", "rpm")
+    ways = tuple(way for way, taken in (("--foundation rigid", entry.get("foundation") == "rigid"),
+                                        ("--quasi-steady", entry.get("quasi_steady", False)),
+                                        ("--elastodyn-blades", entry.get("elastodyn_blades", False))) if taken)
     if not simulate:
         return Analysis(entry["type"], wind_speed=entry.get("wind_speed_m_s"), turbine_rpm=rpm,
-                        pitch_deg=entry.get("pitch_deg"), induction=entry.get("induction", "frozen"))
+                        pitch_deg=entry.get("pitch_deg"), induction=entry.get("induction", "frozen"),
+                        leave_out=ways)
     if "seconds" not in entry:
         raise refuse("a turbine_simulate analysis needs seconds (the simulated time, s)", "type")
     seconds, dt = float(entry["seconds"]), float(entry.get("dt", 0.05))
@@ -186,7 +196,7 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
         raise refuse(f"need dt <= seconds and statistics_from_s < seconds ({seconds:g} s)",
                      "dt" if dt > seconds else "statistics_from_s")
     return Analysis(entry["type"], wind_speed=entry.get("wind_speed_m_s"), turbine_rpm=rpm,
-                    pitch_deg=entry.get("pitch_deg"), seconds=seconds, dt=dt, statistics_from=start)
+                    pitch_deg=entry.get("pitch_deg"), seconds=seconds, dt=dt, statistics_from=start, leave_out=ways)
 
 
 def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> Analysis:
@@ -239,7 +249,8 @@ def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
     named = [model] + [p for p in (main, analysis.spec) if p is not None]
     if analysis.type in TURBINE_ANALYSES:
         from ..builders.turbine_deck import read_turbine_deck
-        return bundle_of(lambda: read_turbine_deck(model), named)
+        ways = set(analysis.leave_out) | {"--rpm"}         # each case refuses a controller it has no rpm for
+        return bundle_of(lambda: read_turbine_deck(model, leave_out=ways), named)
     from ..check.models import read_structure
 
     def read() -> None:

@@ -30,10 +30,12 @@ def operating_inputs(case: Any) -> tuple[float | None, float | None, float | Non
 
 
 @lru_cache(maxsize=8)
-def _deck(path: str, digest: str, wind_speed: float | None, pitch_deg: float | None, rpm: float | None) -> Any:
+def _deck(path: str, digest: str, wind_speed: float | None, pitch_deg: float | None, rpm: float | None,
+          leave_out: tuple[str, ...] = ()) -> Any:
     from ..builders.turbine_deck import read_turbine_deck
+    ways = set(leave_out) | ({"--rpm"} if rpm is not None else set())     # a fixed rotor speed stands for DISCON
     return read_turbine_deck(path, wind_speed=wind_speed, pitch=None if pitch_deg is None else math.radians(pitch_deg),
-                             blade_shapes="fe", rpm=rpm, gauss_points=2)
+                             blade_shapes="fe", rpm=rpm, gauss_points=2, leave_out=frozenset(ways))
 
 
 def turbine_deck(case: Any) -> Any:
@@ -41,7 +43,7 @@ def turbine_deck(case: Any) -> Any:
     from .cases import file_digest
     model = case.inputs.get("file", case.model)
     wind_speed, rpm, pitch_deg = operating_inputs(case)
-    return _deck(str(model), file_digest(model), wind_speed, pitch_deg, rpm)
+    return _deck(str(model), file_digest(model), wind_speed, pitch_deg, rpm, tuple(case.analysis.leave_out))
 
 
 def simulate_rows(case: Any) -> list[dict[str, Any]]:
@@ -99,11 +101,12 @@ def linearize_rows(case: Any) -> list[dict[str, Any]]:
     from ..models.turbine.parameters import dof_names
 
     path = str(case.inputs.get("file", case.model))
-    deck = read_openfast_deck(path)
+    wind_speed, rpm, pitch_deg = operating_inputs(case)
+    ways = set(case.analysis.leave_out) | ({"--rpm"} if rpm is not None else set())
+    deck = read_openfast_deck(path, leave_out=ways)
     if deck.aerodyn is None:
         raise InputError("the deck has no aerodynamics (CompAero 0)", file=deck.path, field="CompAero")
-    wind_speed, rpm, pitch_deg = operating_inputs(case)
-    switches, conditions = deck_conditions(deck.elastodyn.path)
+    switches, conditions = deck_conditions(deck.elastodyn.path, rigid_foundation="--foundation rigid" in ways)
     dofs = dof_names(deck.elastodyn.num_blades)
     free = free_from_switches(dofs, switches)
     servo = deck.servodyn
