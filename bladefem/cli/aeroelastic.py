@@ -144,7 +144,7 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     from ..models.turbine.control import Generator
     from ..models.turbine.initial import free_from_switches
     from ..models.turbine.parameters import dof_names
-    from ..models.turbine.system import select_dofs
+    from .options import dof_option
 
     taken = leave_out(args)
     deck = read_deck(args.main, taken)
@@ -157,7 +157,7 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     structure_notes: list[str] = []
     structure = structure_builder(deck, args, structure_notes)
     dofs = dof_names(deck.elastodyn.num_blades)
-    free = select_dofs(dofs, args.dof or [], base=free_from_switches(dofs, switches))
+    free = dof_option(dofs, args.dof, free_from_switches(dofs, switches))
     if not free.any():
         raise InputError("no free degree of freedom", field="--dof")
     generator = Generator.from_servodyn(deck.servodyn) if deck.servodyn is not None else None

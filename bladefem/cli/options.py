@@ -195,3 +195,13 @@ def check_turbine_bounds(args: argparse.Namespace) -> None:
         if getattr(args, name) is not None and getattr(args, name) > largest:
             raise InputError(f"must be at most {largest:g} (past it the yaw is locked: --dof yaw=off), got "
                              f"{getattr(args, name):g}", field="--" + name.replace("_", "-"))
+
+
+def dof_option(dofs: tuple[str, ...], names: list[str] | None, base: Any) -> Any:
+    """The free DOFs that ``--dof`` NAME=on|off entries make of ``base`` (a mistake named as the option)."""
+    from ..models.turbine.system import select_dofs
+
+    try:
+        return select_dofs(dofs, names or [], base=base)
+    except InputError as error:
+        raise InputError(error.message, field="--dof") from None

@@ -270,7 +270,7 @@ def build_model(args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..models.turbine import select_dofs
+    from .options import dof_option
     from ..models.turbine.initial import free_from_switches, initial_state
 
     check_options(args)
@@ -284,7 +284,7 @@ def run(args: argparse.Namespace) -> int:
         conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
         if args.simulate:
             switches = {**switches, "GenDOF": False}           # the generator held at --rpm
-    free = select_dofs(model.dofs, args.dof or [], base=free_from_switches(model.dofs, switches))
+    free = dof_option(model.dofs, args.dof, free_from_switches(model.dofs, switches))
     if not free.any():
         raise InputError("no free degree of freedom", field="--dof")
     notes = sys.stderr if args.json else sys.stdout            # JSON on stdout stays pure
