@@ -78,3 +78,23 @@ def test_the_iea_blades_page_quotes_the_reference():
         axis = cells[0].rsplit(", ", 1)[1]
         written = np.array([float(c) for c in cells[2:]])
         assert written == pytest.approx(beamdyn(turbine, float(cells[1]), axis, 14)[:6], abs=5.1e-5), line
+
+
+def test_rotation_against_beamdyn_spin_softening():
+    """Parked to 7.56 rpm, the rise of omega^2 of each mode (rad^2/s^2): bladefem's and BeamDyn's agree on the flap
+    modes (to 0.06 Omega^2: the centrifugal stiffening is the same), while on both edge modes BeamDyn's exceeds
+    bladefem's by Omega^2 (measured 0.959 and 0.950 Omega^2): the in-plane spin softening -Omega^2, which OpenFAST's
+    rotating-frame linearization of BeamDyn (RotStates) does not show. bladefem keeps it: a blade's in-plane
+    frequency at speed is omega0^2 + (K1 - 1) Omega^2 (the rotating-beam tables of tests/test_rotating.py)."""
+    sections = straightened_iea15()
+    blade = Blade(sections.table(), hub_radius=3.97, precone=np.radians(-4.0))   # the deck's HubRad and PreCone
+    spin = (7.56 * np.pi / 30) ** 2
+
+    def squared(hz):
+        return (2 * np.pi * np.asarray(hz)) ** 2
+
+    ours = squared(modes(blade, 7.56, 6).frequencies_hz) - squared(modes(blade, 0.0, 6).frequencies_hz)
+    theirs = squared(beamdyn("iea15", 7.56, "straight", 14)[:6]) - squared(beamdyn("iea15", 0.0, "straight", 14)[:6])
+    excess = (theirs - ours) / spin
+    assert abs(excess[0]) < 0.06 and abs(excess[2]) < 0.06                     # flap 1, flap 2
+    assert excess[1] == pytest.approx(1.0, abs=0.06) and excess[3] == pytest.approx(1.0, abs=0.06)   # edge 1, 2
