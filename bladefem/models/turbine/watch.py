@@ -149,8 +149,10 @@ class Monitor:
         """The step-count bound over a stretch of ``evaluations`` right-hand sides from ``start`` to ``end`` (s)."""
         if evaluations >= BUDGET and evaluations > MAX_RATE * (end - start):
             return (f"the integrator took {evaluations} right-hand sides for {end - start:.3g} s from t = {start:.4g} "
-                    f"s (more than {MAX_RATE:.0e} per simulated second): the motion diverges or the system is far "
-                    "too stiff (check rotor speed, generator torque and stiffnesses)", end)
+                    f"s (more than {MAX_RATE:.0e} per simulated second): the motion diverges, the system is far "
+                    "too stiff, or the loads jump (check rotor speed, generator torque and stiffnesses; a start-up "
+                    "transient whose aerodynamic loads jump runs with ElastoDyn's fixed step: --method RK4 --step "
+                    "0.005)", end)
         return None
 
 
