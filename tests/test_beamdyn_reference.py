@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from iea15_beamdyn import DATA, key_points
+from iea15_beamdyn import key_points, stations
 from timoshenko_reference import timoshenko_blade_frequencies
 
 from bladefem.builders.section_axes import full_sections_from_beamdyn
@@ -38,16 +38,11 @@ def beamdyn(turbine: str, rpm: float, axis: str, order: int) -> np.ndarray:
 def straightened_iea15():
     """The BeamDyn file's sections on the straightened axis the reference ran (key points' x and y set to 0, so
     the length is the last key point's z, 117.0 m), the twist as the key points give it."""
-    lines = (DATA / "IEA-15-240-RWT_BeamDyn_blade.dat").read_text().splitlines()
-    start = next(i for i, line in enumerate(lines) if "DISTRIBUTED PROPERTIES" in line) + 1
-    rows = [[float(v) for v in line.split()] for line in lines[start:] if line.strip()]
-    eta = np.array([rows[i][0] for i in range(0, len(rows), 13)])
-    K = np.array([rows[i + 1:i + 7] for i in range(0, len(rows), 13)])
-    M = np.array([rows[i + 7:i + 13] for i in range(0, len(rows), 13)])
+    eta, K, M = stations()
     points = key_points()
     span = eta * points[-1, 2]
     twist = np.radians(np.interp(span, points[:, 2], points[:, 3]))
-    return full_sections_from_beamdyn(span, 0.5 * (K + np.swapaxes(K, 1, 2)), M, twist)
+    return full_sections_from_beamdyn(span, K, M, twist)
 
 
 def test_the_reference_is_converged_in_beamdyn_element_order():
