@@ -21,6 +21,8 @@ pytest.importorskip("pyarrow")
 if not hasattr(os, "killpg"):
     pytest.skip("process groups (POSIX) tear the cluster down", allow_module_level=True)
 
+from cpu_watchdog import wall_limit  # noqa: E402
+
 from bladefem.batch import ResultStore  # noqa: E402
 from bladefem.batch.bundle import INPUTS_FOLDER  # noqa: E402
 from bladefem.cli import main  # noqa: E402
@@ -29,26 +31,6 @@ REPO = Path(__file__).resolve().parents[1]
 #: seconds a scheduler or worker may take to start, and a batch of 64 cases to run (a loaded 2-core CI machine)
 START_SECONDS = 90
 BATCH_SECONDS = 300
-
-
-class Overdue(BaseException):
-    """A batch that ran past :data:`BATCH_SECONDS` of wall time (a BaseException: nothing under test catches it)."""
-
-
-@contextmanager
-def wall_limit(seconds: float) -> Iterator[None]:
-    """Raise :class:`Overdue` in the block after ``seconds`` of wall time (the client waits idle on a hung worker:
-    a CPU limit would never fire)."""
-    def expire(signum, frame):
-        raise Overdue(f"the batch ran past {seconds} s")
-
-    previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 def free_port() -> int:
@@ -126,7 +108,7 @@ def test_a_worker_in_another_folder_runs_every_case_and_resume_retries_failures(
     with scheduler(elsewhere) as address:
         with worker(address, elsewhere, "broken", **{INPUTS_FOLDER: str(blocked)}):
             wait_for_workers(address, 1)
-            with wall_limit(BATCH_SECONDS):
+            with wall_limit(BATCH_SECONDS, "the batch"):
                 assert main(["batch", "cases/nrel5mw_uq.yaml", "-o", str(out), "--scheduler", address]) == 1
         captured = capsys.readouterr()
         assert "64 run (64 failed)" in captured.out
@@ -135,7 +117,7 @@ def test_a_worker_in_another_folder_runs_every_case_and_resume_retries_failures(
         assert "Dask dashboard" not in captured.err                     # the scheduler has none
         with worker(address, elsewhere, "working", **{INPUTS_FOLDER: str(elsewhere / "inputs")}):
             wait_for_workers(address, 1)
-            with wall_limit(BATCH_SECONDS):
+            with wall_limit(BATCH_SECONDS, "the batch"):
                 assert main(["batch", "cases/nrel5mw_uq.yaml", "-o", str(out), "--scheduler", address, "--resume",
                              "--quiet"]) == 0
     captured = capsys.readouterr()

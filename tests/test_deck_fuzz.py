@@ -111,6 +111,21 @@ def finite_numbers(value) -> bool:
     return not isinstance(value, float) or math.isfinite(value)
 
 
+def run_turbine(argv: list, folder: Path, output: Path) -> None:
+    """Run one turbine mutant (a simulation writes ``output``): inputs unchanged on disk, and either a sound output
+    or one error line."""
+    if "--simulate" in argv:
+        argv += ["--output", output]
+        output.unlink(missing_ok=True)
+    before = digests(folder)
+    code, out, err = run_cli(argv)
+    assert digests(folder) == before, "an input changed on disk"
+    if code == 0:
+        check_turbine_output(argv, out, output if "--simulate" in argv else None)
+    else:
+        one_line_error(code, err, folder)
+
+
 def check_turbine_output(argv: list[str], out: str, output: Path | None) -> None:
     if "--json" in argv:
         data = json.loads(out)
@@ -160,16 +175,7 @@ def test_deck_chain_mutants(tmp_path):
         target.write_bytes(mutate(pristine[str(target.relative_to(folder / "nrel5mw"))].decode("utf-8", "replace"),
                                   rng))
         argv = ["turbine", folder / FST, *rng.choice(ACTIONS)]
-        if "--simulate" in argv:
-            argv += ["--output", output]
-            output.unlink(missing_ok=True)
-        before = digests(folder)
-        code, out, err = run_cli(argv)
-        assert digests(folder) == before, "an input changed on disk"
-        if code == 0:
-            check_turbine_output(argv, out, output if "--simulate" in argv else None)
-        else:
-            one_line_error(code, err, folder)
+        run_turbine(argv, folder, output)
 
     fuzz("deck", CASES["deck"], run, lambda seed: _keep(mutated[0], tmp_path, "deck", seed) if mutated else [])
 
@@ -287,15 +293,6 @@ def test_random_option_values(tmp_path):
         argv = ["turbine", folder / FST, *base]
         for option in rng.sample(sorted(OPTIONS), rng.randint(1, 3)):
             argv += [option, rng.choice(OPTIONS[option])]
-        if "--simulate" in argv:
-            argv += ["--output", output]
-            output.unlink(missing_ok=True)
-        before = digests(folder)
-        code, out, err = run_cli(argv)
-        assert digests(folder) == before, "an input changed on disk"
-        if code == 0:
-            check_turbine_output(argv, out, output if "--simulate" in argv else None)
-        else:
-            one_line_error(code, err, folder)
+        run_turbine(argv, folder, output)
 
     fuzz("options", CASES["options"], run, lambda seed: [])

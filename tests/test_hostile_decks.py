@@ -11,12 +11,11 @@ import math
 import os
 import re
 import shutil
-import signal
 from pathlib import Path
 
 import numpy as np
 import pytest
-from cpu_watchdog import cpu_limit
+from cpu_watchdog import cpu_limit, wall_limit
 
 from bladefem.cli import main
 from bladefem.errors import InputError, SolveError
@@ -208,20 +207,6 @@ def test_nacelle_yaw_inertia_is_located(deck):
     set_value(deck / ELASTODYN, "NacYIner", "0")
     assert at(deck / ELASTODYN, "NacYIner") in one_line("turbine", deck / ELASTODYN, "--linearize",
                                                         "--elastodyn-compatible")
-
-
-@contextlib.contextmanager
-def wall_limit(seconds: float):
-    """Fail instead of blocking (a FIFO opened for reading blocks without using CPU)."""
-    def expire(signum, frame):
-        raise TimeoutError("blocked")
-    previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 @pytest.mark.parametrize("kind,words", [("folder", "is a folder"), ("loop", "symbolic link loop"),

@@ -313,6 +313,8 @@ def run(args: argparse.Namespace) -> int:
         q0[model.dofs.index(name)] = value
     for note in notes:
         print(f"# {note}")
+    from .turbine_simulate import simulate_command
+
     return simulate_command(model, free, q0, u0, args)
 
 
@@ -365,103 +367,3 @@ def modes_table(linear, free_count: int) -> str:
     if linear.rigid:
         lines.append(f"# rigid-body motions (0 Hz, not listed): {', '.join(linear.rigid)}")
     return "\n".join(lines + mode_lines(linear.modes)) + "\n"
-
-
-def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse.Namespace) -> int:
-    from ..files import write_atomic
-    from ..models.turbine import FreeSystem
-    from ..models.turbine.simulate import (
-        SimulationStopped,
-        UnstableStep,
-        output_times,
-        plot_outputs,
-        simulate,
-        table_text,
-    )
-
-    method = args.method or "auto"
-    if not hasattr(model.fast_equations(), "integrate"):
-        print("# numba is switched off (BLADEFEM_NO_NUMBA) or not installed: the numpy equations, about 100 times "
-              "slower", file=sys.stderr)
-    if method in ("DP54", "DP853") and not hasattr(model.fast_equations(), "integrate"):
-        raise InputError(f"{method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
-                         field="--method")
-    rtol = 1e-6 if args.rtol is None else args.rtol
-    dt = 0.05 if args.dt is None else args.dt
-    try:
-        output_times(args.simulate, dt)
-    except ValueError as error:
-        raise InputError(str(error), field="--dt") from None
-    try:
-        with SimulationProgress(args.simulate, args.quiet) as progress:
-            result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
-                              atol=rtol * 1e-2, method=method, step=0.01 if args.step is None else args.step,
-                              progress=progress)
-    except UnstableStep as error:
-        raise InputError(str(error), field="--step") from None
-    except SimulationStopped as stop:
-        return stopped(stop, args)
-    text = table_text(result)
-    if args.output:
-        write_atomic(args.output, text)
-        print(f"# {len(result.time)} rows written to {Path(args.output)}; {result.evaluations} right-hand sides",
-              file=sys.stderr)
-    else:
-        sys.stdout.write(text)
-    if args.plot:
-        plot_outputs(result, args.plot, title=simulation_title(model, args))
-    return 0
-
-
-def simulation_title(model, args: argparse.Namespace) -> str:
-    """What a simulation's figure shows: the deck, the simulated time, the wind and how the rotor turns."""
-    parts = [f"{Path(args.main).name}: {args.simulate:g} s simulated"]
-    if model.aero is not None:
-        parts.append(f"wind {model.aero.inflow.speed:g} m/s")
-    else:
-        parts.append("no aerodynamics")
-    if args.rpm is not None:
-        parts.append(f"rotor held at {args.rpm:g} rpm")
-    return ", ".join(parts)
-
-
-def stopped(stop, args: argparse.Namespace) -> int:
-    """A run ended early (a physical bound, divergence, Ctrl-C): the rows computed up to then written whole (to
-    --output, else stdout), one line on stderr saying why and where the rows went; exit 1 (130 for Ctrl-C)."""
-    from ..files import write_atomic
-    from ..models.turbine.simulate import table_text
-
-    result = stop.result
-    where = ""
-    if result is not None and len(result.time):
-        text = table_text(result)
-        if args.output:
-            write_atomic(args.output, text)
-            where = f"; {len(result.time)} rows up to t = {result.time[-1]:g} s written to {Path(args.output)}"
-        else:
-            sys.stdout.write(text)
-            where = f"; {len(result.time)} rows up to t = {result.time[-1]:g} s written"
-    print(f"bladefem: {'' if stop.exit_code == 130 else 'error: '}{stop}{where}", file=sys.stderr)
-    return stop.exit_code
-
-
-class SimulationProgress:
-    """A progress bar over simulated time on stderr (rich), or nothing when ``quiet`` or stderr is no terminal."""
-
-    def __init__(self, duration: float, quiet: bool) -> None:
-        self.duration, self.quiet = duration, quiet or not sys.stderr.isatty()
-        self.bar = None
-
-    def __enter__(self):
-        if self.quiet:
-            return None
-        from rich.console import Console
-        from rich.progress import Progress
-        self.bar = Progress(console=Console(stderr=True), transient=True)
-        self.bar.start()
-        task = self.bar.add_task("Simulating", total=self.duration)
-        return lambda t: self.bar.update(task, completed=t)
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.stop()

@@ -94,13 +94,15 @@ class FastText:
         return cls(path, lines, keys, crowded=crowded)
 
     def refuse_crowded(self, key: str) -> None:
-        """An InputError when ``key``, absent as a ``value key`` line, has a line with several values before it."""
-        line = self.crowded.get(key.lower())
-        if line is not None:
-            values = self.lines[line - 1].split()
-            count = next(i for i, word in enumerate(values) if word.lower() == key.lower())
-            raise self.error(f"expected one value before {key}, found {count} ({' '.join(values[:count])})", line,
-                             key)
+        """An InputError when ``key`` (under any of its spellings), absent as a ``value key`` line, has a line with
+        several values before it."""
+        for name in spellings(key):
+            line = self.crowded.get(name.lower())
+            if line is not None:
+                values = self.lines[line - 1].split()
+                count = next(i for i, word in enumerate(values) if word.lower() == name.lower())
+                raise self.error(f"expected one value before {name}, found {count} ({' '.join(values[:count])})",
+                                 line, name)
 
     # -- errors -------------------------------------------------------------------------------------------------
     def error(self, message: str, line: int | None = None, field: str | None = None) -> InputError:
@@ -130,8 +132,7 @@ class FastText:
     def find(self, key: str) -> KeyValue:
         written = self.spelled(key)
         if written is None:
-            for name in spellings(key):
-                self.refuse_crowded(name)
+            self.refuse_crowded(key)
             names = spellings(key)
             also = f" (also looked for {', '.join(names[1:])})" if names[1:] else ""
             raise self.error("missing key" + also, line=len(self.lines) or None, field=key)
@@ -139,8 +140,7 @@ class FastText:
 
     def has(self, key: str) -> bool:
         if self.spelled(key) is None:
-            for name in spellings(key):
-                self.refuse_crowded(name)
+            self.refuse_crowded(key)
             return False
         return True
 

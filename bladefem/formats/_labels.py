@@ -13,7 +13,6 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..files import input_problem
-from ._label_table import spellings
 from ._fast_format import FALSE_WORDS, TRUE_WORDS, FastText, KeyValue, to_float, to_int
 
 
@@ -42,8 +41,7 @@ class Labels:
             if written is not None:
                 return written
         for name in names:
-            for spelling in spellings(name):
-                self.text.refuse_crowded(spelling)
+            self.text.refuse_crowded(name)
         return None
 
     def has(self, *names: str) -> bool:

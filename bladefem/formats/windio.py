@@ -37,6 +37,7 @@ from numpy.typing import NDArray
 from ..errors import InputError, shown
 from ..limits import MAX_MAGNITUDE
 from ..sections.checks import MAX_JUMP, MAX_REACH, MAX_TWIST, precone_problem
+from .windio_schema import validate_with_windio
 from .yamlnodes import Key, load_yaml
 
 STIFFNESS_KEYS = tuple(f"K{i}{j}" for i in range(1, 7) for j in range(i, 7))
@@ -257,7 +258,7 @@ def read_windio(path: str | Path) -> WindIOTurbine:
     if blades != int(blades):
         raise r.error(f"expected an integer, got {blades}", ("assembly", "number_of_blades"))
     if not version1:
-        _validate_with_windio(r, [p for p in parts if parts[p] is not None])
+        validate_with_windio(r, [p for p in parts if parts[p] is not None])
     return WindIOTurbine(
         name=str(data.get("name", Path(path).stem)),
         number_of_blades=int(blades),
@@ -379,27 +380,3 @@ def _check_reach(r: _Reader, key: Key, inertia: dict[str, NDArray], reach: float
         if name != "mass" and np.any(far):
             raise r.error(f"{'radius of gyration' if gyration else 'offset'} beyond {MAX_REACH:g} beam lengths "
                           f"({reach / MAX_REACH:g} m)", key + (name, int(np.flatnonzero(far)[0])))
-
-
-def _validate_with_windio(r: _Reader, parts: list[str]) -> None:
-    """Validate the elastic_properties objects against windIO's 'beam' schema when windio and jsonschema exist."""
-    try:
-        import jsonschema
-        import windIO
-    except ImportError:
-        return
-    import yaml
-    schema_file = Path(windIO.__file__).parent / "schemas" / "turbine" / "turbine_schema.yaml"
-    try:
-        schema = yaml.safe_load(schema_file.read_text())
-    except (OSError, yaml.YAMLError):
-        return
-    beam = dict(schema["definitions"]["beam"], definitions=schema["definitions"])
-    for part in parts:
-        key = ("components", part, "structure", "elastic_properties")
-        value = r.get(key, None)
-        if value is None:
-            continue
-        error = jsonschema.exceptions.best_match(jsonschema.Draft7Validator(beam).iter_errors(value))
-        if error is not None:
-            raise r.error(f"windIO schema: {error.message}", key + tuple(error.absolute_path))

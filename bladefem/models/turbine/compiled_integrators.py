@@ -27,7 +27,8 @@ if njit is not None:
     install()                                          # cached kernels stale when any kernel source changes
 
 if njit is not None:
-    from .compiled_kernels import full_state, state_rate, store_row
+    from .compiled_kernels import store_row
+    from .compiled_state import full_state, state_rate
     from .compiled_loads import equations
     from .compiled_outputs import output_row
 

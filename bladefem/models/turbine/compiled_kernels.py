@@ -373,38 +373,3 @@ if njit is not None:                                   # module-level kernels: n
             for i in range(Z.shape[1]):
                 for r in range(6 + k):
                     f[i] += Z[r, i] * shared[r]
-
-    @njit(cache=True)
-    def free_accelerations(M, f, index):
-        """du/dt of the free coordinates ``index`` (the locked ones have none)."""
-        size = index.shape[0]
-        Mf = np.empty((size, size))
-        ff = np.empty(size)
-        for i in range(size):
-            ff[i] = f[index[i]]
-            for j in range(size):
-                Mf[i, j] = M[index[i], index[j]]
-        return solve_spd(Mf, ff)
-
-    @njit(cache=True)
-    def state_rate(x, M, f, index):
-        """dx/dt of the free state x = (q_f, u_f): its rates, then the free accelerations from M and f."""
-        size = index.shape[0]
-        out = np.empty(2 * size)
-        du = free_accelerations(M, f, index)
-        for i in range(size):
-            out[i] = x[size + i]
-            out[size + i] = du[i]
-        return out
-
-    @njit(cache=True)
-    def full_state(t, x, q0, u0, index):
-        """All coordinates and rates at time t for the free state x (locked ones move on at their initial
-        rate)."""
-        size = index.shape[0]
-        q = q0 + u0 * t
-        u = u0.copy()
-        for i in range(size):
-            q[index[i]] = x[i]
-            u[index[i]] = x[size + i]
-        return q, u

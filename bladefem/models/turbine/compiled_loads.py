@@ -69,7 +69,8 @@ def aero_state(blades: int, nodes: int, modes: int) -> tuple:
 if njit is not None:                                   # module-level kernels: numba caches them on disk
     from ...aero.bem import node_loads
     from ...aero.performance import induction_weight
-    from .compiled_kernels import beam_node, full_state, state_rate
+    from .compiled_kernels import beam_node
+    from .compiled_state import full_state, state_rate
     from . import control
     from .compiled_kernels import equations as structural_equations
 

@@ -22,7 +22,7 @@ COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_tor
            "aero_power", "tsr", "cp", "ct", "disk_velocity", "skew", "aero_work", "damping_power")
 
 if njit is not None:
-    from .compiled_kernels import free_accelerations, full_state
+    from .compiled_state import free_accelerations, full_state
     from .compiled_loads import equations, law_torque
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
