@@ -4,8 +4,6 @@ answer changed by an absurd value."""
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import math
 import os
@@ -15,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cpu_watchdog import cpu_limit, wall_limit
+from cpu_watchdog import wall_limit
+from test_hostile_input import one_line
 
-from bladefem.cli import main
 from bladefem.errors import InputError, SolveError
 from bladefem.formats.bmodes import read_bmodes_sections
 from bladefem.models.turbine.linearize import modes_of
@@ -30,20 +28,6 @@ AERODYN = "NRELOffshrBsline5MW_Onshore_AeroDyn.dat"
 SERVODYN = "NRELOffshrBsline5MW_Onshore_ServoDyn.dat"
 INFLOW = "NRELOffshrBsline5MW_InflowWind_Steady11p4mps.dat"
 LINEARIZE = ("--linearize", "--wind-speed", "11.4")
-
-
-def cli(*argv: object, cpu: float = 20.0) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), cpu_limit(cpu):
-        code = main([str(a) for a in argv])
-    return code, out.getvalue(), err.getvalue()
-
-
-def one_line(*argv: object, code: int = 2) -> str:
-    found, _, err = cli(*argv)
-    assert found == code, err
-    assert len(err.strip().splitlines()) == 1 and re.match(r"bladefem( \w+)?: error: ", err), err
-    return err.strip()
 
 
 def at(path: Path, label: str, message: str = "") -> str:

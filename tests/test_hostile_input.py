@@ -26,9 +26,10 @@ NREL = ROOT / "cases" / "nrel5mw_blade.yaml"
 UNIFORM = ROOT / "cases" / "uniform_blade.yaml"
 
 
-def cli(*argv: object) -> tuple[int, str, str]:
+def cli(*argv: object, cpu: float = 20.0) -> tuple[int, str, str]:
+    """Run the command in-process under a CPU watchdog of ``cpu`` seconds; (exit code, stdout, stderr)."""
     out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), cpu_limit(20):
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), cpu_limit(cpu):
         code = main([str(a) for a in argv])
     return code, out.getvalue(), err.getvalue()
 
