@@ -270,9 +270,10 @@ def report(name: str, result: Any, shipped_from: str | None = None) -> str:
     speed = "tower (non-rotating)" if result.tower else f"rotor speed {result.rpm:g} rpm"
     lines = [f"# {name}: FE modes, {speed}; ElastoDyn frequencies from its own integrals over {result.nodes} nodes"]
     lines += [f"# note: {note}" for note in result.notes]
-    lines += _table("fresh fit", result.fits)
+    lines += _table("fresh fit", result.fits) + _coupled(getattr(result, "coupled_hz", None))
     if result.shipped:
         lines += _table(f"coefficients in {shipped_from}", result.shipped)
+        lines += _coupled(getattr(result, "shipped_coupled_hz", None))
     lines += [f"# warning: {warning}" for warning in result.warnings]
     blocks = TOWER_BLOCKS if result.tower else BLADE_BLOCKS
     lines.append("")
@@ -280,6 +281,14 @@ def report(name: str, result: Any, shipped_from: str | None = None) -> str:
         texts = decimal_texts(fit.fit.coefficients)
         lines += [line.rstrip("\n") for line in block_lines(blocks[mode], fit.fit.coefficients, fit.label, texts)]
     return "\n".join(lines)
+
+
+def _coupled(frequencies: dict[str, float] | None) -> list[str]:
+    """The line of the three blade modes together in ElastoDyn's equations (what its linearization finds)."""
+    if not frequencies:
+        return []
+    listed = ", ".join(f"{name} {hz:.5f}" for name, hz in sorted(frequencies.items(), key=lambda item: item[1]))
+    return [f"# ElastoDyn's three modes together (its linearization, coupled through the mass): {listed} Hz"]
 
 
 def _table(title: str, fits: dict) -> list[str]:

@@ -23,6 +23,8 @@ from numpy.typing import NDArray
 from ..sections import Blade, SectionTable
 from ..sections.principal import elastodyn_sections
 from .elastodyn_integrals import (  # noqa: F401 - re-exported
+    BLADE_DOFS,
+    elastodyn_coupled_frequencies,
     centrifugal_load,
     elastodyn_forms,
     elastodyn_frequency,
@@ -256,6 +258,9 @@ class ElastoDynCoefficients:
     tower : True for a tower
     shipped : quality of the coefficients given for comparison (e.g. those already in the file), or None
     notes : modelling statements from the model and the fit
+    coupled_hz : blades: the frequencies (Hz) of the three fitted modes together in ElastoDyn's equations, as its
+        linearization finds them (:func:`~bladefem.modal.elastodyn_integrals.elastodyn_coupled_frequencies`)
+    shipped_coupled_hz : the same for the ``shipped`` coefficients
     """
 
     fits: dict[str, ModeFit]
@@ -264,6 +269,8 @@ class ElastoDynCoefficients:
     tower: bool
     shipped: dict[str, ModeFit] | None = None
     notes: tuple[str, ...] = ()
+    coupled_hz: dict[str, float] | None = None
+    shipped_coupled_hz: dict[str, float] | None = None
 
     @property
     def warnings(self) -> tuple[str, ...]:
@@ -287,4 +294,13 @@ def blade_coefficients(blade: Blade, rpm: float, *, nodes: int = 17, n_modes: in
     beam = BeamIntegrals(elastodyn_sections(blade.sections), blade.tip_mass.mass if blade.tip_mass is not None else 0.0,
                          blade.hub_radius, blade.precone, rpm * math.pi / 30.0, pitch=blade.pitch)
     fits, compared = fit_modes(result, beam, BLADE_MODES, nodes, shipped, min_tip_ratio, preserve_frequency)
-    return ElastoDynCoefficients(fits, rpm, nodes, False, compared, result.notes)
+
+    def coupled(coefficients: dict[str, NDArray] | None) -> dict[str, float] | None:
+        if not coefficients or any(name not in coefficients for name, _ in BLADE_DOFS):
+            return None
+        return elastodyn_coupled_frequencies(coefficients, beam.sections, nodes, tip_mass=beam.tip_mass,
+                                             omega=beam.omega, hub_radius=beam.hub_radius, precone=beam.precone,
+                                             twist_pitch=beam.pitch)
+
+    return ElastoDynCoefficients(fits, rpm, nodes, False, compared, result.notes,
+                                 coupled({name: fit.fit.coefficients for name, fit in fits.items()}), coupled(shipped))

@@ -15,6 +15,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+import scipy.linalg
 from numpy.typing import NDArray
 
 from ..sections import SectionTable
@@ -117,3 +118,59 @@ def elastodyn_frequency(coefficients: NDArray, sections: SectionTable, stiffness
     K, M = elastodyn_forms(sections, stiffness, nodes, **options)
     c = np.asarray(coefficients, dtype=float)
     return math.sqrt(max(float(c @ K @ c), 0.0) / float(c @ M @ c)) / (2 * math.pi)
+
+
+#: ElastoDyn's blade degrees of freedom in its order (DOF_BF(K,1), DOF_BF(K,2), DOF_BE(K,1)) and their kinds
+BLADE_DOFS = (("flap1", "flap"), ("flap2", "flap"), ("edge1", "edge"))
+
+
+def elastodyn_blade_matrices(coefficients: dict[str, NDArray], sections: SectionTable, nodes: int, *,
+                             tip_mass: float = 0.0, omega: float = 0.0, hub_radius: float = 0.0,
+                             precone: float = 0.0, twist_pitch: float = 0.0) -> tuple[NDArray, NDArray]:
+    """ElastoDyn's coupled stiffness and mass (3 x 3, in the order of :data:`BLADE_DOFS`) of one blade's polynomial
+    modes, as its equations of motion hold them: the elastic stiffness couples the two flap modes
+    (``KBF(K,1,2)``, the flap EI) and not flap with edge; the mass, the centrifugal stiffening and the spin
+    softening act on the twisted shapes (``TwistedSF``), so every pair of modes couples through them. Options as
+    :func:`elastodyn_forms` (rad/s, m, rad, kg)."""
+    r, dr = elastodyn_nodes(sections.length, nodes)
+    x = r / sections.length
+    curvature = monomials(x, 2).T / sections.length**2                                    # (5, J)
+    load = centrifugal_load(sections, r, dr, hub_radius, tip_mass, omega, precone)
+    mass_per_node = sections.at(r, "mass") * dr
+    theta = sections.at(r, "twist") + twist_pitch
+    values, slopes, tips, elastic = [], [], [], []
+    for name, kind in BLADE_DOFS:
+        c = np.asarray(coefficients[name], dtype=float)
+        direction = principal_directions([kind], theta)[0]                                  # (J, 2)
+        value, slope, tip_value, _ = twisted_shapes((c @ curvature)[None, :, None] * direction, np.full(nodes, dr))
+        values.append(value[0])
+        slopes.append(slope[0])
+        tips.append(tip_value[0])
+        elastic.append((kind, c @ curvature))
+    count = len(BLADE_DOFS)
+    K, M = np.zeros((count, count)), np.zeros((count, count))
+    for i in range(count):
+        for j in range(count):
+            if elastic[i][0] == elastic[j][0]:
+                stiffness = sections.at(r, f"{elastic[i][0]}_stiffness")
+                K[i, j] = dr * np.sum(stiffness * elastic[i][1] * elastic[j][1])
+            K[i, j] += dr * np.sum(load * np.einsum("pa,pa->p", slopes[i], slopes[j]))
+            in_plane = np.sum(mass_per_node * values[i][:, 0] * values[j][:, 0]) + tip_mass * tips[i][0] * tips[j][0]
+            K[i, j] -= omega**2 * in_plane
+            M[i, j] = np.sum(mass_per_node * np.einsum("pa,pa->p", values[i], values[j])) + tip_mass * tips[i] @ tips[j]
+    return K, M
+
+
+def elastodyn_coupled_frequencies(coefficients: dict[str, NDArray], sections: SectionTable, nodes: int,
+                                  **options: float) -> dict[str, float]:
+    """The blade frequencies (Hz) ElastoDyn's linearization finds for these polynomial modes together
+    (:func:`elastodyn_blade_matrices`), each named after the mode whose generalized coordinate leads its
+    eigenvector."""
+    K, M = elastodyn_blade_matrices(coefficients, sections, nodes, **options)
+    eigenvalues, vectors = scipy.linalg.eigh(K, M)
+    scaled = np.abs(vectors) * np.sqrt(np.diag(M))[:, None]
+    named = {}
+    for k in np.argsort(eigenvalues):
+        name = BLADE_DOFS[int(np.argmax(scaled[:, k]))][0]
+        named.setdefault(name, math.sqrt(max(float(eigenvalues[k]), 0.0)) / (2 * math.pi))
+    return named
