@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..files import read_input
+from ..formats._fast_format import KEY_LINE
 from ..sections import Blade, TipMass
 from ..sections.checks import body_problem, check_section_values, length_problem, precone_problem
 from .tower import Tower
@@ -58,6 +59,7 @@ def detect_format(path: str | Path) -> str:
                          line=data[:data.index(b"\x00")].count(b"\n") + 1)
     head = data.decode("utf-8", errors="replace").splitlines()[:SNIFF_LINES]
     words = {word.rstrip(":") for line in head for word in line.split()[:4]}
+    words |= {match["key"] for line in head if (match := KEY_LINE.match(line))}     # after a quoted value with blanks
     if path.suffix.lower() in YAML_SUFFIXES:
         if any(line.startswith("requirements:") for line in head):
             raise InputError("a bladefem check spec (requirements on models), not a model: run 'bladefem check "

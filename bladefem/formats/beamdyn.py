@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..files import write_atomic
+from ._fast_format import KEY_LINE
 from ._text import exact, number, numbered_lines, row
 
 AXES = ("shear x", "shear y", "extension", "bending x (edge)", "bending y (flap)", "torsion")
@@ -110,10 +111,12 @@ def _is_separator(text: str) -> bool:
 
 
 def _key(text: str) -> tuple[str, str] | None:
-    """(label, value) of a 'value label - description' line, or None."""
+    """(label, value) of a 'value label - description' line, or None; a quoted value may hold blanks."""
     tokens = text.split()
     if len(tokens) < 2 or _is_separator(text):
         return None
+    if text.lstrip().startswith(('"', "'")) and (match := KEY_LINE.match(text)):
+        return match["key"], match["value"]
     value, label = tokens[0], tokens[1]
     if not (label[0].isalpha() or label[0] == "_"):
         return None
