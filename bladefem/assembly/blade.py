@@ -17,13 +17,14 @@ from ..elements import (
     projected_inertia,
     rotation_second_order,
 )
+from ..errors import InputError
 from ..sections import Blade
 from ..sections.table import OPTIONAL_STIFFNESS, POSITIVE, ZERO_DEFAULT
 from . import terms
 from .dofs import DofMap
 from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
-from .parameters import SectionParameters, plane_of_rotation, section_parameters
+from .parameters import SectionParameters, axis_position, plane_of_rotation, section_parameters
 
 #: Gauss rule degree: cubic x cubic x linear property x smooth twist
 QUADRATURE_ORDER = 9
@@ -117,6 +118,9 @@ def model_fields(blade: Blade) -> tuple[str, ...]:
         fields.append("phi")
     if blade.sections.axial_stiffness is not None:
         fields.append("u")
+    elif blade.curved:
+        raise InputError("a curved reference axis needs the axial stiffness (its bending stretches the axis): give "
+                         "EA, or straighten the axis (--straight-axis)", field="axial_stiffness")
     return tuple(fields)
 
 
@@ -140,11 +144,21 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
         zero = sp.csr_matrix((dofs.size, dofs.size))
         return zero, zero
     S, J = tip.mass * tip.offset, tip.second_moment
-    P = plane_of_rotation(blade)
+    P, position = tip_geometry(blade)
     inertia = projected_inertia(np.eye(3), np.float64(tip.mass), S, J)
     K2 = -projected_inertia(P, np.float64(tip.mass), S, J)
-    K2[3:, 3:] -= rotation_second_order(P, np.array([blade.tip_radius, 0.0, 0.0]), S, J)
+    K2[3:, 3:] -= rotation_second_order(P, position, S, J)
     return (T.T @ sp.csr_matrix(inertia) @ T).tocsr(), (T.T @ sp.csr_matrix(K2) @ T).tocsr()
+
+
+def tip_geometry(blade: Blade) -> tuple[NDArray, NDArray]:
+    """The plane-of-rotation projection and the tip's position from the apex in the tip node's frame: the blade
+    frame, or the local frame at the tip of a curved axis (where the tip mass's offset and inertia are given)."""
+    P = plane_of_rotation(blade)
+    frame = blade.axis_frame(np.array(blade.length))
+    if frame is None:
+        return P, np.array([blade.tip_radius, 0.0, 0.0])
+    return frame.tensor_to_local(P), frame.to_local(axis_position(blade, frame))
 
 
 def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
@@ -153,8 +167,24 @@ def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
     if tip is None:
         return sp.csr_matrix((dofs.size, dofs.size))
     T = dofs.kinematic_selector(len(dofs.nodes) - 1)
-    G = gyroscopic_inertia(blade.shaft_axis, np.float64(tip.mass), tip.mass * tip.offset, tip.second_moment)
+    frame = blade.axis_frame(np.array(blade.length))
+    shaft = blade.shaft_axis if frame is None else frame.to_local(blade.shaft_axis)
+    G = gyroscopic_inertia(shaft, np.float64(tip.mass), tip.mass * tip.offset, tip.second_moment)
     return (T.T @ sp.csr_matrix(G) @ T).tocsr()
+
+
+#: an axis knot closer than this fraction of the length to a section station is not made a node
+AXIS_KNOT_GAP = 1e-4
+
+
+def with_axis_knots(blade: Blade, stations: NDArray) -> NDArray:
+    """``stations`` with the knots of a curved reference axis's splines added (where its curvature's slope jumps,
+    so that no element straddles one), except those within :data:`AXIS_KNOT_GAP` of the length of a station."""
+    if not blade.curved:
+        return stations
+    knots = blade.axis.span
+    gap = np.min(np.abs(knots[:, None] - np.asarray(stations)[None, :]), axis=1)
+    return np.sort(np.concatenate([stations, knots[gap > AXIS_KNOT_GAP * blade.length]]))
 
 
 def blade_graded_nodes(blade: Blade, elements: int) -> NDArray:
@@ -163,7 +193,7 @@ def blade_graded_nodes(blade: Blade, elements: int) -> NDArray:
     s = blade.sections
     names = POSITIVE + OPTIONAL_STIFFNESS + ZERO_DEFAULT
     present = [getattr(s, name) for name in names if getattr(s, name) is not None]
-    stations = mesh_stations(s.span, present)
+    stations = with_axis_knots(blade, mesh_stations(s.span, present))
     graded = [s.at(stations, name) for name in ("mass", "flap_stiffness", "edge_stiffness", "torsion_stiffness",
                                                 "axial_stiffness", "flap_inertia", "edge_inertia")
               if getattr(s, name) is not None and np.max(getattr(s, name)) > 0]
@@ -174,10 +204,10 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     """Assemble K0, K2 and M for ``blade`` on a mesh with about ``elements`` elements (stations are nodes), or on
     the given ``nodes`` (m, increasing, from root to tip)."""
     fields = model_fields(blade)
-    mesh = span_mesh(span_nodes(blade.sections.span, elements) if nodes is None else nodes)
+    mesh = span_mesh(span_nodes(with_axis_knots(blade, blade.sections.span), elements) if nodes is None else nodes)
     basis = Basis(mesh, beam_element(fields), intorder=QUADRATURE_ORDER)
     parameters = section_parameters(blade, np.asarray(basis.global_coordinates())[0])
-    quadrature = Quadrature.from_basis(basis, fields)
+    quadrature = Quadrature.from_basis(basis, fields, parameters.curvature)
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))

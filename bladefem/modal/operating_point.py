@@ -1,0 +1,80 @@
+"""The blade's operating point under its centrifugal load: the static deflection at a rotor speed, and the blade
+on its deflected reference axis (a prebent blade bends back toward the rotor plane as it spins)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ..assembly import BladeMatrices, assemble_blade
+from ..assembly.blade import tip_geometry
+from ..assembly.loads import centrifugal_load_density, load_vector
+from ..elements.rigid_slice import EPS
+from ..sections import Blade, ReferenceAxis
+from .solve import rpm_to_rad_s
+
+#: elements of the mesh the operating point is solved on (the deflection converges like a static solution)
+ELEMENTS = 80
+
+
+def centrifugal_load(matrices: BladeMatrices) -> NDArray:
+    """The centrifugal load vector per Omega^2 over all DOFs, N s^2 (sections and tip mass)."""
+    blade = matrices.blade
+    quadrature = matrices.quadrature
+    b = load_vector(quadrature, centrifugal_load_density(blade, quadrature.points))
+    tip = blade.tip_mass
+    if tip is not None and tip.mass > 0:
+        Q, r = tip_geometry(blade)
+        S = tip.mass * tip.offset
+        moment = np.cross(S, Q @ r) + np.einsum("abc,cd,bd->a", EPS, Q, tip.second_moment)
+        T = matrices.dofs.kinematic_selector(len(matrices.dofs.nodes) - 1)
+        b = b + T.T @ np.concatenate([Q @ (tip.mass * r + S), moment])
+    return b
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """The static deflection under the centrifugal load at ``rpm``.
+
+    nodes : (n,) node positions along the axis, m
+    displacement : (3, n) the axis points' displacement in the blade frame, m
+    twist : (n,) elastic twist, rad
+    vector : the deflection over all DOFs
+    """
+
+    rpm: float
+    nodes: NDArray
+    displacement: NDArray
+    twist: NDArray
+    vector: NDArray
+
+
+def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> OperatingPoint:
+    """Solve ``(K0 + Omega^2 K2) q = Omega^2 b`` for the centrifugal load ``b`` at ``rpm`` (rpm)."""
+    matrices = assemble_blade(blade, elements)
+    omega = rpm_to_rad_s(rpm)
+    K, _ = matrices.reduced(omega)
+    q = np.zeros(matrices.dofs.size)
+    q[matrices.free] = spla.spsolve(K, omega**2 * centrifugal_load(matrices)[matrices.free])
+    dofs = matrices.dofs
+    local = np.stack([q[dofs.value[name]] if name in dofs.value else np.zeros(len(dofs.nodes))
+                      for name in ("u", "v", "w")])
+    frame = blade.axis_frame(dofs.nodes)
+    displacement = local if frame is None else np.einsum("ij...,j...->i...", frame.rotation, local)
+    twist = q[dofs.value["phi"]] if "phi" in dofs.value else np.zeros(len(dofs.nodes))
+    return OperatingPoint(float(rpm), dofs.nodes, displacement, twist, q)
+
+
+def deflected_blade(blade: Blade, rpm: float, elements: int = ELEMENTS) -> tuple[Blade, OperatingPoint]:
+    """The blade on its reference axis deflected by the centrifugal load at ``rpm`` (rpm), and that deflection."""
+    point = operating_point(blade, rpm, elements)
+    axis = blade.axis or ReferenceAxis(blade.sections.span, np.zeros(len(blade.sections.span)),
+                                       np.zeros(len(blade.sections.span)))
+    moved = axis.displaced(point.nodes, point.displacement, blade.pitch)
+    tip = point.displacement[:, -1]
+    note = (f"reference axis deflected by the centrifugal load at {rpm:g} rpm (tip moved {tip[2]:+.3g} m "
+            f"out of plane, {tip[1]:+.3g} m in plane)")
+    return blade.with_(axis=moved, notes=blade.notes + (note,)), point
