@@ -3,16 +3,19 @@ quadratic eigenproblem asks for it, the gyroscopic matrix G (per Omega)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from skfem import Basis
 
 from ..elements import (
+    SectionMotion,
     beam_element,
+    interpolated_motion,
     gyroscopic_inertia,
     projected_inertia,
     rotation_second_order,
@@ -24,7 +27,8 @@ from . import terms
 from .dofs import DofMap
 from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
-from .parameters import SectionParameters, axis_position, plane_of_rotation, section_parameters
+from .loads import centrifugal_load, tip_geometry
+from .parameters import SectionParameters, plane_of_rotation, section_parameters
 
 #: Gauss rule degree: cubic x cubic x linear property x smooth twist
 QUADRATURE_ORDER = 9
@@ -151,14 +155,15 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
     return (T.T @ sp.csr_matrix(inertia) @ T).tocsr(), (T.T @ sp.csr_matrix(K2) @ T).tocsr()
 
 
-def tip_geometry(blade: Blade) -> tuple[NDArray, NDArray]:
-    """The plane-of-rotation projection and the tip's position from the apex in the tip node's frame: the blade
-    frame, or the local frame at the tip of a curved axis (where the tip mass's offset and inertia are given)."""
-    P = plane_of_rotation(blade)
-    frame = blade.axis_frame(np.array(blade.length))
-    if frame is None:
-        return P, np.array([blade.tip_radius, 0.0, 0.0])
-    return frame.tensor_to_local(P), frame.to_local(axis_position(blade, frame))
+def static_deflection(K0: sp.csr_matrix, quadrature: Quadrature, blade: Blade, dofs: DofMap,
+                      free: NDArray[np.int64]) -> SectionMotion:
+    """The deflection under the centrifugal load per Omega^2, ``K0 q1 = b`` (m s^2), as motions at the quadrature
+    points: the operating point about which a curved blade's stiffness at speed is linearized (to first order in
+    Omega^2)."""
+    q = np.zeros(dofs.size)
+    q[free] = spla.spsolve(K0[free][:, free].tocsc(), centrifugal_load(quadrature, blade, dofs)[free])
+    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, q[:, None])
+    return SectionMotion(**{name: getattr(motion, name)[0] for name in SectionMotion.__dataclass_fields__})
 
 
 def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
@@ -211,8 +216,12 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))
-    K2 = assemble_terms(quadrature, parameters, CENTRIFUGAL_TERMS) + K2_tip
-    M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
+    centrifugal = CENTRIFUGAL_TERMS
+    if blade.prestressed and blade.root == "cantilever":
+        parameters = replace(parameters, static=static_deflection(K0, quadrature, blade, dofs, free))
+        centrifugal = centrifugal + (terms.moment_prestress_stiffness,)
+    K2 = assemble_terms(quadrature, parameters, centrifugal) + K2_tip
+    M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,
                          quadrature=quadrature, parameters=parameters)

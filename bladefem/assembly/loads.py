@@ -8,6 +8,7 @@ from numpy.typing import NDArray
 
 from ..elements.rigid_slice import EPS
 from ..sections import Blade, mass_moments
+from .dofs import DofMap
 from .forms import Quadrature
 from .parameters import axis_position, plane_of_rotation
 
@@ -35,3 +36,26 @@ def load_vector(quadrature: Quadrature, density: NDArray) -> NDArray:
     """``b_i = int phi_i . g dx`` for a density ``g`` on the kinematic vector (6, elements, points), over all DOFs."""
     local = np.einsum("fieq,feq,eq->ie", quadrature.functions.kinematic, density, quadrature.weights)
     return np.bincount(quadrature.element_dofs.ravel(), weights=local.ravel(), minlength=quadrature.size)
+
+
+def tip_geometry(blade: Blade) -> tuple[NDArray, NDArray]:
+    """The plane-of-rotation projection and the tip's position from the apex in the tip node's frame: the blade
+    frame, or the local frame at the tip of a curved axis (where the tip mass's offset and inertia are given)."""
+    P = plane_of_rotation(blade)
+    frame = blade.axis_frame(np.array(blade.length))
+    if frame is None:
+        return P, np.array([blade.tip_radius, 0.0, 0.0])
+    return frame.tensor_to_local(P), frame.to_local(axis_position(blade, frame))
+
+
+def centrifugal_load(quadrature: Quadrature, blade: Blade, dofs: DofMap) -> NDArray:
+    """The centrifugal load vector per Omega^2 over all DOFs, N s^2 (sections and tip mass)."""
+    b = load_vector(quadrature, centrifugal_load_density(blade, quadrature.points))
+    tip = blade.tip_mass
+    if tip is not None and tip.mass > 0:
+        Q, r = tip_geometry(blade)
+        S = tip.mass * tip.offset
+        moment = np.cross(S, Q @ r) + np.einsum("abc,cd,bd->a", EPS, Q, tip.second_moment)
+        T = dofs.kinematic_selector(len(dofs.nodes) - 1)
+        b = b + T.T @ np.concatenate([Q @ (tip.mass * r + S), moment])
+    return b

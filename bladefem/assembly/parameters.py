@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..elements import gyroscopic_inertia, projected_inertia, rotation_second_order
+from ..elements import SectionMotion, gyroscopic_inertia, projected_inertia, rotation_second_order
 from ..sections import (
     AxisFrame,
     Blade,
@@ -115,6 +115,22 @@ class SectionParameters:
     gyroscopic: NDArray | None = None  # (6, 6, ...) skew Coriolis matrix per Omega, kg/m .. kg m (rotating beams)
     twist_coupling: NDArray | None = None  # (3, ...) phi' with (u', v'', w''), N m, N m^2 (six-by-six sections)
     curvature: NDArray | None = None  # (4, ...) K2, K3 (1/m) and their rates (1/m^2) of a curved reference axis
+    static: SectionMotion | None = None  # the deflection under the centrifugal load per Omega^2 (curved axis)
+
+    @property
+    def strain_stiffness(self) -> NDArray:
+        """The classical section stiffness on (u', v'', w'', phi'), shape (4, 4, ...)."""
+        shape = np.shape(self.bending)[2:]
+        C = np.zeros((4, 4) + shape)
+        if self.extension_bending is None:
+            C[1:3, 1:3] = self.bending
+        else:
+            C[:3, :3] = self.extension_bending
+        if self.torsion is not None:
+            C[3, 3] = self.torsion
+        if self.twist_coupling is not None:
+            C[3, :3] = C[:3, 3] = self.twist_coupling
+        return C
 
 
 def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:

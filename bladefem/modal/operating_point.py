@@ -9,30 +9,13 @@ import numpy as np
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from ..assembly import BladeMatrices, assemble_blade
-from ..assembly.blade import tip_geometry
-from ..assembly.loads import centrifugal_load_density, load_vector
-from ..elements.rigid_slice import EPS
+from ..assembly import assemble_blade
+from ..assembly.loads import centrifugal_load
 from ..sections import Blade, ReferenceAxis
 from .solve import rpm_to_rad_s
 
 #: elements of the mesh the operating point is solved on (the deflection converges like a static solution)
 ELEMENTS = 80
-
-
-def centrifugal_load(matrices: BladeMatrices) -> NDArray:
-    """The centrifugal load vector per Omega^2 over all DOFs, N s^2 (sections and tip mass)."""
-    blade = matrices.blade
-    quadrature = matrices.quadrature
-    b = load_vector(quadrature, centrifugal_load_density(blade, quadrature.points))
-    tip = blade.tip_mass
-    if tip is not None and tip.mass > 0:
-        Q, r = tip_geometry(blade)
-        S = tip.mass * tip.offset
-        moment = np.cross(S, Q @ r) + np.einsum("abc,cd,bd->a", EPS, Q, tip.second_moment)
-        T = matrices.dofs.kinematic_selector(len(matrices.dofs.nodes) - 1)
-        b = b + T.T @ np.concatenate([Q @ (tip.mass * r + S), moment])
-    return b
 
 
 @dataclass(frozen=True)
@@ -58,7 +41,7 @@ def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> Opera
     omega = rpm_to_rad_s(rpm)
     K, _ = matrices.reduced(omega)
     q = np.zeros(matrices.dofs.size)
-    q[matrices.free] = spla.spsolve(K, omega**2 * centrifugal_load(matrices)[matrices.free])
+    q[matrices.free] = spla.spsolve(K, omega**2 * centrifugal_load(matrices.quadrature, blade, matrices.dofs)[matrices.free])
     dofs = matrices.dofs
     local = np.stack([q[dofs.value[name]] if name in dofs.value else np.zeros(len(dofs.nodes))
                       for name in ("u", "v", "w")])
@@ -77,4 +60,4 @@ def deflected_blade(blade: Blade, rpm: float, elements: int = ELEMENTS) -> tuple
     tip = point.displacement[:, -1]
     note = (f"reference axis deflected by the centrifugal load at {rpm:g} rpm (tip moved {tip[2]:+.3g} m "
             f"out of plane, {tip[1]:+.3g} m in plane)")
-    return blade.with_(axis=moved, notes=blade.notes + (note,)), point
+    return blade.with_(axis=moved, prestressed=True, notes=blade.notes + (note,)), point

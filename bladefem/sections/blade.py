@@ -76,6 +76,8 @@ class Blade:
     notes : statements about the modelling assumptions made while reading the input (printed by the CLI)
     axis : the reference axis's prebend and sweep (:class:`~bladefem.sections.axis.ReferenceAxis`, over the same
         arc length as the sections), or None for a straight blade along the pitch axis
+    prestressed : the stiffness at speed holds the bending moments and torque of the centrifugal load (for a blade
+        on its deflected axis, :func:`bladefem.modal.operating_point.deflected_blade`); otherwise only the tension
     """
 
     sections: SectionTable
@@ -87,6 +89,7 @@ class Blade:
     name: str = "blade"
     notes: tuple[str, ...] = ()
     axis: ReferenceAxis | None = None
+    prestressed: bool = False
 
     def __post_init__(self) -> None:
         if self.axis is not None and abs(self.axis.length - self.length) > 1e-9 * self.length:
