@@ -134,3 +134,16 @@ def test_the_axis_is_checked():
         Blade(uniform_sections(10.0, 1.0, 1.0, 1.0, 1.0, 1.0), axis=ReferenceAxis(s * 1.1, np.zeros(5), 0.01 * s))
     with pytest.raises(InputError, match="axial stiffness"):
         modes(Blade(uniform_sections(10.0, 1.0, 1.0, 1.0), axis=ReferenceAxis(s, np.zeros(5), 0.01 * s**2)), 0.0, 2)
+
+
+def test_the_curved_blade_is_drawn_on_its_axis():
+    """The drawing's axis points lie on the arc (x = R sin(s / R), z = R (1 - cos(s / R))), its chord turned with
+    the local frame (perpendicular to the tangent)."""
+    from bladefem.outputs.vtk_geometry import axis_positions, local_to_blade
+
+    blade = arc_blade()
+    s = np.array([0.0, 2.0, R * ALPHA])
+    expected = np.stack([R * np.sin(s / R), np.zeros(3), R * (1 - np.cos(s / R))], axis=-1)
+    np.testing.assert_allclose(axis_positions(blade, s), expected, atol=1e-7)
+    normal = local_to_blade(blade, s, np.tile([0.0, 0.0, 1.0], (3, 1)))
+    np.testing.assert_allclose(normal, np.stack([-np.sin(s / R), np.zeros(3), np.cos(s / R)], axis=-1), atol=1e-7)

@@ -153,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
     wanted = _part(args)
     geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
                         tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc,
-                        sections=args.sections)
+                        sections=args.sections, axis=args.axis)
     model = read_model(args.input, wanted, geometry)
     part = "blade" if isinstance(model, Blade) else "tower"
     if args.elastodyn_compatible:
