@@ -95,3 +95,25 @@ def test_at_speed_the_deflection_and_its_moments_both_count():
     both = edge2([d[0] for d in deflected])
     assert undeformed < theirs - 0.004 and without_moments > theirs + 0.002
     assert abs(both - theirs) < 0.001
+
+
+def test_the_command_line_keeps_or_straightens_the_axis():
+    """`bladefem modes` on the BeamDyn file takes its curved axis and says so; --straight-axis straightens it (as the
+    builder's straight blade); an input without a reference axis, or the straight Galerkin model on a curved one,
+    is refused with the option named (exit 2)."""
+    import subprocess
+    import sys
+
+    def run(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run([sys.executable, "-m", "bladefem", "modes", *args, "--n-modes", "2"],
+                              capture_output=True, text=True)
+
+    path = str(TURBINES["iea15"][0])
+    curved, straight = run(path), run(path, "--straight-axis")
+    assert curved.returncode == 0 and straight.returncode == 0, curved.stderr + straight.stderr
+    assert "curved reference axis 117.149 m long" in curved.stdout
+    assert "straightened onto the pitch axis (--straight-axis): 117 m long" in straight.stdout
+    case = run(str(Path(__file__).resolve().parents[1] / "cases" / "uniform_blade.yaml"), "--straight-axis")
+    galerkin = run(path, "--method", "galerkin")
+    assert case.returncode == 2 and "--straight-axis" in case.stderr
+    assert galerkin.returncode == 2 and "--straight-axis" in galerkin.stderr
