@@ -100,7 +100,7 @@ def test_at_speed_the_deflection_and_its_moments_both_count():
 def test_the_command_line_keeps_or_straightens_the_axis():
     """`bladefem modes` on the BeamDyn file takes its curved axis and says so; --straight-axis straightens it (as the
     builder's straight blade); an input without a reference axis, or the straight Galerkin model on a curved one,
-    is refused with the option named (exit 2)."""
+    is refused with the option named (exit 2); --operating-point gives the deflected blade's modes."""
     import subprocess
     import sys
 
@@ -117,3 +117,11 @@ def test_the_command_line_keeps_or_straightens_the_axis():
     galerkin = run(path, "--method", "galerkin")
     assert case.returncode == 2 and "--straight-axis" in case.stderr
     assert galerkin.returncode == 2 and "--straight-axis" in galerkin.stderr
+    at_speed = run(path, "--rpm", "7.56", "--operating-point", "--json")
+    assert at_speed.returncode == 0, at_speed.stderr
+    blade = blade_from_beamdyn(read_beamdyn_primary(path), read_beamdyn_blade(read_beamdyn_primary(path).blade_path()))
+    expected = modes(deflected_blade(blade, 7.56)[0], 7.56, 2).frequencies_hz
+    written = [mode["frequency_hz"] for mode in json.loads(at_speed.stdout)["modes"]]
+    np.testing.assert_allclose(written, expected, rtol=1e-9)
+    refused = run(path, "--rpm", "7.56", "--operating-point", "--method", "galerkin")
+    assert refused.returncode == 2 and "--operating-point" in refused.stderr

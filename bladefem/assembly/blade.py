@@ -28,7 +28,7 @@ from .dofs import DofMap
 from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
 from .loads import centrifugal_load, tip_geometry
-from .parameters import SectionParameters, plane_of_rotation, section_parameters
+from .parameters import SectionParameters, section_parameters
 
 #: Gauss rule degree: cubic x cubic x linear property x smooth twist
 QUADRATURE_ORDER = 9

@@ -18,6 +18,6 @@ from .rigid_slice import (
            skew,
 )
 
-__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element", "curved_motion",
-           "gyroscopic_inertia", "interpolated_motion", "linear_projection", "pair_motions", "projected_inertia", "rotation_second_order",
-           "skew"]
+__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element",
+           "curved_motion", "gyroscopic_inertia", "interpolated_motion", "linear_projection", "pair_motions",
+           "projected_inertia", "rotation_second_order", "skew"]

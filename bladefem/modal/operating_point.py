@@ -8,9 +8,11 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
+from scipy.interpolate import CubicHermiteSpline
 
 from ..assembly import assemble_blade
 from ..assembly.loads import centrifugal_load
+from ..errors import InputError
 from ..sections import Blade, ReferenceAxis
 from .solve import rpm_to_rad_s
 
@@ -22,7 +24,7 @@ ELEMENTS = 80
 class OperatingPoint:
     """The static deflection under the centrifugal load at ``rpm``.
 
-    nodes : (n,) node positions along the axis, m
+    nodes : (n,) where the deflection is sampled along the axis (its knots, or the stations), m
     displacement : (3, n) the axis points' displacement in the blade frame, m
     twist : (n,) elastic twist, rad
     vector : the deflection over all DOFs
@@ -36,19 +38,29 @@ class OperatingPoint:
 
 
 def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> OperatingPoint:
-    """Solve ``(K0 + Omega^2 K2) q = Omega^2 b`` for the centrifugal load ``b`` at ``rpm`` (rpm)."""
+    """Solve ``(K0 + Omega^2 K2) q = Omega^2 b`` for the centrifugal load ``b`` at ``rpm`` (rpm) on a cantilever."""
+    if blade.root != "cantilever":
+        raise InputError(f"the operating point needs a clamped root (this blade's is {blade.root}): a static "
+                         "deflection under load", field="root")
     matrices = assemble_blade(blade, elements)
     omega = rpm_to_rad_s(rpm)
     K, _ = matrices.reduced(omega)
     q = np.zeros(matrices.dofs.size)
-    q[matrices.free] = spla.spsolve(K, omega**2 * centrifugal_load(matrices.quadrature, blade, matrices.dofs)[matrices.free])
+    load = centrifugal_load(matrices.quadrature, blade, matrices.dofs)
+    q[matrices.free] = spla.spsolve(K, omega**2 * load[matrices.free])
     dofs = matrices.dofs
-    local = np.stack([q[dofs.value[name]] if name in dofs.value else np.zeros(len(dofs.nodes))
-                      for name in ("u", "v", "w")])
-    frame = blade.axis_frame(dofs.nodes)
+    # where the deflected axis is sampled: the axis's own knots (or the stations), so that its modes are meshed
+    # on the same nodes as the blade's
+    at = blade.axis.span if blade.curved else np.unique(blade.sections.span)
+    local = np.zeros((3, len(at)))
+    if "u" in dofs.value:
+        local[0] = np.interp(at, dofs.nodes, q[dofs.value["u"]])
+    for k, name in ((1, "v"), (2, "w")):
+        local[k] = CubicHermiteSpline(dofs.nodes, q[dofs.value[name]], q[dofs.slope[name]])(at)
+    frame = blade.axis_frame(at)
     displacement = local if frame is None else np.einsum("ij...,j...->i...", frame.rotation, local)
-    twist = q[dofs.value["phi"]] if "phi" in dofs.value else np.zeros(len(dofs.nodes))
-    return OperatingPoint(float(rpm), dofs.nodes, displacement, twist, q)
+    twist = np.interp(at, dofs.nodes, q[dofs.value["phi"]]) if "phi" in dofs.value else np.zeros(len(at))
+    return OperatingPoint(float(rpm), at, displacement, twist, q)
 
 
 def deflected_blade(blade: Blade, rpm: float, elements: int = ELEMENTS) -> tuple[Blade, OperatingPoint]:
