@@ -12,6 +12,7 @@ import scipy.sparse.linalg as spla
 from scipy.integrate import quad
 
 from bladefem.assembly import assemble_blade
+from bladefem.assembly.loads import centrifugal_load
 from bladefem.errors import InputError
 from bladefem.modal import modes
 from bladefem.sections import Blade, ReferenceAxis, SectionTable, TipMass, uniform_sections
@@ -86,7 +87,8 @@ def offset_sections(length: float) -> SectionTable:
 def test_a_tilted_straight_axis_is_precone(rpm):
     """A straight axis leaving the pitch axis downwind at the angle gamma, with the hub radius 0, is the same blade
     as one preconed by gamma more: every centrifugal, gyroscopic and tip-mass term on the curve (spin softening,
-    the tension along the tangent, the position of each section) reproduces the preconed blade's."""
+    the tension along the tangent, the position of each section, the Coriolis matrix, the centrifugal load) reproduces the preconed
+    blade's, matrix by matrix."""
     gamma, precone, length = np.radians(12.0), np.radians(5.0), 10.0
     s = np.linspace(0.0, length, 11)
     tip = TipMass(3.0, offset=[0.1, 0.05, 0.02], inertia=[0.2, 0.1, 0.1])
@@ -95,6 +97,12 @@ def test_a_tilted_straight_axis_is_precone(rpm):
     preconed = Blade(offset_sections(length), precone=precone + gamma, tip_mass=tip)
     np.testing.assert_allclose(modes(tilted, rpm, 8, elements=30).frequencies_hz,
                                modes(preconed, rpm, 8, elements=30).frequencies_hz, rtol=1e-10)
+    a, b = assemble_blade(tilted, 30), assemble_blade(preconed, 30)
+    for name in ("K0", "K2", "M", "G"):                      # the Coriolis matrix too
+        difference = abs(getattr(a, name) - getattr(b, name)).max()
+        assert difference <= 1e-10 * abs(getattr(b, name)).max(), name
+    loads = [centrifugal_load(m.quadrature, blade, m.dofs) for m, blade in ((a, tilted), (b, preconed))]
+    np.testing.assert_allclose(loads[0], loads[1], atol=1e-10 * np.max(np.abs(loads[1])))
 
 
 def test_zero_prebend_reproduces_the_straight_blade():
@@ -147,3 +155,19 @@ def test_the_curved_blade_is_drawn_on_its_axis():
     np.testing.assert_allclose(axis_positions(blade, s), expected, atol=1e-7)
     normal = local_to_blade(blade, s, np.tile([0.0, 0.0, 1.0], (3, 1)))
     np.testing.assert_allclose(normal, np.stack([-np.sin(s / R), np.zeros(3), np.cos(s / R)], axis=-1), atol=1e-7)
+
+
+def test_centrifugal_load_deflects_a_preconed_blade_as_the_beam_formulas():
+    """The centrifugal load per Omega^2 on a uniform blade preconed by beta (hub radius 0): along the axis m cos^2(b)
+    x, which stretches it by u(L) = m cos^2(b) L^3 / (3 EA); out of the rotor plane -m sin(b) cos(b) x, a load rising
+    linearly to q0 = -m sin(b) cos(b) L, which bends it by 11 q0 L^4 / (120 EI) at the tip (K0 q = b)."""
+    beta, length, m = np.radians(6.0), 10.0, 10.0
+    blade = Blade(uniform_sections(length, m, EI_FLAP, EI_EDGE, GJ, EA), precone=beta)
+    matrices = assemble_blade(blade, 40)
+    b = centrifugal_load(matrices.quadrature, blade, matrices.dofs)
+    q = np.zeros(matrices.dofs.size)
+    free = matrices.free
+    q[free] = spla.spsolve(matrices.K0[free][:, free].tocsc(), b[free])
+    c, s = np.cos(beta), np.sin(beta)
+    assert q[matrices.dofs.value["u"][-1]] == pytest.approx(m * c**2 * length**3 / (3 * EA), rel=1e-9)
+    assert q[matrices.dofs.value["w"][-1]] == pytest.approx(-11 * m * s * c * length**5 / (120 * EI_FLAP), rel=1e-9)
