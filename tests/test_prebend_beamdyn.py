@@ -125,3 +125,22 @@ def test_the_command_line_keeps_or_straightens_the_axis():
     np.testing.assert_allclose(written, expected, rtol=1e-9)
     refused = run(path, "--rpm", "7.56", "--operating-point", "--method", "galerkin")
     assert refused.returncode == 2 and "--operating-point" in refused.stderr
+
+
+def test_every_reader_bends_the_iea15_blade_upwind():
+    """The sign is decided once, in the builders: BeamDyn's kp_xr, windIO's reference-axis x and HAWC2's c2_def
+    (moved to the pitch axis) all give the IEA-15MW's prebend upwind (bladefem's z negative), 4 m at the tip, and
+    the same curve within 2 cm from 20 % span out."""
+    from bladefem.builders.detect import read_model
+
+    iea15 = DATA / "iea15"
+    blades = [read_model(TURBINES["iea15"][0]),
+              read_model(iea15 / "windio" / "IEA-15-240-RWT_windio2_blade.yaml"),
+              read_model(iea15 / "hawc2" / "IEA_15MW_RWT_Blade_st_FPM.st",
+                         htc=iea15 / "hawc2" / "IEA_15MW_RWT_WTG_bodies_noFPM.htc")]
+    fraction = np.linspace(0.2, 1.0, 17)
+    curves = [np.interp(fraction * b.length, b.axis.span, b.axis.prebend) for b in blades]
+    for curve in curves:
+        assert curve[-1] == pytest.approx(-4.0, abs=0.01)
+        np.testing.assert_allclose(curve, curves[0], atol=0.02)
+    assert all(np.max(np.abs(b.axis.sweep)) < 1e-9 for b in blades)
