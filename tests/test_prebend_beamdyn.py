@@ -144,3 +144,18 @@ def test_every_reader_bends_the_iea15_blade_upwind():
         assert curve[-1] == pytest.approx(-4.0, abs=0.01)
         np.testing.assert_allclose(curve, curves[0], atol=0.02)
     assert all(np.max(np.abs(b.axis.sweep)) < 1e-9 for b in blades)
+
+
+def test_a_design_check_spec_can_straighten_the_axis(tmp_path):
+    """`bladefem check` specs take `axis: straight` as the command line takes --straight-axis."""
+    from bladefem.check.models import read_structure
+    from bladefem.check.spec import read_spec
+
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"models:\n  curved:\n    input: {TURBINES['iea15'][0]}\n    operating_rpm: [5.0, 7.56]\n"
+                    f"  straight:\n    input: {TURBINES['iea15'][0]}\n    operating_rpm: [5.0, 7.56]\n"
+                    "    axis: straight\nrequirements:\n  - name: flap\n    model: curved\n"
+                    "    window: {mode: flap 1, hz: [0.4, 0.6], rpm: 0}\n")
+    models = read_spec(spec).models
+    curved, straight = (read_structure(models[name].input, None, models[name].geometry) for name in models)
+    assert curved.curved and not straight.curved and straight.length == pytest.approx(117.0)
