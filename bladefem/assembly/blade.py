@@ -15,8 +15,8 @@ from skfem import Basis
 from ..elements import (
     SectionMotion,
     beam_element,
-    interpolated_motion,
     gyroscopic_inertia,
+    interpolated_motion,
     projected_inertia,
     rotation_second_order,
 )
@@ -158,8 +158,8 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
 def static_deflection(K0: sp.csr_matrix, quadrature: Quadrature, blade: Blade, dofs: DofMap,
                       free: NDArray[np.int64]) -> SectionMotion:
     """The deflection under the centrifugal load per Omega^2, ``K0 q1 = b`` (m s^2), as motions at the quadrature
-    points: the operating point about which a curved blade's stiffness at speed is linearized (to first order in
-    Omega^2)."""
+    points: whose static moments a prestressed blade's stiffness at speed holds
+    (:func:`~bladefem.assembly.terms.moment_prestress_stiffness`, to first order in Omega^2)."""
     q = np.zeros(dofs.size)
     q[free] = spla.spsolve(K0[free][:, free].tocsc(), centrifugal_load(quadrature, blade, dofs)[free])
     motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, q[:, None])
