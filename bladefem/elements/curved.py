@@ -11,6 +11,8 @@ A rigid motion of the curved beam strains nothing in these measures.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -44,9 +46,8 @@ def curved_motion(motion: SectionMotion, curvature: NDArray, projection: NDArray
     stretch = k2 * m.w - k3 * m.v
     if projection is not None:
         stretch = np.einsum("eqp,...ep->...eq", projection, stretch)
-    return SectionMotion(u=m.u, v=m.v, w=m.w, phi=m.phi,
-                         u_x=m.u_x + stretch,
-                         v_x=v_x, w_x=w_x,
-                         phi_x=m.phi_x + k2 * v_x + k3 * w_x,
-                         v_xx=m.v_xx + k3_s * m.u + k3 * m.u_x - k2 * m.phi,
-                         w_xx=m.w_xx - k2_s * m.u - k2 * m.u_x - k3 * m.phi)
+    return replace(m, u_x=m.u_x + stretch,
+                   v_x=v_x, w_x=w_x,
+                   phi_x=m.phi_x + k2 * v_x + k3 * w_x,
+                   v_xx=m.v_xx + k3_s * m.u + k3 * m.u_x - k2 * m.phi,
+                   w_xx=m.w_xx - k2_s * m.u - k2 * m.u_x - k3 * m.phi)
