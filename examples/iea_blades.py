@@ -5,7 +5,9 @@ reduction's dropped terms each contribute. ``python examples/iea_blades.py`` pri
 Rated rotor speeds are the turbines' controller settings (ROSCO ``PC_RefSpd``, gearbox ratio 1): IEA-15MW 0.79168
 rad/s = 7.560 rpm, IEA-22MW 0.72086 rad/s = 6.884 rpm (IEA-22-280-RWT at 022e8f8, OpenFAST/IEA-22-280-RWT-Monopile/
 IEA-22-280-RWT_DISCON.IN). Hub radii from the ElastoDyn main files: 3.97 m and 4.2 m. Clamped root, no precone, no
-gravity, straight blade (the prebend is not modelled), mesh refined until converged.
+gravity, the files' curved reference axis (prebend), at rated speed on the axis deflected by the centrifugal load
+(:func:`bladefem.modal.operating_point.deflected_blade`), mesh refined until converged. The prebend's effect
+(prebent over straightened, with the decks' precone, against OpenFAST with BeamDyn) is the third table.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from numpy.typing import NDArray
 
 from bladefem.builders.detect import read_model
 from bladefem.modal import modes
+from bladefem.modal.operating_point import deflected_blade
 from bladefem.sections import Blade, FullSections, full_sections_from_table
 from bladefem.sections.full_section import CLASSICAL, SHEAR, about_reference, condensed
 
@@ -60,8 +63,8 @@ def blade(turbine: str, source: str, sections: str) -> Blade:
 
 
 def first_six(model: Blade, rpm: float) -> tuple[float, ...]:
-    """Frequencies (Hz) of flap 1-3, edge 1-2, torsion 1 (by the modes' kinds)."""
-    result = modes(model, rpm, 12)
+    """Frequencies (Hz) of flap 1-3, edge 1-2, torsion 1 (by the modes' kinds); at speed on the deflected axis."""
+    result = modes(deflected_blade(model, rpm)[0] if rpm > 0 else model, rpm, 12)
     found: dict[str, list[float]] = {}
     for kind, hz in zip(result.kinds, result.frequencies_hz):
         found.setdefault(kind, []).append(float(hz))
@@ -144,7 +147,37 @@ def contribution_table(values: dict[str, tuple]) -> str:
     return "\n".join(lines)
 
 
+#: the decks' precone (deg) and the rated speeds of the BeamDyn linearizations (rpm)
+DECK_PRECONE = {"IEA-15MW": -4.0, "IEA-22MW": -4.0}
+DECK_RATED = {"IEA-15MW": 7.56, "IEA-22MW": 7.06}
+
+
+def prebend_effects() -> dict[tuple[str, float], tuple[float, ...]]:
+    """The lowest six frequencies' change (%, ascending as BeamDyn's) of the BeamDyn blade prebent over
+    straightened, with the decks' hub radius and precone, parked and at the decks' rated speed (on the deflected
+    axis)."""
+    out = {}
+    for turbine in INPUTS:
+        path, options = INPUTS[turbine]["BeamDyn"]
+        blades = [read_model(path, hub_radius=HUB_RADIUS[turbine], precone=math.radians(DECK_PRECONE[turbine]),
+                             axis=axis, **options) for axis in ("curved", "straight")]
+        for rpm in (0.0, DECK_RATED[turbine]):
+            at = [deflected_blade(b, rpm)[0] if rpm > 0 else b for b in blades]
+            curved, straight = (modes(b, rpm, 6).frequencies_hz for b in at)
+            out[(turbine, rpm)] = tuple(100 * (curved / straight - 1))
+    return out
+
+
+def prebend_table(values: dict[tuple[str, float], tuple[float, ...]]) -> str:
+    lines = ["| blade | rpm | 1 | 2 | 3 | 4 | 5 | 6 |", "|---|---|---|---|---|---|---|---|"]
+    for (turbine, rpm), change in values.items():
+        lines.append(f"| {turbine} bladefem | {rpm:.2f} | " + " | ".join(f"{v:+.2f} %" for v in change) + " |")
+    return "\n".join(lines)
+
+
 if __name__ == "__main__":
     print(table(rows()))
     print()
     print(contribution_table(contributions()))
+    print()
+    print(prebend_table(prebend_effects()))

@@ -274,8 +274,10 @@ def test_iea22_first_mode_is_flap_and_hawc2_agrees_with_windio():
     np.testing.assert_allclose(st.column("m"), windio.blade.inertia["mass"], rtol=1e-9)
     r = st.column("r")
     assert np.max(np.abs(r / r[-1] - windio.blade.stiffness_grid)) < 2e-3
-    hawc2_blade = read_model(IEA22 / "hawc2" / "iea_22mw_rwt_steps_blade1.htc")
-    windio_blade = blade_from_windio(windio)
+    # the sections compared on the straightened axis: the HAWC2 pitch axis (c2_def moved along the chord) is not
+    # windIO's reference axis near the root (0.24 m off at 10 % span), so the curved blades differ by 0.85 % on edge 2
+    hawc2_blade = read_model(IEA22 / "hawc2" / "iea_22mw_rwt_steps_blade1.htc", axis="straight")
+    windio_blade = blade_from_windio(windio, axis="straight")
     fraction = windio_blade.sections.span / windio_blade.length
     mid = (fraction >= 0.3) & (fraction <= 0.95)
     edge = np.interp(fraction, hawc2_blade.sections.span / hawc2_blade.length, hawc2_blade.sections.edge_inertia)

@@ -3,27 +3,32 @@ quadratic eigenproblem asks for it, the gyroscopic matrix G (per Omega)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from skfem import Basis
 
 from ..elements import (
+    SectionMotion,
     beam_element,
     gyroscopic_inertia,
+    interpolated_motion,
     projected_inertia,
     rotation_second_order,
 )
+from ..errors import InputError
 from ..sections import Blade
 from ..sections.table import OPTIONAL_STIFFNESS, POSITIVE, ZERO_DEFAULT
 from . import terms
 from .dofs import DofMap
 from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
-from .parameters import SectionParameters, plane_of_rotation, section_parameters
+from .loads import centrifugal_load, tip_geometry
+from .parameters import SectionParameters, section_parameters
 
 #: Gauss rule degree: cubic x cubic x linear property x smooth twist
 QUADRATURE_ORDER = 9
@@ -117,6 +122,9 @@ def model_fields(blade: Blade) -> tuple[str, ...]:
         fields.append("phi")
     if blade.sections.axial_stiffness is not None:
         fields.append("u")
+    elif blade.curved:
+        raise InputError("a curved reference axis needs the axial stiffness (its bending stretches the axis): give "
+                         "EA, or straighten the axis (--straight-axis)", field="axial_stiffness")
     return tuple(fields)
 
 
@@ -140,11 +148,22 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
         zero = sp.csr_matrix((dofs.size, dofs.size))
         return zero, zero
     S, J = tip.mass * tip.offset, tip.second_moment
-    P = plane_of_rotation(blade)
+    P, position = tip_geometry(blade)
     inertia = projected_inertia(np.eye(3), np.float64(tip.mass), S, J)
     K2 = -projected_inertia(P, np.float64(tip.mass), S, J)
-    K2[3:, 3:] -= rotation_second_order(P, np.array([blade.tip_radius, 0.0, 0.0]), S, J)
+    K2[3:, 3:] -= rotation_second_order(P, position, S, J)
     return (T.T @ sp.csr_matrix(inertia) @ T).tocsr(), (T.T @ sp.csr_matrix(K2) @ T).tocsr()
+
+
+def static_deflection(K0: sp.csr_matrix, quadrature: Quadrature, blade: Blade, dofs: DofMap,
+                      free: NDArray[np.int64]) -> SectionMotion:
+    """The deflection under the centrifugal load per Omega^2, ``K0 q1 = b`` (m s^2), as motions at the quadrature
+    points: whose static moments a prestressed blade's stiffness at speed holds
+    (:func:`~bladefem.assembly.terms.moment_prestress_stiffness`, to first order in Omega^2)."""
+    q = np.zeros(dofs.size)
+    q[free] = spla.spsolve(K0[free][:, free].tocsc(), centrifugal_load(quadrature, blade, dofs)[free])
+    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, q[:, None])
+    return SectionMotion(**{name: getattr(motion, name)[0] for name in SectionMotion.__dataclass_fields__})
 
 
 def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
@@ -153,8 +172,24 @@ def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
     if tip is None:
         return sp.csr_matrix((dofs.size, dofs.size))
     T = dofs.kinematic_selector(len(dofs.nodes) - 1)
-    G = gyroscopic_inertia(blade.shaft_axis, np.float64(tip.mass), tip.mass * tip.offset, tip.second_moment)
+    frame = blade.axis_frame(np.array(blade.length))
+    shaft = blade.shaft_axis if frame is None else frame.to_local(blade.shaft_axis)
+    G = gyroscopic_inertia(shaft, np.float64(tip.mass), tip.mass * tip.offset, tip.second_moment)
     return (T.T @ sp.csr_matrix(G) @ T).tocsr()
+
+
+#: an axis knot closer than this fraction of the length to a section station is not made a node
+AXIS_KNOT_GAP = 1e-4
+
+
+def with_axis_knots(blade: Blade, stations: NDArray) -> NDArray:
+    """``stations`` with the knots of a curved reference axis's splines added (where its curvature's slope jumps,
+    so that no element straddles one), except those within :data:`AXIS_KNOT_GAP` of the length of a station."""
+    if not blade.curved:
+        return stations
+    knots = blade.axis.span
+    gap = np.min(np.abs(knots[:, None] - np.asarray(stations)[None, :]), axis=1)
+    return np.sort(np.concatenate([stations, knots[gap > AXIS_KNOT_GAP * blade.length]]))
 
 
 def blade_graded_nodes(blade: Blade, elements: int) -> NDArray:
@@ -163,7 +198,7 @@ def blade_graded_nodes(blade: Blade, elements: int) -> NDArray:
     s = blade.sections
     names = POSITIVE + OPTIONAL_STIFFNESS + ZERO_DEFAULT
     present = [getattr(s, name) for name in names if getattr(s, name) is not None]
-    stations = mesh_stations(s.span, present)
+    stations = with_axis_knots(blade, mesh_stations(s.span, present))
     graded = [s.at(stations, name) for name in ("mass", "flap_stiffness", "edge_stiffness", "torsion_stiffness",
                                                 "axial_stiffness", "flap_inertia", "edge_inertia")
               if getattr(s, name) is not None and np.max(getattr(s, name)) > 0]
@@ -174,15 +209,19 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     """Assemble K0, K2 and M for ``blade`` on a mesh with about ``elements`` elements (stations are nodes), or on
     the given ``nodes`` (m, increasing, from root to tip)."""
     fields = model_fields(blade)
-    mesh = span_mesh(span_nodes(blade.sections.span, elements) if nodes is None else nodes)
+    mesh = span_mesh(span_nodes(with_axis_knots(blade, blade.sections.span), elements) if nodes is None else nodes)
     basis = Basis(mesh, beam_element(fields), intorder=QUADRATURE_ORDER)
     parameters = section_parameters(blade, np.asarray(basis.global_coordinates())[0])
-    quadrature = Quadrature.from_basis(basis, fields)
+    quadrature = Quadrature.from_basis(basis, fields, parameters.curvature)
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))
-    K2 = assemble_terms(quadrature, parameters, CENTRIFUGAL_TERMS) + K2_tip
-    M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
+    centrifugal = CENTRIFUGAL_TERMS
+    if blade.prestressed and blade.root == "cantilever":
+        parameters = replace(parameters, static=static_deflection(K0, quadrature, blade, dofs, free))
+        centrifugal = centrifugal + (terms.moment_prestress_stiffness,)
+    K2 = assemble_terms(quadrature, parameters, centrifugal) + K2_tip
+    M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,
                          quadrature=quadrature, parameters=parameters)

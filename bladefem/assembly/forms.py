@@ -18,7 +18,14 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from skfem import Basis
 
-from ..elements import SectionMotion, basis_functions, interpolated_motion, pair_motions
+from ..elements import (
+    SectionMotion,
+    basis_functions,
+    curved_motion,
+    interpolated_motion,
+    linear_projection,
+    pair_motions,
+)
 
 Term = Callable[..., NDArray]
 
@@ -33,10 +40,18 @@ class Quadrature:
     weights: NDArray
     element_dofs: NDArray
     size: int
+    points: NDArray | None = None            # span positions of the quadrature points (elements, points), m
 
     @classmethod
-    def from_basis(cls, basis: Basis, fields: tuple[str, ...]) -> Quadrature:
-        return cls(basis_functions(fields, basis), np.asarray(basis.dx), basis.element_dofs, basis.N)
+    def from_basis(cls, basis: Basis, fields: tuple[str, ...], curvature: NDArray | None = None) -> Quadrature:
+        """The quadrature of ``basis``; on a curved reference axis (``curvature``: ``(K2, K3, K2', K3')`` at the
+        quadrature points) the functions' derivatives are the curved beam's strains
+        (:func:`~bladefem.elements.curved_motion`), which every form then takes as they are."""
+        functions = basis_functions(fields, basis)
+        points = np.asarray(basis.global_coordinates())[0]
+        if curvature is not None:
+            functions = curved_motion(functions, curvature, linear_projection(np.asarray(basis.dx), points))
+        return cls(functions, np.asarray(basis.dx), basis.element_dofs, basis.N, points)
 
 
 def _integrand(parts: Sequence[Term], test: SectionMotion, trial: SectionMotion, parameters: object,

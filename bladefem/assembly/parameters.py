@@ -7,8 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..elements import gyroscopic_inertia, projected_inertia, rotation_second_order
+from ..elements import SectionMotion, gyroscopic_inertia, projected_inertia, rotation_second_order
 from ..sections import (
+    AxisFrame,
     Blade,
     bending_stiffness,
     extension_bending_stiffness,
@@ -28,11 +29,30 @@ def plane_of_rotation(blade: Blade) -> NDArray:
 
 
 def _tension_density(blade: Blade, x: NDArray) -> NDArray:
-    """Centrifugal force per length along the span axis per Omega^2, e_x^T P int rho r0 dA, N s^2/m^2."""
+    """Centrifugal force per length along the span axis per Omega^2, e_x^T P int rho r0 dA, N s^2/m^2 (a straight
+    blade)."""
     P = plane_of_rotation(blade)
     moments = mass_moments(blade.sections, x, blade.pitch)
     r = blade.hub_radius + x
     return P[0, 0] * moments.m * r + np.einsum("j,j...->...", P[0], moments.S)
+
+
+def axis_position(blade: Blade, frame: AxisFrame) -> NDArray:
+    """The points of a curved reference axis from the rotor apex in the blade frame, m, shape (3, ...)."""
+    position = frame.position.copy()
+    position[0] += blade.hub_radius
+    return position
+
+
+def _load_density(blade: Blade, x: NDArray) -> NDArray:
+    """Centrifugal force per length per Omega^2 on a curved axis, P int rho r0 dA in the blade frame (the sections'
+    first moment turned from the local frame), N s^2/m^2, shape (3, ...)."""
+    if not blade.curved:
+        return np.stack([_tension_density(blade, x), *np.zeros((2,) + np.shape(x))])
+    frame = blade.axis_frame(x)
+    moments = mass_moments(blade.sections, x, blade.pitch)
+    first = moments.m * axis_position(blade, frame) + np.einsum("ij...,j...->i...", frame.rotation, moments.S)
+    return np.einsum("ij,j...->i...", plane_of_rotation(blade), first)
 
 
 def tip_tension(blade: Blade) -> float:
@@ -44,21 +64,41 @@ def tip_tension(blade: Blade) -> float:
     return float(blade.tip_mass.mass * P[0] @ position)
 
 
-def centrifugal_tension(blade: Blade, x: NDArray) -> NDArray:
-    """Axial force N(x) per Omega^2 (N s^2) at span positions ``x``: the centrifugal force of everything outboard,
-    integrated from the tip to ``x`` piece by piece between stations, plus the tip mass."""
+def tip_load(blade: Blade) -> NDArray:
+    """The tip mass's centrifugal force per Omega^2 in the blade frame, N s^2 (its offset in the tip's local
+    frame on a curved axis)."""
+    if not blade.curved:
+        return np.array([tip_tension(blade), 0.0, 0.0])
+    if blade.tip_mass is None:
+        return np.zeros(3)
+    frame = blade.axis_frame(np.array(blade.length))
+    position = axis_position(blade, frame) + frame.rotation @ blade.tip_mass.offset
+    return blade.tip_mass.mass * plane_of_rotation(blade) @ position
+
+
+def centrifugal_force(blade: Blade, x: NDArray) -> NDArray:
+    """The centrifugal force of everything outboard of ``x`` per Omega^2 in the blade frame, N s^2, shape (3, ...):
+    integrated from the tip piece by piece between stations, plus the tip mass."""
     x = np.asarray(x, dtype=float)
     stations = blade.sections.span
 
     def integral(a: NDArray, b: NDArray) -> NDArray:
         half = 0.5 * (b - a)
         xi = (0.5 * (a + b))[..., None] + half[..., None] * _GAUSS_X
-        return half * np.sum(_tension_density(blade, xi) * _GAUSS_W, axis=-1)
+        return half * np.sum(_load_density(blade, xi) * _GAUSS_W, axis=-1)
 
-    per_interval = integral(stations[:-1], stations[1:])
-    outboard = np.concatenate([np.cumsum(per_interval[::-1])[::-1], [0.0]])   # from each station to the tip
+    per_interval = integral(stations[:-1], stations[1:])                         # (3, intervals)
+    outboard = np.concatenate([np.cumsum(per_interval[:, ::-1], axis=1)[:, ::-1], np.zeros((3, 1))], axis=1)
     k = np.clip(np.searchsorted(stations, x, side="right"), 1, len(stations) - 1)
-    return integral(x, stations[k]) + outboard[k] + tip_tension(blade)
+    return integral(x, stations[k]) + outboard[:, k] + tip_load(blade).reshape((3,) + (1,) * x.ndim)
+
+
+def centrifugal_tension(blade: Blade, x: NDArray) -> NDArray:
+    """Axial force N(x) per Omega^2 (N s^2) at span positions ``x``: the centrifugal force of everything outboard
+    along the axis's tangent (:func:`centrifugal_force`)."""
+    force = centrifugal_force(blade, x)
+    frame = blade.axis_frame(np.asarray(x, dtype=float))
+    return force[0] if frame is None else np.einsum("i...,i...->...", frame.rotation[:, 0], force)
 
 
 @dataclass(frozen=True)
@@ -74,26 +114,51 @@ class SectionParameters:
     tension: NDArray                 # N(x) per Omega^2, N s^2
     gyroscopic: NDArray | None = None  # (6, 6, ...) skew Coriolis matrix per Omega, kg/m .. kg m (rotating beams)
     twist_coupling: NDArray | None = None  # (3, ...) phi' with (u', v'', w''), N m, N m^2 (six-by-six sections)
+    curvature: NDArray | None = None  # (4, ...) K2, K3 (1/m) and their rates (1/m^2) of a curved reference axis
+    static: SectionMotion | None = None  # the deflection under the centrifugal load per Omega^2 (curved axis)
+
+    @property
+    def strain_stiffness(self) -> NDArray:
+        """The classical section stiffness on (u', v'', w'', phi'), shape (4, 4, ...)."""
+        shape = np.shape(self.bending)[2:]
+        C = np.zeros((4, 4) + shape)
+        if self.extension_bending is None:
+            C[1:3, 1:3] = self.bending
+        else:
+            C[:3, :3] = self.extension_bending
+        if self.torsion is not None:
+            C[3, 3] = self.torsion
+        if self.twist_coupling is not None:
+            C[3, :3] = C[:3, 3] = self.twist_coupling
+        return C
 
 
 def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
-    """Evaluate all section matrices of ``blade`` at span positions ``x`` (m)."""
+    """Evaluate all section matrices of ``blade`` at span positions ``x`` (m; arc lengths on a curved axis, where
+    the centrifugal and gyroscopic matrices take the plane of rotation, the shaft axis and the axis's position in
+    each section's local frame)."""
     sections = blade.sections
     moments = mass_moments(sections, x, blade.pitch)
-    P = plane_of_rotation(blade)
+    frame = blade.axis_frame(np.asarray(x, dtype=float))
+    Q, shaft, curvature = plane_of_rotation(blade), blade.shaft_axis, None
     node = np.zeros((3,) + np.shape(x))
     node[0] = blade.hub_radius + x
+    if frame is not None:
+        Q, shaft = frame.tensor_to_local(Q), frame.to_local(shaft)
+        node = frame.to_local(axis_position(blade, frame))
+        curvature = np.concatenate([frame.curvature, frame.curvature_rate])
     return SectionParameters(
         bending=bending_stiffness(sections, x, blade.pitch),
         extension_bending=(None if sections.axial_stiffness is None
                            else extension_bending_stiffness(sections, x, blade.pitch)),
         torsion=torsion_stiffness(sections, x, blade.pitch),
         inertia=projected_inertia(np.eye(3), moments.m, moments.S, moments.J),
-        spin=projected_inertia(P, moments.m, moments.S, moments.J),
-        rotation=rotation_second_order(P, node, moments.S, moments.J),
+        spin=projected_inertia(Q, moments.m, moments.S, moments.J),
+        rotation=rotation_second_order(Q, node, moments.S, moments.J),
         tension=centrifugal_tension(blade, x),
-        gyroscopic=gyroscopic_inertia(blade.shaft_axis, moments.m, moments.S, moments.J),
+        gyroscopic=gyroscopic_inertia(shaft, moments.m, moments.S, moments.J),
         twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch),
+        curvature=curvature,
     )
 
 

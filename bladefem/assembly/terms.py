@@ -71,6 +71,30 @@ def coriolis(trial: SectionMotion, test: SectionMotion, p: SectionParameters) ->
     return quadratic(test.kinematic, p.gyroscopic, trial.kinematic)
 
 
+def strains(motion: SectionMotion) -> NDArray:
+    """The classical strains (u', v'', w'', phi'), shape (4, ...)."""
+    return np.stack([motion.u_x, motion.v_xx, motion.w_xx, motion.phi_x])
+
+
+def second_order_strains(a: SectionMotion, b: SectionMotion) -> NDArray:
+    """The symmetric bilinear form h(a, b) whose half on (q, q) is the second-order part of the strains
+    (u', v'', w'', phi') of a section that bends and then twists about the bent axis (rotation vector ``Theta + 1/2
+    Theta_b x Theta_t``, :mod:`bladefem.elements.rigid_slice`): the extension ``1/2 (Theta_2^2 + Theta_3^2)``,
+    the curvatures turned by the twist ``phi w''`` and ``-phi v''``, the twist rate ``1/2 (w' v'' - v' w'')``."""
+    return np.stack([a.v_x * b.v_x + a.w_x * b.w_x,
+                     a.phi * b.w_xx + b.phi * a.w_xx,
+                     -(a.phi * b.v_xx + b.phi * a.v_xx),
+                     0.5 * (a.w_x * b.v_xx + b.w_x * a.v_xx - a.v_x * b.w_xx - b.v_x * a.w_xx)])
+
+
+def moment_prestress_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """Stiffness per Omega^2 of the static moments and torque under the centrifugal load (``p.static``, the
+    deflection per Omega^2, through the section stiffness) on the second-order curvatures: the work that turns a
+    prestressed section's bending into twist (the extension's share is :func:`axial_force_stiffness`)."""
+    stress = np.einsum("ij...,j...->i...", p.strain_stiffness, strains(p.static))
+    return np.einsum("i...,i...->...", stress[1:], second_order_strains(test, trial)[1:])
+
+
 def aerodynamic_damping(trial: SectionMotion, test: SectionMotion, p: AeroParameters) -> NDArray:
     """Quasi-steady aerodynamic damping of the sections, -d(load)/d(velocity) with the induction frozen (not
     symmetric)."""

@@ -35,7 +35,8 @@ def beamdyn_primary_of(blade_path: Path) -> Path | None:
     return None
 
 
-def beamdyn_blade(kind: str, path: Path, hub_radius: float, precone: float, sections: str = "full") -> Blade:
+def beamdyn_blade(kind: str, path: Path, hub_radius: float, precone: float, sections: str = "full",
+                  axis: str = "curved") -> Blade:
     from ..builders.beamdyn import blade_from_beamdyn
     from ..formats.beamdyn import read_beamdyn_blade, read_beamdyn_primary
     primary_path = path if kind == "beamdyn-primary" else beamdyn_primary_of(path)
@@ -48,7 +49,7 @@ def beamdyn_blade(kind: str, path: Path, hub_radius: float, precone: float, sect
         raise InputError(f"blade file '{primary.blade_file}' not found", file=str(primary_path),
                          line=primary.key_lines.get("BldFile"), field="BldFile")
     return blade_from_beamdyn(primary, read_beamdyn_blade(blade_file), hub_radius=hub_radius, precone=precone,
-                              sections=sections)
+                              sections=sections, axis=axis)
 
 
 def _blade_body(bodies, path: Path):
@@ -60,7 +61,7 @@ def _blade_body(bodies, path: Path):
 
 
 def hawc2_blade(kind: str, path: Path, htc: str | Path | None, hub_radius: float, precone: float,
-                sections: str = "full") -> Blade:
+                sections: str = "full", axis: str = "curved") -> Blade:
     from ..builders.hawc2 import blade_from_hawc2
     from ..formats.hawc2_htc import read_hawc2_bodies
     from ..formats.hawc2_st import read_hawc2_st
@@ -88,4 +89,4 @@ def hawc2_blade(kind: str, path: Path, htc: str | Path | None, hub_radius: float
         st = read_hawc2_st(path)
         subset = st.subset(*(body.st_set if body is not None else (1, 1)))
     return blade_from_hawc2(subset, body, st_path=str(st_path), hub_radius=hub_radius, precone=precone,
-                            sections=sections)
+                            sections=sections, axis=axis)

@@ -48,6 +48,9 @@ class Geometry:
     #: six-by-six blades (BeamDyn, HAWC2, windIO): "full" (default, the whole 6x6 in the FE) or "reduced"
     #: (bladefem's diagonal beam, :meth:`bladefem.builders.section6x6.SixBySixBlade.table`)
     sections: str | None = None
+    #: six-by-six blades: "curved" (default, the reference axis's prebend and sweep) or "straight" (straightened
+    #: onto the pitch axis, :meth:`bladefem.builders.section6x6.SixBySixBlade.on_axis`)
+    axis: str | None = None
 
 
 def detect_format(path: str | Path) -> str:
@@ -117,8 +120,9 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
     geometry = geometry or Geometry()
     kind = detect_format(path)
     if kind not in BEAM_FORMATS + ("windio",):
-        _refuse(geometry, ("sections",), "this input (its sections are columns, not six-by-six matrices; --sections "
-                "chooses how BeamDyn, HAWC2 and windIO blades reach the FE)", path)
+        _refuse(geometry, ("sections", "axis"), "this input (its sections are columns, not six-by-six matrices on "
+                "a reference axis; --sections and --straight-axis choose how BeamDyn, HAWC2 and windIO blades reach "
+                "the FE)", path)
     if part not in (None, "blade", "tower"):
         raise InputError(f"part must be 'blade' or 'tower', got '{part}'", field="part")
     if kind == "elastodyn-tower" or (part == "tower" and kind == "elastodyn-main"):
@@ -138,8 +142,9 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         from .beam_inputs import beamdyn_blade, hawc2_blade
         hub = geometry.hub_radius or 0.0
         model = geometry.sections or "full"
-        blade = (beamdyn_blade(kind, Path(path), hub, 0.0, model) if kind.startswith("beamdyn")
-                 else hawc2_blade(kind, Path(path), geometry.htc, hub, 0.0, model))
+        axis = geometry.axis or "curved"
+        blade = (beamdyn_blade(kind, Path(path), hub, 0.0, model, axis) if kind.startswith("beamdyn")
+                 else hawc2_blade(kind, Path(path), geometry.htc, hub, 0.0, model, axis))
         check_section_values(blade.sections)
         return _overrides(blade, geometry, path)
     if kind == "bmodes":
@@ -172,7 +177,8 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         from .windio_model import blade_from_windio, tower_from_windio
         turbine = read_windio(path)
         if part == "tower" or turbine.blade is None:
-            _refuse(geometry, BLADE_OPTIONS + ("tower_height", "elastodyn_main", "sections"), "a windIO tower", path)
+            _refuse(geometry, BLADE_OPTIONS + ("tower_height", "elastodyn_main", "sections", "axis"), "a windIO tower",
+                    path)
             return tower_from_windio(turbine, geometry.top_mass)
         _refuse(geometry, TOWER_OPTIONS + ("elastodyn_main",), "a blade", path)
         _refuse(geometry, ("tip_radius",), "a windIO blade (its reference axis fixes the length; --hub-radius "
@@ -180,7 +186,8 @@ def read_model(path: str | Path, part: str | None = None, geometry: Geometry | N
         if geometry.hub_radius is not None:
             _check_length(geometry.hub_radius, geometry.hub_radius + turbine.blade.length, path, geometry)
             turbine = replace(turbine, hub_radius=geometry.hub_radius)
-        return _overrides(blade_from_windio(turbine, sections=geometry.sections or "full"), geometry, path)
+        return _overrides(blade_from_windio(turbine, sections=geometry.sections or "full",
+                                            axis=geometry.axis or "curved"), geometry, path)
     from .tower_case import is_tower_case, read_tower_case
     if is_tower_case(path):
         _refuse(geometry, BLADE_OPTIONS + ("tower_height", "elastodyn_main"), "a bladefem tower case", path)
@@ -199,7 +206,7 @@ TOWER_OPTIONS = ("tower_height", "top_mass")
 OPTION_NAMES = {"tip_radius": "--tip-radius", "hub_radius": "--hub-radius", "precone": "--precone-deg",
                 "pitch": "--pitch-deg", "tip_mass": "--tip-mass", "elastodyn_main": "--elastodyn-main",
                 "tower_height": "--tower-height", "top_mass": "--top-mass", "htc": "--htc",
-                "sections": "--sections"}
+                "sections": "--sections", "axis": "--straight-axis"}
 
 
 def _refuse(geometry: Geometry, names: tuple[str, ...], what: str, path: str | Path) -> None:

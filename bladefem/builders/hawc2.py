@@ -16,7 +16,8 @@ fully populated layout's 6x6 is given about the elastic centre ``(x_e, y_e)`` in
 on the half-chord line (c2_def); bladefem's reference axis is the pitch axis, the body's z axis, so each section is
 moved along its chord by ``-x / cos(twist)`` (the half-chord point on the chord line through the pitch axis, whose
 in-plane projection is c2_def's ``x``; in the IEA-15MW files c2_def's ``y`` less the BeamDyn key points' prebend is
-that distance times ``sin(twist)``, as this assumes). The prebend is the axis's curvature, named in the notes.
+that distance times ``sin(twist)``, as this assumes). c2_def's ``y`` less that is the prebend of the blade's curved
+reference axis (:meth:`~bladefem.builders.section6x6.SixBySixBlade.on_axis`).
 Everything then goes through :mod:`bladefem.builders.section6x6`.
 """
 
@@ -110,19 +111,21 @@ def hawc2_sections(subset: StSubset, body: MainBody | None, st_path: str = "") -
 
 
 def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
-                     precone: float = 0.0, pitch: float = 0.0, sections: str = "full") -> Blade:
+                     precone: float = 0.0, pitch: float = 0.0, sections: str = "full",
+                     axis: str = "curved") -> Blade:
     """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
-    named in the notes); ``sections`` ``"full"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
-    six = hawc2_sections(subset, body, st_path)
+    named in the notes); ``sections`` ``"full"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`); ``axis``
+    ``"curved"`` (c2_def's prebend) or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
+    six, reference, axis_note = hawc2_sections(subset, body, st_path).on_axis(axis)
     table, reduction = six.table(sections)
     layout = "fully populated (FPM)" if subset.fpm else "isotropic"
     notes = [f"HAWC2 {layout} st file {Path(st_path).name or 'memory'}"]
     if body is not None:
-        notes.append(six.curvature_note(f"HAWC2 blade (body '{body.name}', c2_def)")
+        notes.append(f"HAWC2 blade (body '{body.name}', c2_def): {axis_note}"
                      + "; sections moved along the chord from the half-chord line to the pitch axis (body z)")
     else:
         notes.append("HAWC2 st file without its htc: untwisted (give the .htc with the blade's c2_def for the twist)")
     if hub_radius == 0.0:
         notes.append("hub radius 0 (the st file does not give it: --hub-radius sets it)")
     return Blade(sections=table, hub_radius=hub_radius, precone=precone, pitch=pitch,
-                 name=f"{body.name if body else 'HAWC2'} blade", notes=tuple(notes + reduction))
+                 name=f"{body.name if body else 'HAWC2'} blade", notes=tuple(notes + reduction), axis=reference)

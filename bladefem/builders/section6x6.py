@@ -30,7 +30,8 @@ reduction.
 
 Dropped, and named with their size in :func:`reduction_notes`: the extension-twist and bend-twist couplings left in
 ``Kc`` (36, 46, 56 after the principal rotation), the thickness-wise tension-centre and centre-of-mass offsets
-``x_C``, ``x_G``, the product of inertia, the shear flexibility, and any curvature of the reference axis.
+``x_C``, ``x_G``, the product of inertia and the shear flexibility. The reference axis (prebend, sweep) goes to
+the blade as it is (:meth:`SixBySixBlade.on_axis`), or straightened onto the pitch axis on request.
 """
 
 from __future__ import annotations
@@ -42,12 +43,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..sections import FullSections, SectionTable, full_section
+from ..sections import FullSections, ReferenceAxis, SectionTable, full_section
 from ..sections.principal import principal_axes
 from .section_axes import from_beamdyn_axes, full_sections_from_beamdyn
 
 #: How six-by-six sections reach the FE: the whole matrices (default) or bladefem's diagonal reduction
 SECTION_MODELS = ("full", "reduced")
+#: How the reference axis reaches the FE: curved as the file gives it (default), or straightened onto the pitch axis
+AXIS_MODELS = ("curved", "straight")
 #: Couplings and offsets smaller than this (fraction of sqrt(K_ii K_jj), or m) are not mentioned in the notes.
 NOTE_THRESHOLD = 0.01
 
@@ -194,6 +197,8 @@ class SixBySixBlade:
     axis : (n, 3) the reference axis at the stations in the blade-root axes: x toward the suction side (prebend,
         negative upwind), y toward the trailing edge (sweep), z along the pitch axis, m
     source, lines, field : where the sections were read, for error messages
+    axis_points : (k, 4) the points that define the reference axis, when finer than the stations (BeamDyn's key
+        points): arc length (m, the stations' scale), then x, y, z as ``axis``
     """
 
     span: NDArray[np.float64]
@@ -204,6 +209,46 @@ class SixBySixBlade:
     source: str = ""
     lines: tuple[int, ...] | None = None
     field: str = ""
+    axis_points: NDArray[np.float64] | None = None
+
+    def reference_axis(self) -> ReferenceAxis:
+        """The reference axis in bladefem's blade frame (:class:`~bladefem.sections.ReferenceAxis`): the prebend is
+        ``x`` (toward the suction side: downwind, so an upwind rotor's prebend is negative), the sweep ``-y``
+        (toward the leading edge), both from the root point, over the stations' arc length."""
+        points = (np.column_stack([self.span, self.axis]) if self.axis_points is None
+                  else np.asarray(self.axis_points, dtype=float))
+        arc = points[:, 0] * (self.span[-1] / points[-1, 0])
+        return ReferenceAxis(arc, -(points[:, 2] - points[0, 2]), points[:, 1] - points[0, 1])
+
+    def straightened(self) -> SixBySixBlade:
+        """The blade on its pitch axis as a straight-blade code holds it (ElastoDyn; BeamDyn with ``kp_xr = kp_yr =
+        0``): the stations at the same fractions of the length along the pitch axis (the axis's last ``z`` less its
+        first), the sections and twist unchanged."""
+        points = self.axis if self.axis_points is None else np.asarray(self.axis_points)[:, 1:]
+        span = self.span * ((points[-1, 2] - points[0, 2]) / self.span[-1])
+        axis = np.zeros_like(self.axis)
+        axis[:, 2] = span
+        return replace(self, span=span, axis=axis, axis_points=None)
+
+    def on_axis(self, model: str = "curved") -> tuple[SixBySixBlade, ReferenceAxis | None, str]:
+        """The blade for an axis ``model`` (:data:`AXIS_MODELS`): itself with its reference axis, or
+        :meth:`straightened` without one; and the note that says which."""
+        if model not in AXIS_MODELS:
+            raise InputError(f"the reference axis must be one of {', '.join(AXIS_MODELS)}, got '{model}'",
+                             field="--straight-axis")
+        prebend = np.max(np.abs(self.axis[:, 0] - self.axis[0, 0]))
+        sweep = np.max(np.abs(self.axis[:, 1] - self.axis[0, 1]))
+        if model == "straight":
+            straight = self.straightened()
+            return straight, None, (f"reference axis straightened onto the pitch axis (--straight-axis): "
+                                    f"{straight.span[-1]:.6g} m long (prebend up to {prebend:.3g} m, sweep up to "
+                                    f"{sweep:.3g} m left out)")
+        axis = self.reference_axis()
+        if not axis.curved:
+            return self, None, f"straight reference axis, {self.span[-1]:.6g} m long"
+        return self, axis, (f"curved reference axis {self.span[-1]:.6g} m long (prebend up to {prebend:.3g} m, sweep "
+                            f"up to {sweep:.3g} m): curved-beam strains, centrifugal and gyroscopic terms on the "
+                            "curve (--straight-axis straightens it onto the pitch axis)")
 
     def full(self, chord: NDArray[np.float64] | None = None) -> FullSections:
         """The whole six-by-six sections in bladefem's section frame (:mod:`bladefem.builders.section_axes`), with
@@ -238,8 +283,3 @@ class SixBySixBlade:
                              "condenses it to bladefem's diagonal beam)", file=error.file, line=line,
                              field=self.field or error.field) from None
         return full.table(), notes
-
-    def curvature_note(self, what: str) -> str:
-        return (f"{what}: straight beam of the reference axis's arc length {self.span[-1]:.6g} m (prebend up to "
-                f"{np.max(np.abs(self.axis[:, 0])):.3g} m, sweep up to {np.max(np.abs(self.axis[:, 1])):.3g} m not "
-                "modelled)")

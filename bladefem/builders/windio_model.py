@@ -16,7 +16,8 @@ built from them and go to the FE whole (or, with ``sections="reduced"``, as blad
 Tower axes (turbine_schema.yaml, the tower's ``reference_axis``): ``x`` downwind, ``y`` lateral, ``z`` up, so
 fore-aft bending (about ``y``) is ``K55`` and side-side bending ``K44`` (the IEA towers are round, ``K44 = K55``: the
 data cannot tell, the schema does).
-The curvature of the reference axis (prebend, sweep) is not modelled: the beam is straight with the axis's arc length.
+The blade's reference axis (prebend ``x``, sweep ``y``) is its curved axis, straightened on request
+(:meth:`~bladefem.builders.section6x6.SixBySixBlade.on_axis`); the tower is a straight beam of its axis's arc length.
 """
 
 from __future__ import annotations
@@ -88,21 +89,26 @@ def windio_sections(turbine: WindIOTurbine) -> SixBySixBlade:
     if key not in turbine.lines:
         key = ("components", "blade", "elastic_properties_mb", "six_x_six", "stiff_matrix")
     line = turbine.lines.get(key)
+    grid = np.unique(np.concatenate([beam.reference_axis[c].grid for c in "xyz"]))
+    points = np.column_stack([grid * beam.length] + [np.interp(grid, beam.reference_axis[c].grid,
+                                                               beam.reference_axis[c].values) for c in "xyz"])
     return SixBySixBlade(x * beam.length, K, M, twist, axis, source=turbine.path,
-                         lines=(line,) * len(x) if line else None, field=".".join(key))
+                         lines=(line,) * len(x) if line else None, field=".".join(key), axis_points=points)
 
 
-def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0, sections: str = "full") -> Blade:
+def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0, sections: str = "full",
+                      axis: str = "curved") -> Blade:
     """A :class:`Blade` from the windIO blade; ``pitch`` in rad; ``sections`` ``"full"`` (the whole 6x6 in the FE)
-    or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
-    six = windio_sections(turbine)
+    or ``"reduced"`` (:meth:`SixBySixBlade.table`); ``axis`` ``"curved"`` (the reference axis's prebend and sweep)
+    or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
+    six, reference, axis_note = windio_sections(turbine).on_axis(axis)
     beam = turbine.blade
-    chord = None if beam.chord is None else np.interp(six.span / beam.length, beam.chord.grid, beam.chord.values)
+    chord = None if beam.chord is None else np.interp(six.span / six.span[-1], beam.chord.grid, beam.chord.values)
     table, reduction = six.table(sections, chord=chord)
     check_section_values(table)
-    notes = [six.curvature_note(f"windIO blade from {Path(turbine.path).name or 'memory'}")] + reduction
+    notes = [f"windIO blade from {Path(turbine.path).name or 'memory'}: {axis_note}"] + reduction
     return Blade(sections=table, hub_radius=turbine.hub_radius, precone=turbine.precone, pitch=pitch,
-                 name=f"{turbine.name} blade", notes=tuple(notes))
+                 name=f"{turbine.name} blade", notes=tuple(notes), axis=reference)
 
 
 def rotor_nacelle_mass(turbine: WindIOTurbine) -> float:

@@ -40,6 +40,9 @@ MODEL = {
         "elastodyn_main": {"type": "string", "description": "ElastoDyn main file for an ElastoDyn blade file"},
         "sections": {"enum": ["full", "reduced"],
                      "description": "six-by-six blades: the whole sections in the FE (default) or the diagonal beam"},
+        "axis": {"enum": ["curved", "straight"],
+                 "description": "six-by-six blades: the file's curved reference axis (default) or straightened onto "
+                                "the pitch axis (--straight-axis)"},
     },
 }
 

@@ -99,8 +99,9 @@ def _geometry(entry: dict[str, Any]) -> dict[str, Any]:
                              ("tip_mass_kg", "tip_mass", 1.0)):
         if key in entry:
             geometry[name] = float(entry[key]) * scale
-    if "sections" in entry:
-        geometry["sections"] = entry["sections"]
+    for key in ("sections", "axis"):
+        if key in entry:
+            geometry[key] = entry[key]
     return geometry
 
 

@@ -44,6 +44,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                             "to the finite elements' tolerance; 5,5,3 is the truncation of the model's paper)")
     modes.add_argument("--elastodyn-coefficients", action="store_true",
                        help="towers: also fit ElastoDyn tower mode-shape coefficients (TwFAM1Sh .. TwSSM2Sh)")
+    modes.add_argument("--operating-point", action="store_true",
+                       help="blades: the modes about the blade's deflection under its centrifugal load at --rpm (a "
+                            "prebent blade bends back toward the rotor plane; BeamDyn linearizes so), the static "
+                            "moments' stiffness included (default: about the undeflected blade)")
     add_coriolis_option(modes)
     add_aero_options(modes)
     modes.add_argument("--json", action="store_true", help="print JSON instead of a table")
@@ -103,11 +107,19 @@ def run_modes(args: argparse.Namespace) -> int:
     _check_rpm(args.rpm)
     model = read_structure(args)
     if not is_blade(model):
+        if args.operating_point:
+            raise InputError("--operating-point applies to blades", field="--operating-point")
         reject_for_towers(args)
         from .tower import tower_modes_command
         return tower_modes_command(args, model)
     if args.terms is not None and args.method != "galerkin":
         raise InputError("--terms sets the Galerkin model's terms; add --method galerkin", field="--terms")
+    if args.operating_point:
+        if args.method == "galerkin":
+            raise InputError("--operating-point is a finite-element model (the Galerkin model is a straight beam)",
+                             field="--operating-point")
+        from ..modal.operating_point import deflected_blade
+        model = deflected_blade(model, args.rpm)[0]
     result = compute_modes(model, args)
     if args.json:
         from ..outputs.results import dumps, modal_to_dict

@@ -79,7 +79,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="blades: compute the FE modes on what ElastoDyn can hold (mass on the axis, principal "
                              "flap and edge stiffnesses about the tension centre turned by the twist plus the "
                              "principal angle, no offsets, no torsion); 'untwisted' also drops the twist (OpenFAST's "
-                             "guidance for mode-shape fits). Default: the FE modes of the blade as given")
+                             "guidance for mode-shape fits); a curved reference axis is straightened (ElastoDyn's "
+                             "blade is straight). Default: the FE modes of the blade as given")
     parser.set_defaults(run=run)
 
 
@@ -144,7 +145,7 @@ def _shipped(args: argparse.Namespace, kind: str, part: str) -> tuple[dict | Non
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..builders.detect import Geometry, detect_format, read_model
+    from ..builders.detect import BEAM_FORMATS, Geometry, detect_format, read_model
     from ..formats.elastodyn_main import read_elastodyn_main
     from ..sections import Blade
 
@@ -153,7 +154,9 @@ def run(args: argparse.Namespace) -> int:
     wanted = _part(args)
     geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, elastodyn_main=args.elastodyn_main,
                         tower_height=args.tower_height, top_mass=args.top_mass, htc=args.htc,
-                        sections=args.sections)
+                        sections=args.sections,
+                        axis="straight" if args.elastodyn_compatible and kind in BEAM_FORMATS + ("windio",)
+                        else args.axis)
     model = read_model(args.input, wanted, geometry)
     part = "blade" if isinstance(model, Blade) else "tower"
     if args.elastodyn_compatible:
@@ -195,7 +198,7 @@ def _elastodyn_compatible(model: Any, twisted: bool, path: str) -> Any:
     note = ("--elastodyn-compatible: FE modes of ElastoDyn's section model (mass on the pitch axis, principal flap "
             "and edge stiffnesses about the tension centre, " + ("turned by the twist plus the principal angle"
                                                                   if twisted else "untwisted")
-            + "; no offsets, no torsion)")
+            + "; no offsets, no torsion; the reference axis straightened onto the pitch axis)")
     return model.with_(sections=elastodyn_sections(model.sections, twisted), notes=model.notes + (note,))
 
 

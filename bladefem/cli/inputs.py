@@ -57,6 +57,10 @@ def add_sections_option(group: argparse._ActionsContainer) -> None:
                             "stiffness and mass in the FE (every coupling; shear condensed), 'reduced' bladefem's "
                             "diagonal beam (tension centre, principal axes, chordwise c.m.; drops the couplings the "
                             "notes name)")
+    group.add_argument("--straight-axis", action="store_const", const="straight", dest="axis",
+                       help="six-by-six blades: straighten the reference axis onto the pitch axis (prebend and sweep "
+                            "left out, the length the pitch axis's, as ElastoDyn and a straightened BeamDyn have it; "
+                            "default: the curved axis of the file)")
 
 
 def add_tower_options(parser: argparse.ArgumentParser) -> None:
@@ -153,7 +157,7 @@ def read_structure(args: argparse.Namespace) -> object:
     else:
         geometry = Geometry(tip_radius=args.tip_radius, hub_radius=args.hub_radius, tip_mass=args.tip_mass,
                             elastodyn_main=args.elastodyn_main, htc=getattr(args, "htc", None),
-                            sections=getattr(args, "sections", None),
+                            sections=getattr(args, "sections", None), axis=getattr(args, "axis", None),
                             precone=None if args.precone_deg is None else math.radians(args.precone_deg),
                             pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg))
         model = read_model(args.input, part, geometry)

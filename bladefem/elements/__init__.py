@@ -10,6 +10,7 @@ from .beam import (
            interpolated_motion,
            pair_motions,
 )
+from .curved import curved_motion, linear_projection
 from .rigid_slice import (
            gyroscopic_inertia,
            projected_inertia,
@@ -18,5 +19,5 @@ from .rigid_slice import (
 )
 
 __all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element",
-           "gyroscopic_inertia", "interpolated_motion", "pair_motions", "projected_inertia", "rotation_second_order",
-           "skew"]
+           "curved_motion", "gyroscopic_inertia", "interpolated_motion", "linear_projection", "pair_motions",
+           "projected_inertia", "rotation_second_order", "skew"]

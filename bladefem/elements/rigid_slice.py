@@ -30,15 +30,16 @@ def projected_inertia(Q: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArray
     """6x6 matrix G with ``int rho (dr1^T Q dr1) = d^T G d`` for a constant symmetric 3x3 ``Q``.
 
     ``Q = I`` gives the mass matrix; ``Q = P = I - a a^T`` gives the spin-softening matrix (divided by -Omega^2).
+    ``Q`` may vary from point to point (shape (3, 3, ...): a curved axis's local components).
     """
-    shape = np.shape(m)
+    shape = np.broadcast_shapes(np.shape(m), np.shape(Q)[2:])
     G = np.zeros((6, 6) + shape)
-    G[:3, :3] = np.einsum("ij,...->ij...", Q, m)
-    coupling = -np.einsum("ij,jk...->ik...", Q, skew(S))          # Q (-[S]x)
+    G[:3, :3] = np.einsum("ij...,...->ij...", Q, m)
+    coupling = -np.einsum("ij...,jk...->ik...", Q, skew(S))          # Q (-[S]x)
     G[:3, 3:] = coupling
     G[3:, :3] = np.swapaxes(coupling, 0, 1)
     # int rho [s]x^T Q [s]x = eps_bac eps_edf Q_be J_cf (the constant part contracted first)
-    G[3:, 3:] = np.einsum("acdf,cf...->ad...", np.einsum("bac,edf,be->acdf", EPS, EPS, Q), J)
+    G[3:, 3:] = np.einsum("acdf...,cf...->ad...", np.einsum("bac,edf,be...->acdf...", EPS, EPS, Q), J)
     return G
 
 
@@ -50,15 +51,17 @@ def rotation_second_order(Q: NDArray, r: NDArray, S: NDArray, J: NDArray) -> NDA
     the section stays normal to the axis). To second order this is the rotation vector
     ``Theta + 1/2 Theta_b x Theta_t``, ``Theta = (phi, -w', v')``, so ``dr2 = 1/2 Theta x (Theta x s) + 1/2 (Theta_b x
     Theta_t) x s``: the rigid-body term plus the static moment term of :func:`bend_twist_coupling`. ``r`` has shape
-    (3, ...). The centrifugal potential's share is ``-Omega^2 / 2 Theta^T H Theta``.
+    (3, ...). The centrifugal potential's share is ``-Omega^2 / 2 Theta^T H Theta``. ``Q`` may vary from point to
+    point (shape (3, 3, ...)).
     """
-    QrS = np.einsum("ij,j...,k...->ik...", Q, r, S)
-    QJ = np.einsum("ij,jk...->ik...", Q, J)
+    QrS = np.einsum("ij...,j...,k...->ik...", Q, r, S)
+    QJ = np.einsum("ij...,jk...->ik...", Q, J)
     outer = QrS + QJ
     symmetric = 0.5 * (outer + np.swapaxes(outer, 0, 1))
-    trace = np.einsum("i...,ij,j...->...", r, Q, S) + np.einsum("ij,ji...->...", Q, J)
+    trace = np.einsum("i...,ij...,j...->...", r, Q, S) + np.einsum("ij...,ji...->...", Q, J)
     # static moment about the node, int rho s x (Q r0) = S x Q r + int rho s x Q s
-    moment = (np.einsum("abc,b...,cd,d...->a...", EPS, S, Q, r) + np.einsum("abc,cd,bd...->a...", EPS, Q, J))
+    moment = (np.einsum("abc,b...,cd...,d...->a...", EPS, S, Q, r)
+              + np.einsum("abc,cd...,bd...->a...", EPS, Q, J))
     return symmetric - np.einsum("ij,...->ij...", np.eye(3), trace) + bend_twist_coupling(moment)
 
 
@@ -96,13 +99,14 @@ def gyroscopic_inertia(a: NDArray, m: NDArray, S: NDArray, J: NDArray) -> NDArra
 
     The kinetic energy in a frame turning at ``Omega a`` holds the cross term ``Omega int rho d(dr1)/dt . (a x
     dr1)``; its Lagrange equations give the gyroscopic (Coriolis) force ``Omega G dd/dt``. With
-    ``dr1 = t - [s]x Theta``: ``G = 2 [[m A, -A [S]x], [[S]x A, int rho [s]x^T A [s]x]]``, ``A = [a]x``.
+    ``dr1 = t - [s]x Theta``: ``G = 2 [[m A, -A [S]x], [[S]x A, int rho [s]x^T A [s]x]]``, ``A = [a]x``. ``a`` may
+    vary from point to point (shape (3, ...): a curved axis's local components).
     """
     A = skew(np.asarray(a, dtype=float))
     S_cross = skew(S)
-    G = np.zeros((6, 6) + np.shape(m))
-    G[:3, :3] = np.einsum("ij,...->ij...", A, m)
-    G[:3, 3:] = -np.einsum("ij,jk...->ik...", A, S_cross)
-    G[3:, :3] = np.einsum("ij...,jk->ik...", S_cross, A)
-    G[3:, 3:] = np.einsum("acdf,cf...->ad...", np.einsum("bac,edf,be->acdf", EPS, EPS, A), J)
+    G = np.zeros((6, 6) + np.broadcast_shapes(np.shape(m), np.shape(A)[2:]))
+    G[:3, :3] = np.einsum("ij...,...->ij...", A, m)
+    G[:3, 3:] = -np.einsum("ij...,jk...->ik...", A, S_cross)
+    G[3:, :3] = np.einsum("ij...,jk...->ik...", S_cross, A)
+    G[3:, 3:] = np.einsum("acdf...,cf...->ad...", np.einsum("bac,edf,be...->acdf...", EPS, EPS, A), J)
     return 2.0 * G

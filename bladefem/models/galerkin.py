@@ -138,6 +138,10 @@ def galerkin_system(blade: Blade, terms: Sequence[int] = PAPER_TERMS,
     """Matrices ``M, K0, K2`` of ``blade`` with ``terms = (N_w, N_v, N_phi)`` and the modelling notes."""
     if basis not in BASES:
         raise InputError(f"unknown Galerkin basis '{basis}' (choose from {', '.join(BASES)})", field="basis")
+    if blade.curved:
+        raise InputError("the Galerkin model is a straight beam: a curved reference axis (prebend, sweep) is not "
+                         "modelled (--straight-axis straightens it; the finite elements take the curve)",
+                         field="--method")
     chosen, notes = model_terms(blade, terms)
     return galerkin_matrices(blade, chosen, basis), notes
 

@@ -11,6 +11,8 @@ no hub radius and no precone) keeps its own frame: ``x`` up, ``z`` fore-aft, ``y
 Section points follow the rigid-section kinematics of docs/THEORY.md: a point at chord coordinate ``eta`` (toward
 the leading edge) on the chord line sits at ``s = (0, eta cos(theta), -eta sin(theta))`` from the reference axis
 (``theta`` = structural twist + pitch) and moves by ``(u, v, w) + Theta x s`` with ``Theta = (phi, -w', v')``.
+On a curved reference axis (prebend, sweep) the axis points lie on the curve and every section offset and
+displacement, given in the section's local frame, is turned by that frame (:mod:`bladefem.sections.axis`).
 """
 
 from __future__ import annotations
@@ -35,11 +37,31 @@ def blade_to_rotor(vectors: NDArray, precone: float) -> NDArray:
     return np.stack([c * X - s * Z, Y, s * X + c * Z], axis=-1)
 
 
+def axis_points(blade: Blade, x: NDArray) -> NDArray:
+    """Blade-frame positions (m, shape (n, 3)) of the reference axis at span positions ``x`` (m from the root; arc
+    lengths on a curved axis)."""
+    x = np.asarray(x, dtype=float)
+    frame = blade.axis_frame(x)
+    if frame is None:
+        return np.stack([blade.hub_radius + x, np.zeros_like(x), np.zeros_like(x)], axis=-1)
+    return np.moveaxis(frame.position, 0, -1) + np.array([blade.hub_radius, 0.0, 0.0])
+
+
+def local_to_blade(blade: Blade, x: NDArray, vectors: NDArray) -> NDArray:
+    """Vectors (shape (n, ..., 3)) given in the sections' local frames at ``x`` (m), in the blade frame: the same on
+    a straight axis, turned by each point's frame on a curved one."""
+    frame = blade.axis_frame(np.asarray(x, dtype=float))
+    if frame is None:
+        return vectors
+    rotation = np.moveaxis(frame.rotation, -1, 0)                    # (n, 3, 3)
+    vectors = np.asarray(vectors, dtype=float)
+    turned = np.einsum("nij,n...j->n...i", rotation, vectors.reshape(len(rotation), -1, 3))
+    return turned.reshape(vectors.shape)
+
+
 def axis_positions(blade: Blade, x: NDArray) -> NDArray:
     """Rotor-frame positions (m, shape (n, 3)) of the reference axis at span positions ``x`` (m from the root)."""
-    x = np.asarray(x, dtype=float)
-    along = np.stack([blade.hub_radius + x, np.zeros_like(x), np.zeros_like(x)], axis=-1)
-    return blade_to_rotor(along, blade.precone)
+    return blade_to_rotor(axis_points(blade, x), blade.precone)
 
 
 def has_planform(blade: Blade) -> bool:
@@ -63,9 +85,8 @@ def chord_offsets(blade: Blade, x: NDArray, eta: NDArray) -> NDArray:
 
 def surface_positions(blade: Blade, x: NDArray) -> NDArray:
     """Rotor-frame positions (m, shape (n, 2, 3)) of the leading and trailing edges at span positions ``x``."""
-    s = chord_offsets(blade, x, chord_edges(blade, x))
-    along = np.stack([blade.hub_radius + np.asarray(x, dtype=float), np.zeros(len(x)), np.zeros(len(x))], axis=-1)
-    return blade_to_rotor(along[:, None, :] + s, blade.precone)
+    s = local_to_blade(blade, x, chord_offsets(blade, x, chord_edges(blade, x)))
+    return blade_to_rotor(axis_points(blade, x)[:, None, :] + s, blade.precone)
 
 
 def axis_displacement(shape: ModeShape, x: NDArray) -> NDArray:
@@ -85,7 +106,7 @@ def surface_displacement(blade: Blade, shape: ModeShape, x: NDArray) -> NDArray:
     s = chord_offsets(blade, x, chord_edges(blade, x))
     rotation = section_rotation(shape, x)[:, None, :]
     moved = axis_displacement(shape, x)[:, None, :] + np.cross(rotation, s)
-    return blade_to_rotor(moved, blade.precone)
+    return blade_to_rotor(local_to_blade(blade, x, moved), blade.precone)
 
 
 @dataclass(frozen=True)
@@ -110,7 +131,7 @@ class ModeDisplacement:
 
 def mode_displacement(blade: Blade, shape: ModeShape, x: NDArray) -> ModeDisplacement:
     """A mode shape's displacements at span positions ``x`` (m), in the rotor frame."""
-    axis = blade_to_rotor(axis_displacement(shape, x), blade.precone)
+    axis = blade_to_rotor(local_to_blade(blade, x, axis_displacement(shape, x)), blade.precone)
     surface = surface_displacement(blade, shape, x) if has_planform(blade) else None
     return ModeDisplacement(axis=axis, surface=surface, twist=shape.at(x)["twist"])
 
@@ -119,8 +140,8 @@ def tip_body_position(blade: Blade) -> NDArray:
     """Rotor-frame position (m, shape (3,)) of the tip mass's centre: the tip of the reference axis plus the
     body's offset (blade frame)."""
     offset = blade.tip_mass.offset if blade.tip_mass is not None else np.zeros(3)
-    tip = np.array([blade.hub_radius + blade.length, 0.0, 0.0])
-    return blade_to_rotor(tip + offset, blade.precone)
+    tip = np.array([blade.length])
+    return blade_to_rotor(axis_points(blade, tip)[0] + local_to_blade(blade, tip, offset[None])[0], blade.precone)
 
 
 def tip_body_displacement(blade: Blade, shape: ModeShape) -> NDArray:
@@ -129,4 +150,4 @@ def tip_body_displacement(blade: Blade, shape: ModeShape) -> NDArray:
     offset = blade.tip_mass.offset if blade.tip_mass is not None else np.zeros(3)
     tip = np.array([blade.length])
     moved = axis_displacement(shape, tip)[0] + np.cross(section_rotation(shape, tip)[0], offset)
-    return blade_to_rotor(moved, blade.precone)
+    return blade_to_rotor(local_to_blade(blade, tip, moved[None])[0], blade.precone)

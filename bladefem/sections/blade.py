@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from .axis import AxisFrame, ReferenceAxis
 from .table import SectionTable
 
 Root = Literal["cantilever", "hinged", "axial-torsion", "free"]
@@ -73,6 +74,10 @@ class Blade:
         ``"axial-torsion"`` (only axial displacement and twist held) or ``"free"``
     name : a label for reports
     notes : statements about the modelling assumptions made while reading the input (printed by the CLI)
+    axis : the reference axis's prebend and sweep (:class:`~bladefem.sections.axis.ReferenceAxis`, over the same
+        arc length as the sections), or None for a straight blade along the pitch axis
+    prestressed : the stiffness at speed holds the bending moments and torque of the centrifugal load (for a blade
+        on its deflected axis, :func:`bladefem.modal.operating_point.deflected_blade`); otherwise only the tension
     """
 
     sections: SectionTable
@@ -83,8 +88,13 @@ class Blade:
     root: Root = "cantilever"
     name: str = "blade"
     notes: tuple[str, ...] = ()
+    axis: ReferenceAxis | None = None
+    prestressed: bool = False
 
     def __post_init__(self) -> None:
+        if self.axis is not None and abs(self.axis.length - self.length) > 1e-9 * self.length:
+            raise InputError(f"the reference axis is {self.axis.length:.9g} m long, the sections "
+                             f"{self.length:.9g} m", field="axis.span")
         if self.root not in ROOTS:
             raise InputError(f"unknown root condition '{self.root}' (choose from {', '.join(ROOTS)})", field="root")
         for name in ("hub_radius", "precone", "pitch"):
@@ -107,6 +117,15 @@ class Blade:
     def shaft_axis(self) -> NDArray[np.float64]:
         """Unit rotation axis in the blade frame."""
         return np.array([np.sin(self.precone), 0.0, np.cos(self.precone)])
+
+    @property
+    def curved(self) -> bool:
+        """Whether the reference axis leaves the pitch axis (prebend or sweep)."""
+        return self.axis is not None and self.axis.curved
+
+    def axis_frame(self, x: NDArray) -> AxisFrame | None:
+        """The curved axis at arc lengths ``x`` (m), pitched with the blade; None for a straight blade."""
+        return self.axis.frame(x, self.pitch) if self.curved else None
 
     def with_(self, **changes: object) -> Blade:
         """A copy with some fields changed (e.g. ``blade.with_(pitch=0.1)``)."""
