@@ -74,6 +74,12 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     group.add_argument("--structural-damping-percent", type=damping_percents, default=None, metavar="FLAP,EDGE",
                        help="structural damping ratio of the flapwise, edgewise [and torsion] modes, percent of "
                             "critical, added to the aerodynamic (default 0: aerodynamic damping alone)")
+    group.add_argument("--quasi-steady", action="store_true",
+                       help="run with the polars' static tables where the AeroDyn file asks for unsteady airfoil "
+                            "aerodynamics or a dynamic wake (this analysis is quasi-steady by construction)")
+    group.add_argument("--damping-only", action="store_true",
+                       help="leave out the aerodynamic stiffness (the section loads of the elastic twist): the "
+                            "polars' damping alone, as the classical stall-induced vibration analysis")
     group.add_argument("--blades", type=positive_int, default=3, metavar="N", help="number of blades (default 3)")
     parser.add_argument("--n-modes", type=options.n_modes, default=6, metavar="N", help="modes (default 6)")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
@@ -97,17 +103,21 @@ def run_standstill(args: argparse.Namespace) -> int:
     from ..models.standstill import standstill_sweep, with_tilt
     from ..report import progress_bar
 
-    rotor = with_tilt(aerodyn_rotor(args.aero, blade, args.blades), math.radians(args.tilt_deg))
+    way = frozenset({"--quasi-steady"})
+    rotor = with_tilt(aerodyn_rotor(args.aero, blade, args.blades, way, way if args.quasi_steady else frozenset()),
+                      math.radians(args.tilt_deg))
     matrices = blade_matrices(blade, args.elements, args.n_modes, 0.0)
     structural = args.structural_damping_percent or {}
-    notes = blade.notes + matrices.notes + (
+    notes = blade.notes + matrices.notes + rotor.notes[1:] + (
         f"parked rotor (no rotation, no induction), quasi-steady polars of {args.aero}; the spanwise wind "
         "component left out (independence principle); no dynamic stall, no gravity or static deflection",
+        "aerodynamic damping alone (--damping-only)" if args.damping_only else
+        "aerodynamic damping and stiffness (the loads of the elastic twist; --damping-only leaves the stiffness out)",
         "structural damping " + (", ".join(f"{k} {100 * v:g} %" for k, v in structural.items()) if structural
                                  else "none (aerodynamic damping alone; --structural-damping-percent adds it)"))
     progress = progress_bar("Standstill sweep", args.quiet or args.json)
     result = standstill_sweep(matrices, rotor, args.wind_speed, blade.pitch, args.yaw_deg, args.azimuth_deg,
-                              args.n_modes, structural, notes, progress)
+                              args.n_modes, structural, notes, progress, not args.damping_only)
     if args.plot:
         from ..plots.standstill import save_standstill_plot
         save_standstill_plot(result, args.plot)
@@ -128,7 +138,7 @@ def result_dict(result) -> dict:
         "negative_sectors": {name: {f"{a:g}": [list(s) for s in result.negative_sectors(name, j)]
                                     for j, a in enumerate(result.azimuth_deg)} for name in result.names},
         "points": [{"yaw_deg": p.yaw_deg, "azimuth_deg": p.azimuth_deg, "alpha_deg": list(p.alpha_deg),
-                    "modes": [{"name": m.name, "frequency_hz": m.frequency_hz, "aerodynamic_damping_ratio":
+                    "modes": [{"name": m.name, "frequency_hz": m.frequency_hz, "divergent": m.divergent, "aerodynamic_damping_ratio":
                                m.aerodynamic, "structural_damping_ratio": m.structural, "total_damping_ratio": m.total,
                                "mac": m.mac, "shares": m.shares} for m in p.modes]}
                    for row in result.points for p in row],
@@ -151,6 +161,7 @@ def standstill_text(result) -> str:
                 spans = ", ".join(f"{a:.1f} to {b:.1f}" for a, b in sectors)
                 lines.append(f"# negative total damping, {name} at azimuth {azimuth:g} deg: yaw {spans} deg")
     value, mode, point = result.minimum()
+    what = "divergence (a real eigenvalue above zero)" if mode.divergent else f"{mode.frequency_hz:.4f} Hz"
     lines.append(f"# least damped: {mode.name} at yaw {point.yaw_deg:g} deg, azimuth {point.azimuth_deg:g} deg: "
-                 f"{100 * value:.3f} % ({mode.frequency_hz:.4f} Hz)")
+                 f"{100 * value:.3f} % ({what})")
     return "\n".join(lines) + "\n"

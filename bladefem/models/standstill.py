@@ -44,8 +44,9 @@ class StandstillMode:
     """One mode of the parked blade at one wind direction.
 
     name : the undamped mode it continues ('edge 1'); frequency_hz : undamped natural frequency |lambda| / 2 pi
-    aerodynamic, structural, total : damping ratios (fractions of critical); mac : MAC with the undamped mode
-    shares : kinetic-energy shares of flap, edge, torsion and axial motion
+    (negative for a real eigenvalue above zero: a divergence, the motion grows without oscillating)
+    aerodynamic, structural, total : damping ratios (fractions of critical; a real eigenvalue gives -1 above zero,
+    +1 below); mac : MAC with the undamped mode; shares : kinetic-energy shares of flap, edge, torsion and axial
     """
 
     name: str
@@ -55,6 +56,11 @@ class StandstillMode:
     total: float
     mac: float
     shares: dict[str, float]
+
+    @property
+    def divergent(self) -> bool:
+        """A real eigenvalue above zero: the motion grows without oscillating."""
+        return self.frequency_hz < 0
 
 
 @dataclass(frozen=True)
@@ -154,10 +160,12 @@ def mode_names(result: ModalResult, pitch: float) -> tuple[str, ...]:
 def standstill_sweep(matrices: BladeMatrices, rotor: Rotor, wind_speed: float, pitch: float,
                      yaw_deg: Sequence[float], azimuth_deg: Sequence[float], n_modes: int = 6,
                      structural: Mapping[str, float] | None = None, notes: tuple[str, ...] = (),
-                     progress: Callable[[Iterable], Iterable] | None = None) -> StandstillResult:
+                     progress: Callable[[Iterable], Iterable] | None = None,
+                     aero_stiffness: bool = True) -> StandstillResult:
     """The parked blade's modes at every (yaw, azimuth) in degrees, pitch ``pitch`` (rad, as the blade's
     structure is pitched). ``structural`` gives the structural damping ratio of each kind ('flap', 'edge',
-    'torsion'; absent kinds: zero)."""
+    'torsion'; absent kinds: zero). ``aero_stiffness`` False leaves out the aerodynamic stiffness (the loads of
+    the elastic twist), keeping the damping alone."""
     structural = dict(structural or {})
     reference = solve_modes(matrices, 0.0, n_modes)
     names = mode_names(reference, pitch)
@@ -170,7 +178,7 @@ def standstill_sweep(matrices: BladeMatrices, rotor: Rotor, wind_speed: float, p
         op = parked_point(rotor, wind_speed, math.radians(yaw), math.radians(azimuth), pitch)
         damping, stiffness = aero_matrices(matrices, op)
         result = solve_quadratic_modes(matrices, 0.0, n_modes + TRACKING_MARGIN, damping=damping,
-                                       stiffness=stiffness, coriolis=False)
+                                       stiffness=stiffness if aero_stiffness else None, coriolis=False)
         mac = mac_from_products(reference.vectors, weighted, result.vectors, M @ result.vectors)
         rows, cols = best_assignment(mac)
         modes = []
