@@ -31,7 +31,8 @@ def angles(text: str) -> tuple[float, ...]:
         else:
             values = tuple(float(part) for part in text.split(","))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected A, A1,A2,... or START:STOP:COUNT in degrees, got '{text}'") from None
+        raise argparse.ArgumentTypeError(f"expected A, A1,A2,... or START:STOP:COUNT in degrees, got '{text}'") \
+            from None
     if not all(math.isfinite(v) and abs(v) <= 360.0 for v in values) or len(values) > MAX_SPEEDS:
         raise argparse.ArgumentTypeError(f"angles must be finite, within -360..360 deg and at most {MAX_SPEEDS}, got "
                                          f"'{text}'")
@@ -47,7 +48,8 @@ def damping_percents(text: str) -> dict[str, float]:
     except ValueError:
         values = []
     if not 2 <= len(values) <= 3 or not all(math.isfinite(v) and 0 <= v < 100 for v in values):
-        raise argparse.ArgumentTypeError(f"expected FLAP,EDGE[,TORSION] in percent of critical (0 to 100), got '{text}'")
+        raise argparse.ArgumentTypeError(f"expected FLAP,EDGE[,TORSION] in percent of critical (0 to 100), got "
+                                         f"'{text}'")
     return {kind: value / 100 for kind, value in zip(("flap", "edge", "torsion"), values)}
 
 
@@ -138,9 +140,9 @@ def result_dict(result) -> dict:
         "negative_sectors": {name: {f"{a:g}": [list(s) for s in result.negative_sectors(name, j)]
                                     for j, a in enumerate(result.azimuth_deg)} for name in result.names},
         "points": [{"yaw_deg": p.yaw_deg, "azimuth_deg": p.azimuth_deg, "alpha_deg": list(p.alpha_deg),
-                    "modes": [{"name": m.name, "frequency_hz": m.frequency_hz, "divergent": m.divergent, "aerodynamic_damping_ratio":
-                               m.aerodynamic, "structural_damping_ratio": m.structural, "total_damping_ratio": m.total,
-                               "mac": m.mac, "shares": m.shares} for m in p.modes]}
+                    "modes": [{"name": m.name, "frequency_hz": m.frequency_hz, "divergent": m.divergent,
+                               "aerodynamic_damping_ratio": m.aerodynamic, "structural_damping_ratio": m.structural,
+                               "total_damping_ratio": m.total, "mac": m.mac, "shares": m.shares} for m in p.modes]}
                    for row in result.points for p in row],
         "notes": list(result.notes)}
 
