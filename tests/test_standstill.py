@@ -126,8 +126,9 @@ def test_nrel5mw_feathered_edgewise_instability_in_yaw(capsys):
 
 def test_iea15mw_feathered_edgewise_instability_in_yaw(capsys):
     """The parked, feathered IEA-15MW (BeamDyn six-by-six sections, all 50 polars) at 50 m/s: OpenFAST users find
-    it unstable for yaw misalignments of about +-(20 to 60) deg (IEA-15-240-RWT issue 218, DLC 6.2); the first
-    edgewise mode's quasi-steady total damping is negative in both sectors."""
+    it unstable for yaw misalignments of about +-(20 to 60) deg in DLC 6.2
+    (github.com/IEAWindSystems/IEA-15-240-RWT/issues/218); the first edgewise mode's quasi-steady total damping is
+    negative in both sectors."""
     code, out, _ = run(capsys, "standstill", BEAMDYN, "--aero", IEA_AERODYN, "--quasi-steady", "--damping-only",
                        "--wind-speed", 50, "--pitch-deg", 90, "--precone-deg", -4, "--tilt-deg", -6,
                        "--yaw-deg=-80:80:17", "--elements", 40, "--n-modes", 4,
@@ -158,3 +159,23 @@ def test_a_tower_is_refused(capsys):
     tower = ROOT / "tests" / "data" / "NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat"
     code, out, err = run(capsys, "standstill", tower, "--aero", AERODYN, "--wind-speed", 50)
     assert code == 2 and out == "" and "tower" in err
+
+
+def test_the_standstill_document_is_what_its_script_writes(tmp_path):
+    """docs/standstill.md is the current output of examples/standstill.py (its numbers to the printed 0.01: rounding
+    may move the last digit), and its figures are written beside it."""
+    import re
+    import subprocess
+    import sys
+
+    written = tmp_path / "standstill.md"
+    subprocess.run([sys.executable, str(ROOT / "examples" / "standstill.py"), "--output", str(written)],
+                   check=True, cwd=ROOT, capture_output=True)
+    numbers = [re.findall(r"-?\d+\.\d+", text) for text in (written.read_text(),
+                                                              (ROOT / "docs" / "standstill.md").read_text())]
+    assert len(numbers[0]) == len(numbers[1]) > 20
+    assert max(abs(float(a) - float(b)) for a, b in zip(*numbers)) <= 0.011
+    assert re.findall(r"-?\d+ to -?\d+", written.read_text()) == re.findall(
+        r"-?\d+ to -?\d+", (ROOT / "docs" / "standstill.md").read_text())
+    for name in ("standstill-nrel5mw.png", "standstill-iea15mw.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
