@@ -93,10 +93,11 @@ parked rotor. `--tilt-deg` is ElastoDyn's `ShftTilt`, the precone the blade's (`
 turn and has no induction (AeroDyn's `WakeMod` 0 for a parked rotor): each AeroDyn node sees the wind resolved on the
 coned blade's out-of-plane normal and its in-plane direction; the component along the blade is left out
 (independence principle). `--quasi-steady` runs an AeroDyn file that asks for unsteady airfoil aerodynamics with its
-static polars (the analysis is quasi-steady by construction). `--damping-only` leaves out the aerodynamic stiffness
-(the loads of the elastic twist), as the classical stall-induced vibration analysis does. Modes are named after the
-undamped blade modes they continue; bending is named in the frame of the pitched chord, so the flapwise mode of a
-feathered blade, which moves in the rotor plane, is `flap 1`.
+static polars (the analysis is quasi-steady by construction). `--structural-damping-percent` defaults to an
+ElastoDyn blade's `BldFlDmp(1)` and `BldEdDmp(1)` (0 for other inputs). `--damping-only` leaves out the aerodynamic
+stiffness (the loads of the elastic twist), as the classical stall-induced vibration analysis does. Modes are named
+after the undamped blade modes they continue; bending is named in the frame of the pitched chord, so the flapwise
+mode of a feathered blade, which moves in the rotor plane, is `flap 1`.
 
 Printed: the total damping ratio (per cent of critical) of each mode at each yaw and azimuth, then the negative
 sectors (ends interpolated) and the least damped point. `--json` prints `{{"wind_speed_m_s", "pitch_deg", "modes",
@@ -146,8 +147,8 @@ BeamDyn six-by-six sections (torsion and the couplings kept), all 50 polars of t
 
 With blade 1 up, the first edgewise mode's total damping is negative at yaw misalignments of about 15 to 70 deg on
 either side of the wind (near 40 deg the sector has a short gap) and at about 120 to 148 deg, and with the other
-blades' azimuths at 15 to 75 deg as well. OpenFAST users running the parked IEA-15MW (feathered, design load case 6.2, yaw errors
--180 to 180 deg) find it unstable between about 20 and 60 deg on either side, an instability that a 20 deg pitch
+blades' azimuths at 15 to 75 deg as well. OpenFAST users running the parked IEA-15MW (feathered, design load
+case 6.2, yaw errors -180 to 180 deg) find it unstable between about 20 and 60 deg on either side, an instability that a 20 deg pitch
 offset of one blade removes (github.com/IEAWindSystems/IEA-15-240-RWT/issues/218); Höning, Herráez and Stoevesandt
 (2026, "Aeroelastic instabilities of the IEA 15 MW rotor during extreme yaw maneuvers", Wind Energy Science 11,
 1531) study the same rotor in extreme yaw. The flapwise mode (in the rotor plane when feathered) is overdamped by

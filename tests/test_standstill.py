@@ -141,6 +141,17 @@ def test_iea15mw_feathered_edgewise_instability_in_yaw(capsys):
     assert not any(a <= 0 <= b for a, b in edge)
 
 
+def test_an_elastodyn_blade_brings_its_structural_damping(capsys):
+    """Without --structural-damping-percent an ElastoDyn blade's BldFlDmp(1) and BldEdDmp(1) (0.477465 % in the
+    5MW) are added; a BeamDyn blade has none to bring."""
+    code, out, _ = run(capsys, "standstill", MAIN, "--aero", AERODYN, "--wind-speed", 50, "--yaw-deg", 30,
+                       "--elements", 20, "--n-modes", 2, "--json")
+    modes = json.loads(out)["points"][0]["modes"]
+    assert code == 0 and all(m["structural_damping_ratio"] == pytest.approx(0.00477465, rel=1e-12) for m in modes)
+    assert all(m["total_damping_ratio"] == m["aerodynamic_damping_ratio"] + m["structural_damping_ratio"]
+               for m in modes)
+
+
 @pytest.mark.parametrize("argv, field", [
     (["--wind-speed", "50"], "--aero"),
     (["--aero", AERODYN], "--wind-speed"),

@@ -75,7 +75,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                        help="shaft tilt, deg, ElastoDyn's ShftTilt sign (default 0)")
     group.add_argument("--structural-damping-percent", type=damping_percents, default=None, metavar="FLAP,EDGE",
                        help="structural damping ratio of the flapwise, edgewise [and torsion] modes, percent of "
-                            "critical, added to the aerodynamic (default 0: aerodynamic damping alone)")
+                            "critical, added to the aerodynamic (default: an ElastoDyn blade's BldFlDmp(1) and "
+                            "BldEdDmp(1), else 0)")
     group.add_argument("--quasi-steady", action="store_true",
                        help="run with the polars' static tables where the AeroDyn file asks for unsteady airfoil "
                             "aerodynamics or a dynamic wake (this analysis is quasi-steady by construction)")
@@ -109,14 +110,18 @@ def run_standstill(args: argparse.Namespace) -> int:
     rotor = with_tilt(aerodyn_rotor(args.aero, blade, args.blades, way, way if args.quasi_steady else frozenset()),
                       math.radians(args.tilt_deg))
     matrices = blade_matrices(blade, args.elements, args.n_modes, 0.0)
-    structural = args.structural_damping_percent or {}
+    structural = args.structural_damping_percent
+    if structural is None:
+        structural = elastodyn_damping(args.input, args.elastodyn_main)
     notes = blade.notes + matrices.notes + rotor.notes[1:] + (
         f"parked rotor (no rotation, no induction), quasi-steady polars of {args.aero}; the spanwise wind "
         "component left out (independence principle); no dynamic stall, no gravity or static deflection",
         "aerodynamic damping alone (--damping-only)" if args.damping_only else
         "aerodynamic damping and stiffness (the loads of the elastic twist; --damping-only leaves the stiffness out)",
         "structural damping " + (", ".join(f"{k} {100 * v:g} %" for k, v in structural.items()) if structural
-                                 else "none (aerodynamic damping alone; --structural-damping-percent adds it)"))
+                                 else "none (aerodynamic damping alone; --structural-damping-percent adds it)")
+        + (" (the ElastoDyn blade file's BldFlDmp(1), BldEdDmp(1))" if structural and
+           args.structural_damping_percent is None else ""))
     progress = progress_bar("Standstill sweep", args.quiet or args.json)
     result = standstill_sweep(matrices, rotor, args.wind_speed, blade.pitch, args.yaw_deg, args.azimuth_deg,
                               args.n_modes, structural, notes, progress, not args.damping_only)
@@ -128,6 +133,24 @@ def run_standstill(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"# plot written to {args.plot}", file=sys.stderr)
     return 0
+
+
+def elastodyn_damping(path: str, main: str | None) -> dict[str, float]:
+    """The flapwise and edgewise structural damping ratios of an ElastoDyn blade (its main file, or a blade file
+    with --elastodyn-main), or none for other inputs."""
+    from ..builders.detect import detect_format
+    from ..builders.elastodyn_blade import read_elastodyn_blade
+    from ..formats.elastodyn_main import read_elastodyn_main
+
+    kind = detect_format(path)
+    if kind == "elastodyn-main":
+        blade_file = read_elastodyn_main(path).blade_files[0]
+    elif kind == "elastodyn-blade" and main is not None:
+        blade_file = path
+    else:
+        return {}
+    record = read_elastodyn_blade(blade_file)
+    return {"flap": record.flap_damping_percent[0] / 100, "edge": record.edge_damping_percent / 100}
 
 
 def result_dict(result) -> dict:
