@@ -147,13 +147,13 @@ BeamDyn six-by-six sections (torsion and the couplings kept), all 50 polars of t
 
 With blade 1 up, the first edgewise mode's total damping is negative at yaw misalignments of about 15 to 70 deg on
 either side of the wind (near 40 deg the sector has a short gap) and at about 120 to 148 deg, and with the other
-blades' azimuths at 15 to 75 deg as well. OpenFAST users running the parked IEA-15MW (feathered, design load
-case 6.2, yaw errors -180 to 180 deg) find it unstable between about 20 and 60 deg on either side, an instability that a 20 deg pitch
-offset of one blade removes (github.com/IEAWindSystems/IEA-15-240-RWT/issues/218); Höning, Herráez and Stoevesandt
-(2026, "Aeroelastic instabilities of the IEA 15 MW rotor during extreme yaw maneuvers", Wind Energy Science 11,
-1531) study the same rotor in extreme yaw. The flapwise mode (in the rotor plane when feathered) is overdamped by
-attached flow near the wind direction and loses its damping in narrower sectors; the first torsion mode has
-negative sectors too (the quasi-steady damping of a twisting section in stall).
+blades' azimuths at 15 to 75 deg as well. OpenFAST users running the parked IEA-15MW (feathered, design load case
+6.2, yaw errors -180 to 180 deg) find it unstable between about 20 and 60 deg on either side, an instability that a
+20 deg pitch offset of one blade removes (github.com/IEAWindSystems/IEA-15-240-RWT/issues/218); Höning, Herráez and
+Stoevesandt (2026, "Aeroelastic instabilities of the IEA 15 MW rotor during extreme yaw maneuvers", Wind Energy
+Science 11, 1531) study the same rotor in extreme yaw. The flapwise mode (in the rotor plane when feathered) is
+overdamped by attached flow near the wind direction and loses its damping in narrower sectors; the first torsion
+mode has negative sectors too (the quasi-steady damping of a twisting section in stall).
 
 With the aerodynamic stiffness kept (no `--damping-only`) the feathered IEA-15MW in 50 m/s also shows a real
 eigenvalue above zero near yaw 0 (a static divergence of the first flapwise mode through the lift of the elastic
