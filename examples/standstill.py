@@ -132,6 +132,13 @@ case 6.2, and an answer on NREL's forum (forums.nrel.gov/t/designing-for-yaw-err
 several tools show it for many turbines, that part of it may come from how the tools model deep stall, and that
 designs either avoid the yaw errors or raise the edgewise structural damping until it goes.
 
+OpenFAST v5.0.0 linearized the same parked rotor (blade DOFs only, AeroDyn without induction, legacy projection,
+no unsteady aerodynamics, no gravity; tests/data/openfast/standstill_linearization.json) at yaw -30, 0, 30 and
+60 deg: blade 1's first flapwise, first edgewise and second flapwise modes match bladefem's within 2 % in frequency
+(the FE's exact shapes against ElastoDyn's polynomials) and within 7 % plus 0.1 percentage point in total damping,
+with the same sign everywhere: at 30 deg OpenFAST gives -7.92, -1.24 and -0.86 % where bladefem gives -8.29, -1.28
+and -0.98 % (tests/test_standstill.py).
+
 ## IEA-15MW, feathered, 50 m/s
 
 ```bash
