@@ -7,8 +7,8 @@ misalignment, Gravity 0, no ServoDyn (CompServo 0), AeroDyn without induction (W
 geometric inflow), legacy projection (BEM_Mod 1, bladefem's), no unsteady aerodynamics (UA_Mod 0) and no tower
 influence, steady uniform wind of 50 m/s (HWindSpeed, PLExp 0), the deck's shaft tilt (-5 deg), precone (-2.5 deg)
 and blade structural damping (0.477465 %), linearized once about the undeflected initial state (Linearize True,
-CalcSteady False, LinTimes 0). The three blades do not couple (no rotor, tower or yaw DOF): blade 1's three modes are the eigenvalues
-whose eigenvectors live on its states.
+CalcSteady False, LinTimes 0). The three blades do not couple (no rotor, tower or yaw DOF): blade 1's three modes
+are the eigenvalues whose eigenvectors live on its states.
 
     python tests/data/openfast/make_standstill.py OPENFAST_EXECUTABLE RUNS_FOLDER
 """
