@@ -5,8 +5,8 @@ The start-up transient throws the 117 m blades downwind at up to about 12 m/s wi
 integrator's step collapses there: the right-hand side is not smooth (the structure alone runs, and the fixed step
 ElastoDyn uses runs through it). The run stops with exit 1, the rows so far and one line that names the way
 forward, instead of running on or returning nonsense; with ``--method RK4 --step 0.005`` it settles to physical
-values. (The test copy of the deck keeps 3 of the 50 airfoil polars, tests/deck_copies.py: the numbers are not the
-real turbine's, whose run with every polar gives 14.8 m tip deflection, 2565 kN thrust and Cp 0.467 over 20-30 s.)
+values. (The test copy of the deck holds all 50 airfoil polars, tests/data/iea15/README.md; a run of 20-30 s
+gives 14.8 m tip deflection, 2565 kN thrust and Cp 0.467.)
 """
 
 from __future__ import annotations

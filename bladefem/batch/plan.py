@@ -25,8 +25,10 @@ from ..files import check_input
 from ..formats.yamlnodes import load_yaml
 from .bundle import Bundle, bundle_of
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
+from .standstill import PROPERTIES as STANDSTILL_PROPERTIES
+from .standstill import standstill_fields
 
-ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize")
+ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize", "standstill")
 #: analyses of the whole turbine (an OpenFAST deck), not of a blade or tower
 TURBINE_ANALYSES = ("turbine_simulate", "turbine_linearize")
 DISTRIBUTIONS = ("normal", "uniform", "lognormal")
@@ -65,6 +67,7 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "foundation": {"enum": ["rigid"]},
                 "quasi_steady": {"type": "boolean"},
                 "elastodyn_blades": {"type": "boolean"},
+                **STANDSTILL_PROPERTIES,
             },
         },
         "grid": {"type": "object", "minProperties": 1, "additionalProperties": False,
@@ -105,7 +108,9 @@ class Analysis:
     turbine of an OpenFAST deck simulated for ``seconds`` (s, output every ``dt`` s) at ``wind_speed`` (m/s),
     ``turbine_rpm`` (rpm, generator locked) and ``pitch_deg`` (deg), each None for the deck's, with statistics
     from ``statistics_from`` (s) to the end, or 'turbine_linearize' there with the BEM ``induction`` frozen or
-    quasi-steady."""
+    quasi-steady; or 'standstill': the parked blade's damping against yaw (:mod:`bladefem.batch.standstill`) with
+    the AeroDyn file ``aerodyn``, yaw ``yaw_sweep`` (start, stop, count deg), ``azimuths`` (deg), ``tilt_deg``,
+    ``structural`` damping (flap, edge, torsion %) and ``damping_only``."""
 
     type: str
     rpm: float = 0.0
@@ -124,6 +129,12 @@ class Analysis:
     #: the command line's ways forward the deck needs (``--foundation rigid``, ``--quasi-steady``,
     #: ``--elastodyn-blades``): what bladefem does not model is left out, and said so, instead of refused
     leave_out: tuple[str, ...] = ()
+    aerodyn: Path | None = None
+    yaw_sweep: tuple[float, float, int] | None = None
+    azimuths: tuple[float, ...] = (0.0,)
+    tilt_deg: float = 0.0
+    structural: tuple[float, ...] = ()
+    damping_only: bool = False
 
     def key(self) -> dict[str, Any]:
         key = {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
@@ -133,6 +144,11 @@ class Analysis:
             key.update(wind_speed=self.wind_speed, turbine_rpm=self.turbine_rpm, pitch_deg=self.pitch_deg,
                        seconds=self.seconds, dt=self.dt, statistics_from=self.statistics_from,
                        induction=self.induction, leave_out=list(self.leave_out))
+        if self.type == "standstill":
+            key.update(aerodyn=None if self.aerodyn is None else file_digest(self.aerodyn),
+                       wind_speed=self.wind_speed, pitch_deg=self.pitch_deg, yaw_sweep=self.yaw_sweep,
+                       azimuths=list(self.azimuths), tilt_deg=self.tilt_deg, structural=list(self.structural),
+                       damping_only=self.damping_only, leave_out=list(self.leave_out))
         return key
 
 
@@ -203,6 +219,11 @@ def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> A
     kind = entry["type"]
     if kind in TURBINE_ANALYSES:
         return _turbine_analysis(entry, path, lines)
+    if kind == "standstill":
+        return Analysis(kind, **standstill_fields(
+            entry, lambda message, key: InputError(message, file=str(path), line=_line(lines, ("analysis", key)),
+                                                   field=f"analysis.{key}"),
+            lambda name, where: _input_file(name, folder, path, lines, where)))
     for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg", "induction"):
         if key in entry:
             raise InputError(f"an input of the turbine analyses, not of {kind}", file=str(path),
@@ -246,7 +267,7 @@ def _input_file(name: str, folder: Path, plan: Path, lines: dict, where: tuple) 
 
 def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
     """The files a case of ``model`` reads, found by reading them once here (see :mod:`bladefem.batch.bundle`)."""
-    named = [model] + [p for p in (main, analysis.spec) if p is not None]
+    named = [model] + [p for p in (main, analysis.spec, analysis.aerodyn) if p is not None]
     if analysis.type in TURBINE_ANALYSES:
         from ..builders.turbine_deck import read_turbine_deck
         ways = set(analysis.leave_out) | {"--rpm"}         # each case refuses a controller it has no rpm for
@@ -257,7 +278,10 @@ def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
         if analysis.spec is not None:
             from ..check import read_spec
             read_spec(analysis.spec)
-        read_structure(model, main)
+        structure = read_structure(model, main)
+        if analysis.aerodyn is not None:
+            from .standstill import rotor_of
+            rotor_of(analysis, structure)
     return bundle_of(read, named)
 
 
@@ -319,7 +343,7 @@ def read_plan(path: str | Path) -> Plan:
             raise InputError("samples scatter blade section properties: a turbine analysis varies wind_speed_m_s, "
                              "rpm and pitch_deg in a grid, or decks in files", file=str(path),
                              line=_line(lines, ("samples",)), field="samples")
-        if analysis.type not in TURBINE_ANALYSES and "wind_speed_m_s" in data.get("grid", {}):
+        if analysis.type not in (*TURBINE_ANALYSES, "standstill") and "wind_speed_m_s" in data.get("grid", {}):
             raise InputError(f"a turbine input: a {analysis.type} analysis has no wind", file=str(path),
                              line=_line(lines, ("grid", "wind_speed_m_s")), field="grid.wind_speed_m_s")
         if "grid" in data:

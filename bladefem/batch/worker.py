@@ -110,7 +110,12 @@ def _check_rows(case: Case, structure: Any) -> list[dict[str, Any]]:
     return rows
 
 
-ANALYSES = {"modes": _modes_rows, "campbell": _campbell_rows, "check": _check_rows}
+def _standstill_rows(case: Case, structure: Any) -> list[dict[str, Any]]:
+    from .standstill import standstill_rows
+    return standstill_rows(case, structure)
+
+
+ANALYSES = {"modes": _modes_rows, "campbell": _campbell_rows, "check": _check_rows, "standstill": _standstill_rows}
 
 
 def input_columns(case: Case) -> dict[str, Any]:
@@ -134,6 +139,8 @@ def localized(case: Case, root: Path) -> Case:
         else case.inputs
     analysis = case.analysis if case.analysis.spec is None else \
         replace(case.analysis, spec=mirrored(root, case.analysis.spec))
+    if analysis.aerodyn is not None:
+        analysis = replace(analysis, aerodyn=mirrored(root, analysis.aerodyn))
     return replace(case, model=mirrored(root, case.model), inputs=inputs, analysis=analysis,
                    elastodyn_main=None if case.elastodyn_main is None else mirrored(root, case.elastodyn_main))
 

@@ -17,16 +17,23 @@ from .aerodyn_primary import default_air_density, read_aerodyn_primary
 from .airfoil_polars import read_airfoil
 
 
-def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int = 3) -> Rotor:
+def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int = 3,
+                  offered: frozenset[str] = frozenset(), taken: frozenset[str] = frozenset()) -> Rotor:
     """A rigid rotor of ``n_blades`` blades with the planform of the primary file's ADBlFile(1), its polars (first
     table of each airfoil file) and BEM switches, and the blade's hub radius and precone (no shaft tilt). Settings
     asking for physics bladefem does not model, a missing blade file, an airfoil number beyond NumAFfiles or an
-    AeroDyn blade longer than the structural one are :class:`InputError` naming file, line and field."""
+    AeroDyn blade longer than the structural one are :class:`InputError` naming file, line and field. ``offered``:
+    the ways forward (:data:`~bladefem.builders.aerodyn_primary.WAYS`) the calling command has, named in the
+    refusal; ``taken``: those given on its command line, which leave such settings out (said in the notes)."""
     primary = read_aerodyn_primary(primary_path)
-    refused = primary.unmodelled()
+    unmodelled = primary.unmodelled()
+    refused = [item for item in unmodelled if item.way not in taken]
+    left_out = tuple(f"left out ({item.way}): {item.label} = {item.message.split(' are not')[0].split(' is not')[0]}"
+                     for item in unmodelled if item.way in taken)
     if refused:
         first = refused[0]
-        raise InputError(first.message, file=first.file, line=first.line, field=first.label)
+        message = first.refusal() if first.way in offered else first.message
+        raise InputError(message, file=first.file, line=first.line, field=first.label)
     labels = Labels.read(primary.path)
     problem = input_problem(primary.blade_files[0]) if primary.blade_files else "no ADBlFile(1) entry"
     if problem is not None:
@@ -46,4 +53,4 @@ def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int =
     return Rotor(n_blades=n_blades, hub_radius=blade.hub_radius, span=planform.span, chord=planform.chord,
                  twist=planform.twist, airfoil=planform.airfoil - 1, polars=polars, curve=planform.curve,
                  sweep=planform.sweep, precone=blade.precone, air_density=default_air_density(primary.air_density),
-                 options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})",))
+                 options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})", *left_out))

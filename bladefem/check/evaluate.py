@@ -130,8 +130,19 @@ def _elastodyn(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
     yield from elastodyn_verdicts(run, req)
 
 
+def _standstill(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
+    from .aeroelastic import standstill_verdicts
+    yield from standstill_verdicts(run, req)
+
+
+def _flutter(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
+    from .aeroelastic import flutter_verdicts
+    yield from flutter_verdicts(run, req)
+
+
 EVALUATORS: dict[str, Callable[..., Iterator[Outcome]]] = {
-    "window": _window, "resonance": _resonance, "soft_stiff": _soft_stiff, "elastodyn": _elastodyn}
+    "window": _window, "resonance": _resonance, "soft_stiff": _soft_stiff, "elastodyn": _elastodyn,
+    "standstill_damping": _standstill, "flutter_margin": _flutter}
 
 
 def evaluate_requirement(run: ModelRun, req: Requirement, update_baseline: bool = False) -> list[Outcome]:

@@ -43,6 +43,9 @@ MODEL = {
         "axis": {"enum": ["curved", "straight"],
                  "description": "six-by-six blades: the file's curved reference axis (default) or straightened onto "
                                 "the pitch axis (--straight-axis)"},
+        "aerodyn": {"type": "string",
+                    "description": "AeroDyn primary file of the blade's aerodynamics (standstill_damping and "
+                                   "flutter_margin requirements), relative to the spec file"},
     },
 }
 
@@ -111,8 +114,56 @@ ELASTODYN = {
     },
 }
 
+_ANGLE = {"type": "number", "minimum": -360, "maximum": 360}
+
+STANDSTILL = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["wind_speed_m_s"],
+    "properties": {
+        "wind_speed_m_s": {"type": "number", "exclusiveMinimum": 0, "maximum": 100,
+                           "description": "steady wind speed on the parked rotor, m/s"},
+        "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180,
+                      "description": "blade pitch, deg (default the model's)"},
+        "yaw_deg": {"type": "array", "items": _ANGLE, "minItems": 2, "maxItems": 2,
+                    "description": "yaw-misalignment range [start, stop], deg (default [-180, 180])"},
+        "yaw_points": {"type": "integer", "minimum": 1, "maximum": 1000,
+                       "description": "yaw misalignments over the range (default 73: every 5 deg)"},
+        "azimuth_deg": {"type": "array", "items": _ANGLE, "minItems": 1,
+                        "description": "rotor azimuths of the blade, deg (default [0])"},
+        "tilt_deg": {"type": "number", "minimum": -45, "maximum": 45, "description": "shaft tilt, deg (default 0)"},
+        "structural_damping_percent": {"type": "array", "items": {"type": "number", "minimum": 0, "maximum": 100},
+                                       "minItems": 2, "maxItems": 3,
+                                       "description": "[flap, edge(, torsion)] structural damping, % of critical"},
+        "modes": {"type": "array", "items": _MODE_NAME, "minItems": 1,
+                  "description": "modes judged (default every mode of the model's n_modes)"},
+        "min_percent": {"type": "number", "minimum": -100, "maximum": 100,
+                        "description": "least total damping ratio asked, % of critical (default 0)"},
+        "quasi_steady": {"type": "boolean",
+                         "description": "leave out the AeroDyn file's unsteady switches, as --quasi-steady"},
+        "damping_only": {"type": "boolean", "description": "leave out the aerodynamic stiffness, as --damping-only"},
+    },
+}
+
+FLUTTER = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["factor", "rated_rpm"],
+    "properties": {
+        "factor": {"type": "number", "minimum": 1, "maximum": 10,
+                   "description": "the flutter rotor speed must be at least factor x rated_rpm"},
+        "rated_rpm": {**_RPM, "exclusiveMinimum": 0, "description": "rated rotor speed, rpm"},
+        "wind_speed_m_s": {"type": "number", "minimum": 0, "maximum": 100,
+                           "description": "wind speed of the flutter sweep, m/s (default 0)"},
+        "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180,
+                      "description": "blade pitch, deg (default the model's)"},
+    },
+}
+
 KINDS = {"window": WINDOW, "resonance": RESONANCE, "soft_stiff": SOFT_STIFF, "baseline": BASELINE,
-         "elastodyn": ELASTODYN}
+         "elastodyn": ELASTODYN, "standstill_damping": STANDSTILL, "flutter_margin": FLUTTER}
+#: requirements that need the model's AeroDyn file
+AERODYNAMIC = ("standstill_damping", "flutter_margin")
 
 REQUIREMENT = {
     "type": "object",

@@ -13,7 +13,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..formats.yamlnodes import load_yaml
-from .schema import KINDS, SPEC_SCHEMA
+from .schema import AERODYNAMIC, KINDS, SPEC_SCHEMA
 
 DEFAULT_RPM_POINTS = 16
 DEFAULT_BLADES = 3
@@ -33,6 +33,7 @@ class ModelSpec:
     elements : fixed element count, or None for a converged mesh
     geometry : geometry overrides in SI units (tip_radius, hub_radius, precone, pitch, tip_mass), None when absent
     elastodyn_main : ElastoDyn main file for an ElastoDyn blade file, or None
+    aerodyn : AeroDyn primary file of the blade's aerodynamics, or None
     line : line of the model in the spec
     """
 
@@ -45,6 +46,7 @@ class ModelSpec:
     elements: int | None = None
     geometry: dict[str, float] = field(default_factory=dict)
     elastodyn_main: Path | None = None
+    aerodyn: Path | None = None
     line: int | None = None
 
 
@@ -111,14 +113,15 @@ def _model(name: str, entry: dict[str, Any], folder: Path, path: Path, lines: di
     if rpm is not None and not 0 < rpm[0] <= rpm[1]:
         raise InputError(f"need 0 < min <= max, got {rpm}", file=str(path),
                          line=lines.get(("models", name, "operating_rpm")), field=f"models.{name}.operating_rpm")
-    main = entry.get("elastodyn_main")
+    main, aerodyn = entry.get("elastodyn_main"), entry.get("aerodyn")
     return ModelSpec(name=name, input=folder / entry["input"],
                      operating_rpm=None if rpm is None else (float(rpm[0]), float(rpm[1])),
                      rpm_points=int(entry.get("rpm_points", DEFAULT_RPM_POINTS)),
                      blades=int(entry.get("blades", DEFAULT_BLADES)),
                      n_modes=int(entry.get("n_modes", DEFAULT_MODES)),
                      elements=entry.get("elements"), geometry=_geometry(entry),
-                     elastodyn_main=None if main is None else folder / main, line=line)
+                     elastodyn_main=None if main is None else folder / main,
+                     aerodyn=None if aerodyn is None else folder / aerodyn, line=line)
 
 
 def _requirement(index: int, entry: dict[str, Any], folder: Path, models: dict[str, ModelSpec], path: Path,
@@ -140,6 +143,9 @@ def _requirement(index: int, entry: dict[str, Any], folder: Path, models: dict[s
     if needs_range and model.operating_rpm is None:
         raise InputError(f"a '{kind}' requirement needs the model's operating_rpm", file=str(path), line=line,
                          field=f"models.{model.name}.operating_rpm")
+    if kind in AERODYNAMIC and model.aerodyn is None:
+        raise InputError(f"a '{kind}' requirement needs the model's aerodyn (an AeroDyn primary file)",
+                         file=str(path), line=line, field=f"models.{model.name}.aerodyn")
     name = entry.get("name") or f"{entry['model']} {kind.replace('_', '-')}"
     return Requirement(kind=kind, model=entry["model"], parameters=parameters, name=name, index=index,
                        source=str(path), line=line)

@@ -32,6 +32,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "export": ("export", "write mode shapes for inspection: VTK (ParaView), PNG pictures, animated GIFs"),
     "report": ("report", "an inspection report (Markdown and HTML with images)"),
     "turbine": ("turbine", "16-DOF Kane turbine model (ElastoDyn structure) fed by bladefem modes"),
+    "standstill": ("standstill", "stall-induced vibration of a parked blade: mode damping against wind direction"),
     "check": ("check", "design checks for CI: frequency windows, resonance margins, soft-stiff band, baselines"),
     "batch": ("batch", "run a plan of cases (grid, Monte Carlo, files) on Dask; results in Parquet"),
     "batch-summary": ("batch", "statistics and sensitivities of batch results"),

@@ -83,22 +83,39 @@ def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: 
     performance = performance_at(rotor, inflow, rotor_speed, pitch, 0.0, np.zeros(1))
     phi, w = performance.phi[0, 0], performance.w[0, 0]
     alpha = performance.alpha[0, 0]
+    slopes = polar_slopes(rotor, alpha)
+    cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
+    return AeroOperatingPoint(
+        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor),
+        X=w * np.sin(phi), Y=w * np.cos(phi), theta=rotor.twist + pitch, alpha=alpha, cl=performance.cl[0, 0],
+        cd=performance.cd[0, 0], cm=cm,
+        dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
+        air_density=rotor.air_density, rotor_speed=rotor_speed,
+        shaft_axis=shaft_axis(rotor), wind_speed=wind_speed, pitch=pitch)
+
+
+def polar_slopes(rotor: Rotor, alpha: NDArray) -> NDArray:
+    """(3, nodes): d(cl, cd, cm)/d(alpha) per rad at each node's angle of attack ``alpha`` (rad), by central
+    differences of the polars as interpolated (:data:`SLOPE_STEP`); the cm slope is zero when the BEM leaves out
+    the pitching moment."""
     slopes = np.zeros((3, len(alpha)))
     for node, (angle, airfoil) in enumerate(zip(alpha, rotor.airfoil)):
         up = rotor.polars[airfoil].coefficients(angle + SLOPE_STEP)
         down = rotor.polars[airfoil].coefficients(angle - SLOPE_STEP)
         slopes[:, node] = [(u[0] - d[0]) / (2 * SLOPE_STEP) for u, d in zip(up, down)]
-    cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
     if not rotor.options.pitching_moment:
         slopes[2] = 0.0
-    precone = rotor.precone
-    return AeroOperatingPoint(
-        span=rotor.span, chord=rotor.chord, centre=np.stack([np.zeros_like(rotor.span), -rotor.sweep, rotor.curve]),
-        X=w * np.sin(phi), Y=w * np.cos(phi), theta=rotor.twist + pitch, alpha=alpha, cl=performance.cl[0, 0],
-        cd=performance.cd[0, 0], cm=cm,
-        dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
-        air_density=rotor.air_density, rotor_speed=rotor_speed,
-        shaft_axis=np.array([math.sin(precone), 0.0, math.cos(precone)]), wind_speed=wind_speed, pitch=pitch)
+    return slopes
+
+
+def aerodynamic_centres(rotor: Rotor) -> NDArray:
+    """(3, nodes): the aerodynamic centres' offsets ``(0, -BlSwpAC, BlCrvAC)`` in the blade frame, m."""
+    return np.stack([np.zeros_like(rotor.span), -rotor.sweep, rotor.curve])
+
+
+def shaft_axis(rotor: Rotor) -> NDArray:
+    """The shaft axis in the coned blade frame, ``(sin precone, 0, cos precone)``."""
+    return np.array([math.sin(rotor.precone), 0.0, math.cos(rotor.precone)])
 
 
 def load_derivatives(op: AeroOperatingPoint) -> NDArray:
