@@ -177,11 +177,28 @@ def flutter_point(matrices: BladeMatrices, rotor: Rotor, condition: OperatingCon
         roots.append(root)
         shapes.append(basis @ root.shape)
     X = np.stack(shapes, axis=1)
-    fractions = complex_energy_fractions(matrices, X)
+    fractions = complex_energy_fractions(matrices, chord_frame(matrices, X, condition.pitch))
     return FlutterPoint(condition=condition, frequency_hz=np.array([r.frequency / (2 * math.pi) for r in roots]),
                         damping_ratio=np.array([r.damping_ratio for r in roots]),
                         shares=[{name: f[name] for name in SHARES} for f in fractions],
                         converged=np.array([r.converged for r in roots]), shapes=X)
+
+
+def chord_frame(matrices: BladeMatrices, X: NDArray, pitch: float) -> NDArray:
+    """Free-DOF shapes with the in-plane and out-of-plane fields (v, w) turned at each node into the section's chord
+    frame by the structural twist plus ``pitch`` (rad): v along the chord (edge), w normal to it (flap), so that the
+    kinetic-energy shares name flap and edge as the section sees them."""
+    dofs = matrices.dofs
+    if "v" not in dofs.fields or "w" not in dofs.fields:
+        return X
+    full = np.zeros((dofs.size, X.shape[1]), dtype=X.dtype)
+    full[matrices.free] = X
+    theta = (pitch + matrices.blade.sections.at(dofs.nodes, "twist"))[:, None]
+    c, s = np.cos(theta), np.sin(theta)
+    for kind in (dofs.value, dofs.slope):
+        v, w = full[kind["v"]], full[kind["w"]]
+        full[kind["v"]], full[kind["w"]] = c * v - s * w, s * v + c * w
+    return full[matrices.free]
 
 
 def onset(points: Sequence[FlutterPoint]) -> FlutterOnset | None:
