@@ -17,13 +17,20 @@ from .aerodyn_primary import default_air_density, read_aerodyn_primary
 from .airfoil_polars import read_airfoil
 
 
-def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int = 3) -> Rotor:
+def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int = 3,
+                  replaced: dict[str, str] | None = None) -> Rotor:
     """A rigid rotor of ``n_blades`` blades with the planform of the primary file's ADBlFile(1), its polars (first
     table of each airfoil file) and BEM switches, and the blade's hub radius and precone (no shaft tilt). Settings
     asking for physics bladefem does not model, a missing blade file, an airfoil number beyond NumAFfiles or an
-    AeroDyn blade longer than the structural one are :class:`InputError` naming file, line and field."""
+    AeroDyn blade longer than the structural one are :class:`InputError` naming file, line and field.
+    ``replaced``: labels (e.g. ``UA_Mod``) whose physics the caller models its own way -> the note that says how;
+    those settings are accepted and the note joins the rotor's notes."""
     primary = read_aerodyn_primary(primary_path)
-    refused = primary.unmodelled()
+    replaced = replaced or {}
+    unmodelled = primary.unmodelled()
+    refused = [item for item in unmodelled if item.label not in replaced]
+    notes = tuple(f"{item.label} of {primary.path}: {replaced[item.label]}" for item in unmodelled
+                  if item.label in replaced)
     if refused:
         first = refused[0]
         raise InputError(first.message, file=first.file, line=first.line, field=first.label)
@@ -46,4 +53,4 @@ def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int =
     return Rotor(n_blades=n_blades, hub_radius=blade.hub_radius, span=planform.span, chord=planform.chord,
                  twist=planform.twist, airfoil=planform.airfoil - 1, polars=polars, curve=planform.curve,
                  sweep=planform.sweep, precone=blade.precone, air_density=default_air_density(primary.air_density),
-                 options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})",))
+                 options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})",) + notes)

@@ -21,6 +21,13 @@ from ..errors import InputError
 from . import options
 from .inputs import add_blade_options, positive_int, read_structure
 
+#: AeroDyn settings that the flutter analysis accepts, and what it does instead
+UNSTEADY = "the airfoils' unsteady model is replaced by Theodorsen's attached-flow theory about the operating point"
+FROZEN = "the induction is frozen at the operating point (the linearization's frozen wake)"
+ALONE = "the blade alone in the wind: tower, nacelle and buoyancy loads are not part of a blade's flutter"
+REPLACED = {"UA_Mod": UNSTEADY, "AFAeroMod": UNSTEADY, "DBEMT_Mod": FROZEN, "WakeMod": FROZEN,
+            **{label: ALONE for label in ("TwrPotent", "TwrShadow", "TwrAero", "Buoyancy", "NacelleDrag",
+                                          "TFinAero", "CavitCheck", "CompAA")}}
 #: the aerodynamic centre's chordwise position, fraction of the chord from the leading edge (thin-airfoil theory)
 AC_FRACTION = 0.25
 
@@ -122,7 +129,7 @@ def run_flutter(args: argparse.Namespace) -> int:
     if not is_blade(blade):
         raise InputError("flutter is a blade analysis: give a blade input", file=str(args.input), field="INPUT")
     sweep = conditions(args, blade.pitch)
-    rotor = aerodyn_rotor(args.aero, blade, args.blades)
+    rotor = aerodyn_rotor(args.aero, blade, args.blades, REPLACED)
     notes = list(rotor.notes) + list(blade.notes)
     if all(c.wind_speed == 0.0 for c in sweep) and rotor.options.induction:
         rotor = replace(rotor, options=replace(rotor.options, induction=False))
