@@ -173,7 +173,7 @@ def flutter_point(matrices: BladeMatrices, rotor: Rotor, condition: OperatingCon
         else:
             omega = 2 * math.pi * previous.frequency_hz[j]
             start = basis.T @ (M @ previous.shapes[:, j])
-        root = pk_root(M_r, C_r, K_r, aero, max(omega, 1e-6), start)
+        root = pk_root(M_r, C_r, K_r, aero, max(omega, 1e-6), start, taken=tuple(r.p for r in roots))
         roots.append(root)
         shapes.append(basis @ root.shape)
     X = np.stack(shapes, axis=1)

@@ -61,14 +61,17 @@ def mac(a: NDArray, b: NDArray) -> NDArray:
 
 
 def pk_root(M: NDArray, C: NDArray, K: NDArray, aero: Aero, omega: float, shape: NDArray,
-            rtol: float = PK_RTOL) -> PkRoot:
+            rtol: float = PK_RTOL, taken: tuple[complex, ...] = ()) -> PkRoot:
     """The p-k root of the mode with damped frequency near ``omega`` (rad/s, > 0) and shape near ``shape``
-    (module docstring)."""
+    (module docstring); roots equal (to 1e-6 relative) to one of ``taken`` (other modes' converged roots) are not
+    candidates, so that two tracked modes do not settle on one root."""
     p, q = complex(0.0, omega), shape
     for iteration in range(1, PK_ITERATIONS + 1):
         M_a, D_a, K_a = aero(complex(0.0, abs(p.imag)))
         values, shapes = state_roots(M + M_a, C + D_a, K + K_a)
         upper = values.imag > 0
+        for other in taken:
+            upper &= np.abs(values - other) > 1e-6 * abs(other)
         if not upper.any():
             break
         candidates, candidate_shapes = values[upper], shapes[:, upper]
