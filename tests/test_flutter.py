@@ -179,3 +179,19 @@ def test_tower_input_is_refused():
     code, _, err = run("flutter", str(ROOT / "cases/uniform_tower.yaml"), "--aero",
                        str(GOLAND / "goland_AeroDyn.dat"), "--wind-speed", "10:20:3")
     assert code == 2 and "blade" in err
+
+
+def test_the_flutter_document_is_what_its_script_writes(tmp_path):
+    """docs/flutter.md is the current output of examples/flutter.py (its numbers to the printed last digit:
+    rounding may move it)."""
+    import re
+    import subprocess
+    import sys
+
+    written = tmp_path / "flutter.md"
+    subprocess.run([sys.executable, str(ROOT / "examples" / "flutter.py"), "--output", str(written)], check=True,
+                   cwd=ROOT, capture_output=True)
+    numbers = [re.findall(r"-?\d+\.\d+", text) for text in (written.read_text(),
+                                                              (ROOT / "docs" / "flutter.md").read_text())]
+    assert len(numbers[0]) == len(numbers[1]) > 150
+    assert max(abs(float(a) - float(b)) for a, b in zip(*numbers)) <= 0.011
