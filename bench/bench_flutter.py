@@ -40,7 +40,7 @@ def main() -> None:
         start = time.perf_counter()
         matrices = blade_matrices(blade, None, 6, 20.0)
         assembled = time.perf_counter()
-        sweep = [OperatingCondition(0.0, rpm * np.pi / 30, blade.pitch) for rpm in np.linspace(3, 20, 30)]
+        sweep = [OperatingCondition(0.0, rpm * np.pi / 30, blade.pitch) for rpm in np.linspace(3, 20, int(sys.argv[1]) if len(sys.argv) > 1 else 30)]
         result = flutter_sweep(matrices, rotor, sweep, 6)
         done = time.perf_counter()
     print(f"IEA-15MW blade, {len(matrices.free)} free DOFs, 30 speeds x 6 modes: sweep {done - assembled:.2f} s, "
