@@ -1,11 +1,11 @@
 """Flutter of a rotating (or parked) blade: the damping and frequency of each blade mode along a sweep of rotor or
 wind speed, with the unsteady section aerodynamics of :mod:`bladefem.models.flutter_aero` in a p-k iteration.
 
-At each operating point (wind speed, rotor speed, pitch) the structure ``K0 + Omega^2 K2``, ``M`` and the Coriolis
-matrix ``Omega G`` are reduced to the lowest ``basis`` undamped modes ``Phi`` at that rotor speed; the aerodynamic
-section matrices (BEM operating point with its induction, frozen) are integrated on the blade's quadrature points
-against the modes' motion there, the circulatory part point by point with Theodorsen's ``C(k)`` at the point's
-own reduced frequency. Each of the lowest ``n_modes`` modes is then followed by the p-k iteration
+The structure ``K0 + Omega^2 K2``, ``M`` and the Coriolis matrix ``Omega G`` are reduced once for the sweep to the
+undamped modes at its lowest and highest rotor speeds (:class:`~bladefem.models.flutter_basis.SweepBasis`); at each
+operating point (wind speed, rotor speed, pitch) the aerodynamic section matrices (BEM operating point with its
+induction, frozen) are integrated on the blade's quadrature points against the basis's motion there, the
+circulatory part point by point with Theodorsen's ``C(k)`` at the point's own reduced frequency. Each of the lowest ``n_modes`` modes is then followed by the p-k iteration
 (:func:`~bladefem.models.flutter_pk.pk_root`), starting from its root at the previous sweep point (MAC-tracked).
 
 Why p-k with Theodorsen's function rather than indicial (Wagner/Jones) states: the reduced frequency
@@ -23,20 +23,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
-from skfem import Basis
+import scipy.linalg as la
 
 from ..aero.rotor import Rotor
-from ..assembly import BladeMatrices, span_mesh
-from ..assembly.blade import QUADRATURE_ORDER
-from ..elements import beam_element, interpolated_motion
+from ..assembly import BladeMatrices
 from ..modal.quadratic import complex_energy_fractions
-from ..modal.solve import eigen_pairs
 from .blade_aero import operating_point
-from .flutter_aero import FlutterSections, flutter_sections, theodorsen
-from .flutter_pk import mac, pk_root
+from .flutter_aero import flutter_sections
+from .flutter_basis import ReducedAero, SweepBasis
+from .flutter_pk import PkRoot, mac, pk_root
 
-#: undamped modes of the reduction basis per tracked mode (and at least BASIS_MIN)
-BASIS_PER_MODE, BASIS_MIN = 3, 12
+#: undamped modes per end of the sweep in the reduction basis, per tracked mode (and at least BASIS_MIN)
+BASIS_PER_MODE, BASIS_MIN = 2, 10
 #: shares reported (kinetic-energy fractions of the fields)
 SHARES = ("flap", "edge", "torsion")
 
@@ -66,6 +64,7 @@ class FlutterPoint:
     shares: list[dict[str, float]]
     converged: NDArray
     shapes: NDArray = field(repr=False)
+    reduced: NDArray = field(repr=False, default_factory=lambda: np.zeros((0, 0)))
 
     def as_dict(self) -> dict:
         return {"rpm": self.condition.rpm, "wind_speed_m_s": self.condition.wind_speed,
@@ -107,81 +106,30 @@ class FlutterResult:
                 "sweep": [point.as_dict() for point in self.points], "notes": list(self.notes)}
 
 
-class ReducedAero:
-    """The section matrices of one operating point integrated against the modal basis ``Phi`` (free DOFs)."""
-
-    def __init__(self, matrices: BladeMatrices, sections: FlutterSections, basis: NDArray):
-        full = np.zeros((matrices.dofs.size, basis.shape[1]))
-        full[matrices.free] = basis
-        quadrature = matrices.quadrature
-        motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, full).kinematic
-        phi = motion.reshape(6, basis.shape[1], -1)                          # (6, modes, points)
-        weights = quadrature.weights.ravel()
-        x = quadrature_points(matrices).ravel()
-        at = self._interpolation(sections.span, x)
-
-        def project(A: NDArray) -> NDArray:                                  # (points, modes, modes)
-            return np.einsum("fmq,fgq,gkq,q->qmk", phi, at(A), phi, weights, optimize=True)
-
-        self.constant_mass = project(sections.apparent_mass).sum(axis=0)
-        self.constant_damping = project(sections.quasi_steady_damping + sections.apparent_damping).sum(axis=0)
-        self.constant_stiffness = project(sections.quasi_steady_stiffness).sum(axis=0)
-        self.lift_damping, self.lift_stiffness = project(sections.lift_damping), project(sections.lift_stiffness)
-        inside = (x >= sections.span[0]) & (x <= sections.span[-1])
-        speed = np.interp(x, sections.span, sections.speed)
-        self.frequency_scale = np.divide(np.interp(x, sections.span, sections.semi_chord), speed,
-                                         out=np.zeros_like(x), where=inside & (speed > 0))
-
-    @staticmethod
-    def _interpolation(span: NDArray, x: NDArray) -> Callable[[NDArray], NDArray]:
-        """Linear interpolation of (6, 6, nodes) arrays to ``x``, zero outside the AeroDyn span."""
-        right = np.clip(np.searchsorted(span, x, side="right"), 1, len(span) - 1)
-        left = right - 1
-        gap = span[right] - span[left]
-        t = np.divide(x - span[left], gap, out=np.zeros_like(x), where=gap > 0)
-        inside = (x >= span[0]) & (x <= span[-1])
-        return lambda A: (A[:, :, left] * (1 - t) + A[:, :, right] * t) * inside
-
-    def __call__(self, p: complex) -> tuple[NDArray, NDArray, NDArray]:
-        c = theodorsen(abs(p.imag) * self.frequency_scale)
-        return (self.constant_mass, self.constant_damping + np.einsum("q,qmk->mk", c, self.lift_damping),
-                self.constant_stiffness + np.einsum("q,qmk->mk", c, self.lift_stiffness))
-
-
-def quadrature_points(matrices: BladeMatrices) -> NDArray:
-    """Span positions (m) of the blade mesh's quadrature points, (elements, points)."""
-    basis = Basis(span_mesh(matrices.dofs.nodes), beam_element(matrices.dofs.fields), intorder=QUADRATURE_ORDER)
-    return np.asarray(basis.global_coordinates())[0]
-
-
-def flutter_point(matrices: BladeMatrices, rotor: Rotor, condition: OperatingCondition, n_modes: int,
-                  previous: FlutterPoint | None, chordwise_centre: NDArray | float = 0.0) -> FlutterPoint:
+def flutter_point(matrices: BladeMatrices, basis: SweepBasis, rotor: Rotor, condition: OperatingCondition,
+                  n_modes: int, previous: FlutterPoint | None, chordwise_centre: NDArray | float = 0.0
+                  ) -> FlutterPoint:
     """The tracked modes at ``condition``: from the structure's lowest modes when ``previous`` is None, else
     continued from the roots of ``previous`` (module docstring)."""
     speed = condition.rotor_speed
-    K, M = matrices.reduced(speed)
-    values, basis = eigen_pairs(K, M, max(BASIS_MIN, BASIS_PER_MODE * n_modes))
     op = operating_point(rotor, condition.wind_speed, speed, condition.pitch)
-    aero = ReducedAero(matrices, flutter_sections(op, chordwise_centre), basis)
-    size = basis.shape[1]
-    M_r, K_r = np.eye(size), np.diag(values)
-    C_r = speed * (basis.T @ (matrices.free_gyroscopic @ basis))
-    roots, shapes = [], []
-    for j in range(n_modes):
-        if previous is None:
-            omega, start = math.sqrt(max(values[j], 0.0)), np.eye(size)[:, j].astype(complex)
-        else:
-            omega = 2 * math.pi * previous.frequency_hz[j]
-            start = basis.T @ (M @ previous.shapes[:, j])
-        root = pk_root(M_r, C_r, K_r, aero, max(omega, 1e-6), start, taken=tuple(r.p for r in roots))
-        roots.append(root)
-        shapes.append(basis @ root.shape)
-    X = np.stack(shapes, axis=1)
+    aero = ReducedAero(basis, flutter_sections(op, chordwise_centre))
+    M_r, K_r, C_r = np.eye(basis.size), basis.stiffness(speed), speed * basis.G
+    if previous is None:
+        values, vectors = la.eigh(K_r)
+        starts = [(math.sqrt(max(values[j], 0.0)), vectors[:, j].astype(complex)) for j in range(n_modes)]
+    else:
+        starts = [(2 * math.pi * previous.frequency_hz[j], previous.reduced[:, j]) for j in range(n_modes)]
+    roots: list[PkRoot] = []
+    for omega, start in starts:
+        roots.append(pk_root(M_r, C_r, K_r, aero, max(omega, 1e-6), start, taken=tuple(r.p for r in roots)))
+    reduced = np.stack([r.shape for r in roots], axis=1)
+    X = basis.vectors @ reduced
     fractions = complex_energy_fractions(matrices, chord_frame(matrices, X, condition.pitch))
     return FlutterPoint(condition=condition, frequency_hz=np.array([r.frequency / (2 * math.pi) for r in roots]),
                         damping_ratio=np.array([r.damping_ratio for r in roots]),
                         shares=[{name: f[name] for name in SHARES} for f in fractions],
-                        converged=np.array([r.converged for r in roots]), shapes=X)
+                        converged=np.array([r.converged for r in roots]), shapes=X, reduced=reduced)
 
 
 def chord_frame(matrices: BladeMatrices, X: NDArray, pitch: float) -> NDArray:
@@ -227,9 +175,10 @@ def flutter_sweep(matrices: BladeMatrices, rotor: Rotor, conditions: Sequence[Op
     """Damping and frequency of the lowest ``n_modes`` blade modes at each of ``conditions`` (in sweep order),
     MAC-tracked from point to point, and the flutter onset (:func:`onset`). ``chordwise_centre``: the aerodynamic centre ahead of AeroDyn's reference line, m (per AeroDyn
     node or one value)."""
+    basis = SweepBasis(matrices, [c.rotor_speed for c in conditions], max(BASIS_MIN, BASIS_PER_MODE * n_modes))
     points: list[FlutterPoint] = []
     for condition in progress(conditions):
-        points.append(flutter_point(matrices, rotor, condition, n_modes, points[-1] if points else None,
+        points.append(flutter_point(matrices, basis, rotor, condition, n_modes, points[-1] if points else None,
                                     chordwise_centre))
     first = onset(points)
     unconverged = sum(int((~p.converged).sum()) for p in points)

@@ -66,6 +66,7 @@ def pk_root(M: NDArray, C: NDArray, K: NDArray, aero: Aero, omega: float, shape:
     (module docstring); roots equal (to 1e-6 relative) to one of ``taken`` (other modes' converged roots) are not
     candidates, so that two tracked modes do not settle on one root."""
     p, q = complex(0.0, omega), shape
+    history: list[tuple[float, float]] = []                  # (trial frequency, frequency of the root found there)
     for iteration in range(1, PK_ITERATIONS + 1):
         M_a, D_a, K_a = aero(complex(0.0, abs(p.imag)))
         values, shapes = state_roots(M + M_a, C + D_a, K + K_a)
@@ -80,5 +81,22 @@ def pk_root(M: NDArray, C: NDArray, K: NDArray, aero: Aero, omega: float, shape:
         new, q = candidates[best], candidate_shapes[:, best]
         if abs(new.imag - p.imag) <= rtol * abs(new.imag):
             return PkRoot(new, q, iteration, True)
-        p = new
+        history.append((p.imag, new.imag))
+        p = complex(new.real, secant(history))
     return PkRoot(p, q, PK_ITERATIONS, False)
+
+
+def secant(history: list[tuple[float, float]]) -> float:
+    """The next trial frequency of the fixed point ``omega = g(omega)``: the secant step on ``g(omega) - omega``
+    through the last two trials when it stays between their images (superlinear), else the plain image ``g``."""
+    trial, image = history[-1]
+    if len(history) < 2:
+        return image
+    before, before_image = history[-2]
+    slope = ((image - trial) - (before_image - before)) / (trial - before) if trial != before else 0.0
+    if slope == 0.0:
+        return image
+    step = trial - (image - trial) / slope
+    low, high = sorted((image, before_image))
+    spread = max(high - low, abs(image - trial))
+    return step if low - spread <= step <= high + spread and step > 0 else image
