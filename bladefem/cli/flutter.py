@@ -168,8 +168,8 @@ def flutter_text(result) -> str:
         lines.append("flutter onset: none in the sweep (every tracked mode stays damped)")
     else:
         shares = ", ".join(f"{name} {share:.2f}" for name, share in onset.shares.items())
-        lines.append(f"flutter onset: mode {onset.mode} at {onset.rpm:.4g} rpm, {onset.wind_speed_m_s:.4g} m/s, "
-                     f"{onset.frequency_hz:.4g} Hz ({shares})")
+        lines.append(f"flutter onset: mode {onset.mode} at {onset.rpm:.5g} rpm, {onset.wind_speed_m_s:.5g} m/s, "
+                     f"{onset.frequency_hz:.5g} Hz ({shares})")
     return "\n".join(lines)
 
 
