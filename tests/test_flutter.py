@@ -302,3 +302,11 @@ def test_text_table_and_vtk_of_the_unstable_mode(tmp_path):
     assert (tmp_path / "vtk" / "flutter_mode.pvd").is_file()
     [mode] = sidecar["speeds"][0]["modes"]
     assert 10.5 < mode["frequency_hz"] < 11.5 and mode["energy_fractions"]["torsion"] > 0.2
+
+
+def test_a_blade_root_on_the_rotor_axis_is_refused():
+    """An AeroDyn node at radius 0 (hub radius 0 and BlSpn 0) has no BEM operating point: one line naming
+    --hub-radius, not a division by zero (the Goland wing with its root moved onto the axis)."""
+    code, out, err = run("flutter", str(GOLAND / "goland_wing.yaml"), "--hub-radius", "0", "--aero",
+                         str(GOLAND / "goland_AeroDyn.dat"), "--wind-speed", "120:140:2", "--blades", "1")
+    assert code == 2 and out == "" and "--hub-radius" in err and "Traceback" not in err
