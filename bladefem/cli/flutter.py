@@ -140,6 +140,9 @@ def run_flutter(args: argparse.Namespace) -> int:
     centre = chordwise_centre(blade, rotor, notes)
     matrices = blade_matrices(blade, args.elements, args.n_modes, max(c.rpm for c in sweep))
     notes += list(matrices.notes)
+    if "phi" not in matrices.dofs.fields:
+        notes.append("torsion is rigid in this input (no torsion stiffness): no flap-torsion flutter can appear; a "
+                     "BeamDyn, HAWC2 or windIO input, or a case file with torsion_stiffness_N_m2, has it")
     notes.append("no structural damping: a mode whose damping ratio turns negative is unstable (flutter)")
     progress = progress_bar("Flutter sweep", args.quiet)
     result = flutter_sweep(matrices, rotor, sweep, args.n_modes, centre, tuple(notes), progress)
