@@ -27,7 +27,7 @@ from deck_copies import deck_copy  # noqa: E402
 
 from bladefem.builders.aerodyn_rotor import aerodyn_rotor  # noqa: E402
 from bladefem.builders.detect import Geometry, read_model  # noqa: E402
-from bladefem.cli.flutter import REPLACED  # noqa: E402
+from bladefem.builders.flutter_inputs import REPLACED  # noqa: E402
 from bladefem.modal import blade_matrices  # noqa: E402
 from bladefem.models.flutter import OperatingCondition, flutter_sweep  # noqa: E402
 

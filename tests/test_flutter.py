@@ -310,3 +310,27 @@ def test_a_blade_root_on_the_rotor_axis_is_refused():
     code, out, err = run("flutter", str(GOLAND / "goland_wing.yaml"), "--hub-radius", "0", "--aero",
                          str(GOLAND / "goland_AeroDyn.dat"), "--wind-speed", "120:140:2", "--blades", "1")
     assert code == 2 and out == "" and "--hub-radius" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("factor, passed", [(1.5, True), (2.0, False)])
+def test_check_flutter_margin_requirement(tmp_path, factor, passed):
+    """``bladefem check``'s flutter requirement on the NREL 5MW BeamDyn blade in still air (first onset 21.8 rpm,
+    1.80 times the rated 12.1): no onset up to 1.5 x rated passes, 2 x rated fails with the onset's ratio measured."""
+    spec = tmp_path / "check.yaml"
+    spec.write_text(f"""models:
+  blade:
+    input: {ROOT / "tests/data/nrel5mw_beamdyn/bd_primary_nrel_5mw.inp"}
+    hub_radius_m: 1.5
+requirements:
+  - model: blade
+    flutter: {{aero: {ROOT / "cases/nrel5mw/NRELOffshrBsline5MW_Onshore_AeroDyn.dat"}, rated_rpm: 12.1,
+              factor: {factor}, points: 9}}
+""")
+    code, out, err = run("check", str(spec), "--json")
+    assert code == (0 if passed else 1), err
+    [outcome] = json.loads(out)["outcomes"]
+    assert outcome["passed"] is passed
+    if passed:
+        assert outcome["measured"] == 1.5 and "no onset" in outcome["detail"]
+    else:
+        assert outcome["measured"] == pytest.approx(21.8 / 12.1, rel=0.02) and outcome["margin"] < 0

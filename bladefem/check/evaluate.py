@@ -130,8 +130,14 @@ def _elastodyn(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
     yield from elastodyn_verdicts(run, req)
 
 
+def _flutter(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
+    from .flutter import flutter_verdict
+    yield flutter_verdict(run, req)
+
+
 EVALUATORS: dict[str, Callable[..., Iterator[Outcome]]] = {
-    "window": _window, "resonance": _resonance, "soft_stiff": _soft_stiff, "elastodyn": _elastodyn}
+    "window": _window, "resonance": _resonance, "soft_stiff": _soft_stiff, "elastodyn": _elastodyn,
+    "flutter": _flutter}
 
 
 def evaluate_requirement(run: ModelRun, req: Requirement, update_baseline: bool = False) -> list[Outcome]:

@@ -108,8 +108,24 @@ ELASTODYN = {
     },
 }
 
+FLUTTER = {
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["aero", "rated_rpm", "factor"],
+    "properties": {
+        "aero": {"type": "string", "description": "AeroDyn primary file, relative to the spec file"},
+        "rated_rpm": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e4, "description": "rated rotor speed"},
+        "factor": {"type": "number", "minimum": 1, "maximum": 10,
+                   "description": "no flutter onset below factor x rated_rpm (the sweep runs up to there)"},
+        "wind_speed": {"type": "number", "minimum": 0, "maximum": 100,
+                       "description": "wind speed along the shaft, m/s (default 0: still air, no induction)"},
+        "points": {"type": "integer", "minimum": 2, "maximum": 200,
+                   "description": "rotor speeds swept from rated to factor x rated (default 16)"},
+    },
+}
+
 KINDS = {"window": WINDOW, "resonance": RESONANCE, "soft_stiff": SOFT_STIFF, "baseline": BASELINE,
-         "elastodyn": ELASTODYN}
+         "elastodyn": ELASTODYN, "flutter": FLUTTER}
 
 REQUIREMENT = {
     "type": "object",

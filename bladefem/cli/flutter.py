@@ -21,17 +21,6 @@ from ..errors import InputError
 from . import options
 from .inputs import add_blade_options, positive_int, read_structure
 
-#: AeroDyn settings that the flutter analysis accepts, and what it does instead
-UNSTEADY = "the airfoils' unsteady model is replaced by Theodorsen's attached-flow theory about the operating point"
-FROZEN = "the induction is frozen at the operating point (the linearization's frozen wake)"
-ALONE = "the blade alone in the wind: tower, nacelle and buoyancy loads are not part of a blade's flutter"
-REPLACED = {"UA_Mod": UNSTEADY, "AFAeroMod": UNSTEADY, "DBEMT_Mod": FROZEN, "WakeMod": FROZEN,
-            **{label: ALONE for label in ("TwrPotent", "TwrShadow", "TwrAero", "Buoyancy", "NacelleDrag",
-                                          "TFinAero", "CavitCheck", "CompAA")}}
-#: the aerodynamic centre's chordwise position, fraction of the chord from the leading edge (thin-airfoil theory)
-AC_FRACTION = 0.25
-
-
 def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "flutter", help="blade flutter: damping of each mode over rotor or wind speed (unsteady aerodynamics)",
@@ -98,25 +87,11 @@ def conditions(args: argparse.Namespace, pitch: float):
     return [OperatingCondition(u, r * math.pi / 30.0, pitch) for r in rpm for u in wind]
 
 
-def chordwise_centre(blade, rotor, notes: list[str]):
-    """The aerodynamic centre ahead of AeroDyn's reference line (m, per AeroDyn node): the quarter chord when the
-    blade input gives the reference axis's chordwise position, else 0 (OpenFAST's convention)."""
-    import numpy as np
-
-    sections = blade.sections
-    if sections.pitch_axis is None:
-        notes.append("aerodynamic centre on AeroDyn's reference line (the blade input gives no pitch-axis position)")
-        return 0.0
-    axis = np.interp(rotor.span, sections.span - sections.span[0], sections.pitch_axis)
-    notes.append("aerodynamic centre at the quarter chord, ahead of the reference axis by (pitch_axis - 0.25) "
-                 "chord")
-    return (axis - AC_FRACTION) * rotor.chord
-
-
 def run_flutter(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
     from ..builders.aerodyn_rotor import aerodyn_rotor
+    from ..builders.flutter_inputs import REPLACED, chordwise_centre
     from ..modal import blade_matrices
     from ..models.flutter import flutter_sweep
     from ..report import progress_bar
