@@ -1,6 +1,5 @@
 """``bladefem check`` aeroelastic requirements: ``standstill_damping`` (the parked blade's least total damping over
-a yaw range, against the sweep of ``bladefem standstill``) and ``flutter_margin`` through its registered flutter
-function (a stand-in here: the margin arithmetic, and the refusal when none is registered)."""
+a yaw range, against the sweep of ``bladefem standstill``); the flutter requirement is tested in test_flutter.py."""
 
 from __future__ import annotations
 
@@ -9,7 +8,6 @@ from pathlib import Path
 import pytest
 
 from bladefem.check import read_spec
-from bladefem.check import aeroelastic
 from bladefem.check.evaluate import evaluate
 from bladefem.cli import main
 from bladefem.errors import InputError
@@ -58,30 +56,3 @@ def test_an_unknown_mode_is_named(tmp_path):
     with pytest.raises(InputError) as error:
         evaluate(read_spec(spec(tmp_path, requirement)))
     assert "edge 9" in error.value.message and error.value.field.endswith("standstill_damping.modes")
-
-
-FLUTTER = "flutter_margin: {{factor: {factor}, rated_rpm: 7.5}}"
-
-
-def test_flutter_margin_without_a_flutter_analysis_is_refused(tmp_path, monkeypatch):
-    monkeypatch.setattr(aeroelastic, "FLUTTER_ONSET", None)
-    with pytest.raises(InputError) as error:
-        evaluate(read_spec(spec(tmp_path, FLUTTER.format(factor=1.2))))
-    assert "flutter" in error.value.message and error.value.field == "requirements.0.flutter_margin"
-
-
-@pytest.mark.parametrize("onset, factor, passed, ratio", [
-    (9.0, 1.2, True, 1.2), (9.0, 1.3, False, 1.2), (None, 1.5, True, 2.0), (None, 2.5, False, 2.0)],
-    ids=["at-margin", "short", "none-up-to-top", "top-too-low"])
-def test_flutter_margin_is_the_onset_over_rated(tmp_path, monkeypatch, onset, factor, passed, ratio):
-    calls = []
-
-    def flutter(run, parameters):
-        calls.append(parameters)
-        return onset, 15.0
-
-    monkeypatch.setattr(aeroelastic, "FLUTTER_ONSET", None)
-    aeroelastic.register_flutter(flutter)
-    [outcome] = evaluate(read_spec(spec(tmp_path, FLUTTER.format(factor=factor))))
-    assert outcome.passed is passed and outcome.measured == pytest.approx(ratio)
-    assert outcome.margin == pytest.approx(ratio - factor) and calls[0]["rated_rpm"] == 7.5

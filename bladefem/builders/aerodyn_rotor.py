@@ -18,18 +18,24 @@ from .airfoil_polars import read_airfoil
 
 
 def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int = 3,
-                  offered: frozenset[str] = frozenset(), taken: frozenset[str] = frozenset()) -> Rotor:
+                  offered: frozenset[str] = frozenset(), taken: frozenset[str] = frozenset(),
+                  replaced: dict[str, str] | None = None) -> Rotor:
     """A rigid rotor of ``n_blades`` blades with the planform of the primary file's ADBlFile(1), its polars (first
     table of each airfoil file) and BEM switches, and the blade's hub radius and precone (no shaft tilt). Settings
     asking for physics bladefem does not model, a missing blade file, an airfoil number beyond NumAFfiles or an
     AeroDyn blade longer than the structural one are :class:`InputError` naming file, line and field. ``offered``:
     the ways forward (:data:`~bladefem.builders.aerodyn_primary.WAYS`) the calling command has, named in the
-    refusal; ``taken``: those given on its command line, which leave such settings out (said in the notes)."""
+    refusal; ``taken``: those given on its command line, which leave such settings out (said in the notes).
+    ``replaced``: labels (e.g. ``UA_Mod``) whose physics the caller models its own way -> the note that says how;
+    those settings are accepted and the note joins the rotor's notes."""
     primary = read_aerodyn_primary(primary_path)
+    replaced = replaced or {}
     unmodelled = primary.unmodelled()
-    refused = [item for item in unmodelled if item.way not in taken]
+    refused = [item for item in unmodelled if item.way not in taken and item.label not in replaced]
     left_out = tuple(f"left out ({item.way}): {item.label} = {item.message.split(' are not')[0].split(' is not')[0]}"
-                     for item in unmodelled if item.way in taken)
+                     for item in unmodelled if item.way in taken and item.label not in replaced)
+    left_out += tuple(f"{item.label} of {primary.path}: {replaced[item.label]}" for item in unmodelled
+                      if item.label in replaced)
     if refused:
         first = refused[0]
         message = first.refusal() if first.way in offered else first.message

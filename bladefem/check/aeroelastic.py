@@ -2,19 +2,16 @@
 
 - ``standstill_damping``: the parked blade's least total damping ratio (structural + quasi-steady aerodynamic,
   :mod:`bladefem.models.standstill`) over a yaw range and the azimuths asked, per mode, at least ``min_percent``.
-- ``flutter_margin``: the blade's flutter rotor speed at least ``factor`` x ``rated_rpm``. The flutter analysis is
-  called through :data:`FLUTTER_ONSET`, a function ``(run, parameters) -> (onset_rpm or None, top_rpm)``: the rotor
-  speed where a mode's damping first crosses zero (None: none up to ``top_rpm``, the sweep's highest speed). It is
-  None until the flutter analysis registers itself with :func:`register_flutter`; a spec asking for the margin is
-  then refused with the reason.
+
+The flutter requirement is :mod:`bladefem.check.flutter`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,16 +24,7 @@ if TYPE_CHECKING:
     from ..models.standstill import StandstillResult
     from .evaluate import Outcome
 
-#: the flutter analysis: (run, requirement parameters) -> (flutter rotor speed in rpm or None, highest rpm swept)
-FlutterOnset = Callable[[ModelRun, dict[str, Any]], tuple[float | None, float]]
-FLUTTER_ONSET: FlutterOnset | None = None
 DEFAULT_YAW_POINTS = 73
-
-
-def register_flutter(onset: FlutterOnset | None) -> None:
-    """Make ``onset`` the flutter analysis the ``flutter_margin`` requirement calls (None: none)."""
-    global FLUTTER_ONSET
-    FLUTTER_ONSET = onset
 
 
 def blade_of(run: ModelRun, req: Requirement) -> Blade:
@@ -100,24 +88,3 @@ def standstill_verdicts(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
                   + (f"; negative total damping at {sectors} deg" if sectors else ""))
         yield Outcome(req.name, f"{name} parked, yaw {result.yaw_deg[0]:g} to {result.yaw_deg[-1]:g} deg",
                       least >= limit, least, f">= {limit:g} %", least - limit, "%", detail)
-
-
-def flutter_verdicts(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
-    """The flutter rotor speed as a multiple of the rated speed, against ``factor``."""
-    from .evaluate import Outcome
-
-    if FLUTTER_ONSET is None:
-        raise req.error("the flutter analysis is not part of this bladefem (no flutter onset function is "
-                        "registered); leave this requirement out")
-    blade_of(run, req)
-    p = req.parameters
-    rated, factor = float(p["rated_rpm"]), float(p["factor"])
-    onset, top = FLUTTER_ONSET(run, p)
-    if onset is None:
-        ratio = top / rated
-        detail = f"no flutter up to {top:.4g} rpm (the sweep's top)"
-    else:
-        ratio = onset / rated
-        detail = f"flutter at {onset:.4g} rpm, rated {rated:.4g} rpm"
-    yield Outcome(req.name, "flutter speed / rated", ratio >= factor, ratio, f">= {factor:g} x rated",
-                  ratio - factor, "x rated", detail)

@@ -136,13 +136,13 @@ def _standstill(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
 
 
 def _flutter(run: ModelRun, req: Requirement) -> Iterator[Outcome]:
-    from .aeroelastic import flutter_verdicts
-    yield from flutter_verdicts(run, req)
+    from .flutter import flutter_verdict
+    yield flutter_verdict(run, req)
 
 
 EVALUATORS: dict[str, Callable[..., Iterator[Outcome]]] = {
     "window": _window, "resonance": _resonance, "soft_stiff": _soft_stiff, "elastodyn": _elastodyn,
-    "standstill_damping": _standstill, "flutter_margin": _flutter}
+    "standstill_damping": _standstill, "flutter": _flutter}
 
 
 def evaluate_requirement(run: ModelRun, req: Requirement, update_baseline: bool = False) -> list[Outcome]:

@@ -44,8 +44,8 @@ MODEL = {
                  "description": "six-by-six blades: the file's curved reference axis (default) or straightened onto "
                                 "the pitch axis (--straight-axis)"},
         "aerodyn": {"type": "string",
-                    "description": "AeroDyn primary file of the blade's aerodynamics (standstill_damping and "
-                                   "flutter_margin requirements), relative to the spec file"},
+                    "description": "AeroDyn primary file of the blade's aerodynamics (standstill_damping "
+                                   "requirements), relative to the spec file"},
     },
 }
 
@@ -148,22 +148,23 @@ STANDSTILL = {
 FLUTTER = {
     "type": "object",
     "additionalProperties": False,
-    "required": ["factor", "rated_rpm"],
+    "required": ["aero", "rated_rpm", "factor"],
     "properties": {
+        "aero": {"type": "string", "description": "AeroDyn primary file, relative to the spec file"},
+        "rated_rpm": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e4, "description": "rated rotor speed"},
         "factor": {"type": "number", "minimum": 1, "maximum": 10,
-                   "description": "the flutter rotor speed must be at least factor x rated_rpm"},
-        "rated_rpm": {**_RPM, "exclusiveMinimum": 0, "description": "rated rotor speed, rpm"},
-        "wind_speed_m_s": {"type": "number", "minimum": 0, "maximum": 100,
-                           "description": "wind speed of the flutter sweep, m/s (default 0)"},
-        "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180,
-                      "description": "blade pitch, deg (default the model's)"},
+                   "description": "no flutter onset below factor x rated_rpm (the sweep runs up to there)"},
+        "wind_speed": {"type": "number", "minimum": 0, "maximum": 100,
+                       "description": "wind speed along the shaft, m/s (default 0: still air, no induction)"},
+        "points": {"type": "integer", "minimum": 2, "maximum": 200,
+                   "description": "rotor speeds swept from rated to factor x rated (default 16)"},
     },
 }
 
 KINDS = {"window": WINDOW, "resonance": RESONANCE, "soft_stiff": SOFT_STIFF, "baseline": BASELINE,
-         "elastodyn": ELASTODYN, "standstill_damping": STANDSTILL, "flutter_margin": FLUTTER}
+         "elastodyn": ELASTODYN, "standstill_damping": STANDSTILL, "flutter": FLUTTER}
 #: requirements that need the model's AeroDyn file
-AERODYNAMIC = ("standstill_damping", "flutter_margin")
+AERODYNAMIC = ("standstill_damping",)
 
 REQUIREMENT = {
     "type": "object",

@@ -132,8 +132,9 @@ def _requirement(index: int, entry: dict[str, Any], folder: Path, models: dict[s
         raise InputError(f"unknown model '{entry['model']}' (models: {', '.join(models)})", file=str(path),
                          line=lines.get(("requirements", index, "model")), field=f"requirements.{index}.model")
     parameters = dict(entry[kind])
-    if "file" in parameters:
-        parameters["file"] = folder / parameters["file"]
+    for name in ("file", "aero"):
+        if name in parameters:
+            parameters[name] = folder / parameters[name]
     window = parameters.get("hz")
     if window is not None and window[0] > window[1]:
         raise InputError(f"need low <= high, got {window}", file=str(path),

@@ -31,6 +31,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "elastodyn": ("elastodyn", "ElastoDyn mode-shape coefficients (fit, quality, check, in-place update)"),
     "export": ("export", "write mode shapes for inspection: VTK (ParaView), PNG pictures, animated GIFs"),
     "report": ("report", "an inspection report (Markdown and HTML with images)"),
+    "flutter": ("flutter", "blade flutter: damping of each mode over rotor or wind speed (unsteady aerodynamics)"),
     "turbine": ("turbine", "16-DOF Kane turbine model (ElastoDyn structure) fed by bladefem modes"),
     "standstill": ("standstill", "stall-induced vibration of a parked blade: mode damping against wind direction"),
     "check": ("check", "design checks for CI: frequency windows, resonance margins, soft-stiff band, baselines"),
