@@ -33,7 +33,7 @@ def flutter_verdict(run: ModelRun, req: Requirement) -> Outcome:
     p = req.parameters
     blade, rated, factor = run.structure, float(p["rated_rpm"]), float(p["factor"])
     wind = float(p.get("wind_speed", 0.0))
-    rotor = aerodyn_rotor(p["aero"], blade, run.spec.blades, REPLACED)
+    rotor = aerodyn_rotor(p["aero"], blade, run.spec.blades, replaced=REPLACED)
     if rotor.hub_radius + rotor.span[0] <= 0.0:
         raise req.error("the first AeroDyn node sits on the rotor axis: give the model's hub_radius_m", "aero")
     if wind == 0.0:

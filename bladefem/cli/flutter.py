@@ -104,7 +104,7 @@ def run_flutter(args: argparse.Namespace) -> int:
     if not is_blade(blade):
         raise InputError("flutter is a blade analysis: give a blade input", file=str(args.input), field="INPUT")
     sweep = conditions(args, blade.pitch)
-    rotor = aerodyn_rotor(args.aero, blade, args.blades, REPLACED)
+    rotor = aerodyn_rotor(args.aero, blade, args.blades, replaced=REPLACED)
     if rotor.hub_radius + rotor.span[0] <= 0.0:
         raise InputError("the first AeroDyn node sits on the rotor axis (hub radius 0, BlSpn 0): the BEM needs a "
                          "positive radius at every node; give the hub radius", field="--hub-radius")
