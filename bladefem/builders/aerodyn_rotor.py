@@ -60,3 +60,11 @@ def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int =
                  twist=planform.twist, airfoil=planform.airfoil - 1, polars=polars, curve=planform.curve,
                  sweep=planform.sweep, precone=blade.precone, air_density=default_air_density(primary.air_density),
                  options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})", *left_out))
+
+
+def require_root_off_axis(rotor: Rotor) -> None:
+    """Refuse a rotating BEM whose first AeroDyn node sits on the rotor axis (hub radius 0, BlSpn 0: a blade file
+    that does not give the hub radius): the induction and the hub loss divide by the radius."""
+    if rotor.hub_radius + rotor.span[0] <= 0.0:
+        raise InputError("the first AeroDyn node sits on the rotor axis (hub radius 0, BlSpn 0): the BEM needs a "
+                         "positive radius at every node; give the hub radius", field="--hub-radius")

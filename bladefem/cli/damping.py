@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import math
 from collections.abc import Callable, Iterable
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ..errors import InputError
@@ -64,14 +65,34 @@ def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     notes = blade.notes + matrices.notes
     damping = stiffness = None
     if args.aero is not None:
-        from ..builders.aerodyn_rotor import aerodyn_rotor
+        from ..builders.aerodyn_rotor import aerodyn_rotor, require_root_off_axis
         from ..models.blade_aero import aero_matrices, operating_point
         rotor = aerodyn_rotor(args.aero, blade, args.blades)
+        require_root_off_axis(rotor)
         point = operating_point(rotor, args.wind_speed, args.rpm * math.pi / 30.0, blade.pitch)
         damping, stiffness = aero_matrices(matrices, point)
         notes += ((f"quasi-steady aerodynamic damping and stiffness from {args.aero} at {args.wind_speed:g} m/s, "
                    f"pitch {math.degrees(blade.pitch):g} deg, {args.blades} blades (BEM induction frozen)"),)
-    return solve_quadratic_modes(matrices, args.rpm, args.n_modes, notes, damping, stiffness, args.coriolis)
+    result = solve_quadratic_modes(matrices, args.rpm, args.n_modes, notes, damping, stiffness, args.coriolis)
+    return replace(result, notes=result.notes + _pitch_rate_notes(result)) if args.aero is not None else result
+
+
+#: torsion share of a mode above which its quasi-steady damping misses the pitch-rate term that matters
+TORSION_SHARE = 0.1
+
+
+def _pitch_rate_notes(result: ModalResult) -> tuple[str, ...]:
+    """A note for each negatively damped mode with torsion: the quasi-steady model (AeroDyn's BEM without unsteady
+    airfoil aerodynamics, as OpenFAST linearizes it) has no pitch-rate (three-quarter-chord) damping, which
+    ``bladefem flutter`` adds with the unsteady lift."""
+    return tuple(
+        f"mode {k}: damping {mode.damping_ratio:.3g} with torsion share {mode.energy_fractions.get('torsion', 0.0):.2f}"
+        ": the quasi-steady aerodynamics here (AeroDyn's BEM without unsteady airfoil aerodynamics, as OpenFAST "
+        "linearizes it) leave out the pitch-rate (three-quarter-chord) damping of twisting sections; 'bladefem "
+        "flutter' adds it with the unsteady lift"
+        for k, mode in enumerate(result.modes, 1)
+        if mode.damping_ratio is not None and mode.damping_ratio < 0
+        and mode.energy_fractions.get("torsion", 0.0) > TORSION_SHARE)
 
 
 def coriolis_campbell(blade: Blade, args: argparse.Namespace,

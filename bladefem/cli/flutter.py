@@ -90,7 +90,7 @@ def conditions(args: argparse.Namespace, pitch: float):
 def run_flutter(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
-    from ..builders.aerodyn_rotor import aerodyn_rotor
+    from ..builders.aerodyn_rotor import aerodyn_rotor, require_root_off_axis
     from ..builders.flutter_inputs import REPLACED, chordwise_centre
     from ..modal import blade_matrices
     from ..models.flutter import flutter_sweep
@@ -105,9 +105,7 @@ def run_flutter(args: argparse.Namespace) -> int:
         raise InputError("flutter is a blade analysis: give a blade input", file=str(args.input), field="INPUT")
     sweep = conditions(args, blade.pitch)
     rotor = aerodyn_rotor(args.aero, blade, args.blades, replaced=REPLACED)
-    if rotor.hub_radius + rotor.span[0] <= 0.0:
-        raise InputError("the first AeroDyn node sits on the rotor axis (hub radius 0, BlSpn 0): the BEM needs a "
-                         "positive radius at every node; give the hub radius", field="--hub-radius")
+    require_root_off_axis(rotor)
     notes = list(rotor.notes) + list(blade.notes)
     if all(c.wind_speed == 0.0 for c in sweep) and rotor.options.induction:
         rotor = replace(rotor, options=replace(rotor.options, induction=False))
