@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._jit import kernel
-from .bem import NODE_OUTPUTS, solve_nodes
+from .bem import NODE_OUTPUTS, plane_geometry, solve_nodes
 from .kinematics import NodeKinematics, rigid_rotor
 from .polars import pack_polars
 from .rotor import Inflow, Rotor
@@ -179,6 +179,6 @@ def solve_kinematics(rotor: Rotor, kin: NodeKinematics, rotor_speed: float, pitc
         result = np.empty((vx.size, NODE_OUTPUTS))
         solve_nodes(vx, vy, r_local, chord, twist, tip_c, hub_c, float(rotor.n_blades), tip_ratio, chi0, skew_cos,
                     induction_weight(tsr), airfoil, *table.arrays, options, float(rotor.air_density),
-                    np.full(vx.size, np.nan), result)
+                    np.full(vx.size, np.nan), *plane_geometry(vx.size), result)
         out[i] = result.reshape(shape[1:] + (NODE_OUTPUTS,))
     return out
