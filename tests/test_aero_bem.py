@@ -98,7 +98,7 @@ def test_momentum_balance_at_converged_nodes(deck):
         tip_c = 3 * (z[-1] - z) / (2 * z)
         hub_c = 3 * (z - rotor.hub_radius) / (2 * rotor.hub_radius)
         opts = options.vector()
-        loss = np.array([loss_factor(p, t, h, opts) for p, t, h in zip(result.phi[0, 0], tip_c, hub_c)])
+        loss = np.array([loss_factor(p, t, h, opts, 1.0) for p, t, h in zip(result.phi[0, 0], tip_c, hub_c)])
         thrust = 4 * np.pi * r * rho * speed ** 2 * loss * a * (1 - a)
         torque = 4 * np.pi * r ** 2 * rho * speed * omega * loss * ap * (1 - a)
         assert np.allclose(3 * result.fn[0, 0][inner], thrust[inner], rtol=1e-7)

@@ -12,7 +12,7 @@ the node solver (:func:`bladefem.aero.bem.node_loads`) are, with BEM_Mod 1, Aero
     vx = (V_wind - v) . n,   vy = -(V_wind - v) . e_t      e_t the direction of rotation (toward the leading edge)
     r_local = distance from the shaft axis,  theta = BlTwist + pitch
 
-and with BEM_Mod 2 its polar projection (:mod:`.aero_projection`: vx along the shaft, vy in the rotor plane, the
+and with BEM_Mod 2 its polar projection (:mod:`bladefem.aero.polar`: vx along the shaft, vy in the rotor plane, the
 section's cant, toe and the annulus dr/dz handed to the solver, which resolves its loads along n and e_t again).
 
 with the disk-averaged relative wind giving the skew angle ``chi0``, the skewed-wake azimuth and the tip-speed ratio
@@ -37,7 +37,7 @@ from ...aero.performance import COLUMNS, induction_weight
 from ...aero.polars import pack_polars
 from ...aero.rotor import Inflow, Rotor
 from ...errors import InputError
-from .aero_projection import Projection, projection
+from ...aero.polar import Projection, projection
 from .kinematics import BeamNodes, NodeGroup, carry_nodes
 from .shapes import ModalBeam
 

@@ -129,7 +129,7 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def projected_inflow(rho_w, b, p, rel, normal, span, tangent, shaft, polar):
-        """(vx, vy, cant, toe, dr/dz) of node p of blade b (the twin of :func:`.aero_projection.projection`):
+        """(vx, vy, cant, toe, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`):
         the legacy projection on the normal and against the rotation, or (``polar``) AeroDyn's local polar frame."""
         if not polar:
             vx = rel[0] * normal[0] + rel[1] * normal[1] + rel[2] * normal[2]

@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 from ...aero.bem import NODE_OUTPUTS, solve_nodes
 from ...aero.performance import COLUMNS
 from .aero import TurbineAero, aero_loads, aero_nodes
-from .aero_projection import Projection, projection
+from ...aero.polar import Projection, projection
 from .kinematics import NodeGroup
 
 #: relative step of the central differences (the loads are smooth between polar knots; 1e-6 balances truncation
@@ -47,7 +47,7 @@ class NodeInflow:
     normal, tangent, span : (B, Na, 3) unit vectors: the coned blade's downwind normal turned by the out-of-plane
         slope, the direction of rotation, the deflected span axis
     rotor_W : (3, n) partial angular velocities of the rotor (the pitching moments act on it)
-    frame : the projection of the relative wind and the sections' orientation (:mod:`.aero_projection`)
+    frame : the projection of the relative wind and the sections' orientation (:mod:`bladefem.aero.polar`)
     """
 
     group: NodeGroup
