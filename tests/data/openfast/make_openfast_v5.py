@@ -38,13 +38,16 @@ OPENFAST = {"version": "v5.0.0", "commit": "2895884d2be01862173c88d70f86b358d2f1
             "executable": "/work/build/openfast-src/build/glue-codes/openfast/openfast (outside the repository)"}
 COMMON = {ED: {"GenDOF": "False", "RotSpeed": "12.1", "BlPitch(1)": "0", "BlPitch(2)": "0", "BlPitch(3)": "0"}}
 CASES = {
-    "rated_bem2": {FST: {"DT_Out": "0.0125"}},
+    "rated_bem2": {FST: {"DT_Out": "0.0125"}, AD: {"BldNd_BladesOut": "1"}},
     "rated_bem1": {FST: {"DT_Out": "0.0125"}, AD: {"BEM_Mod": "1"}},
 }
 #: channels added to the deck's output lists (outputs only)
 EXTRA = {ED: ("RotThrust", "RotPwr", "TipDxc1", "TipDyc1", "RootMxc1", "RootMyc1", "RootMOoP1", "RootMIP1",
               "LSShftFxa"),
          AD: ("RtAeroPwr", "RtTSR", "RtAeroCp", "RtSkew")}
+#: blade-node channels added to AeroDyn's nodal output list (written for blade 1 in ``rated_bem2``): the section's
+#: cant ("Curve", deg) and toe (deg) in the polar projection, and its inflow
+NODAL = ("Curve", "Toe", "Vx", "Vy")
 
 
 def line_of(text: str, label: str) -> re.Match:
@@ -110,6 +113,11 @@ def extend_outputs(folder: Path) -> None:
         end = next(k for k in range(start + 1, len(lines)) if lines[k].startswith("END"))
         lines[end:end] = [f'"{name}"' for name in names]
         (folder / file).write_text("\n".join(lines) + "\n")
+    lines = (folder / AD).read_text().splitlines()
+    start = next(k for k, line in enumerate(lines) if line.split()[:1] == ["OutList_Nodal"])
+    end = next(k for k in range(start + 1, len(lines)) if lines[k].startswith("END"))
+    lines[end:end] = [f'"{name}"' for name in NODAL]
+    (folder / AD).write_text("\n".join(lines) + "\n")
 
 
 def run(executable: str, runs: Path) -> None:
@@ -143,13 +151,21 @@ def statistics(runs: Path) -> dict:
             name: {"unit": units[name], "mean": float(f"{v[window].mean():.7g}"),
                    "std": float(f"{v[window].std():.7g}"), "min": float(f"{v[window].min():.7g}"),
                    "max": float(f"{v[window].max():.7g}")}
-            for name, v in data.items() if name != "Time"}
+            for name, v in data.items() if name != "Time" and not re.match(r"A?B\dN\d{3}", name)}
+        nodal = {quantity: [name for name in data if re.fullmatch(rf"A?B1N\d{{3}}{quantity}", name)]
+                 for quantity in NODAL}
+        if all(nodal.values()):
+            variants[f"BEM_Mod {bem_mod}"]["blade1_nodes"] = {
+                quantity: {"unit": units[names[0]], "mean": [float(f"{data[n][window].mean():.7g}") for n in names],
+                           "std": [float(f"{data[n][window].std():.7g}") for n in names]}
+                for quantity, names in nodal.items()}
     return {"case": "rated_fixed_speed_v5",
             "description": "NREL 5MW, 11.4 m/s, 12.1 rpm held, pitch 0, quasi-steady BEM, 100 s from the "
                            "undeflected state, with AeroDyn's BEM_Mod 2 (polar projection, the deck's) and BEM_Mod 1.",
             "provenance": {"openfast": OPENFAST, "deck": "cases/nrel5mw/NRELOffshrBsline5MW_Onshore.fst",
                            "changes_from_deck": ["v5 layout additions (make_openfast_v5.py)", "ElastoDyn GenDOF False",
-                                                 "DT_Out 0.0125 s", "BEM_Mod 1 in the second variant"],
+                                                 "DT_Out 0.0125 s", "BEM_Mod 1 in the second variant",
+                                                 "BEM_Mod 2: blade 1's nodal outputs Curve (the cant), Toe, Vx, Vy"],
                            "script": "tests/data/openfast/make_openfast_v5.py",
                            "extraction": "mean, population standard deviation, min and max over 80 <= t <= 100 s"},
             "window_s": [80.0, 100.0], "channels": variants}
