@@ -47,7 +47,7 @@ EXTRA = {ED: ("RotThrust", "RotPwr", "TipDxc1", "TipDyc1", "RootMxc1", "RootMyc1
          AD: ("RtAeroPwr", "RtTSR", "RtAeroCp", "RtSkew")}
 #: blade-node channels added to AeroDyn's nodal output list (written for blade 1 in ``rated_bem2``): the section's
 #: cant ("Curve", deg) and toe (deg) in the polar projection, and its inflow
-NODAL = ("Curve", "Toe", "Vx", "Vy")
+NODAL = ("Curve", "Toe", "Theta", "Alpha", "Phi", "AxInd", "Vx", "Vy", "Vrel", "Cl", "Fx", "Fy")
 
 
 def line_of(text: str, label: str) -> re.Match:
