@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 
 from bladefem.aero import Rotor, rotor_performance  # noqa: E402
 from bladefem.aero._jit import COMPILED, kernel  # noqa: E402
-from bladefem.aero.bem import NODE_OUTPUTS, node_loads, section_loads, solve_nodes  # noqa: E402
+from bladefem.aero.bem import NODE_OUTPUTS, node_loads, plane_geometry, section_loads, solve_nodes  # noqa: E402
 from bladefem.aero.kinematics import rigid_rotor  # noqa: E402
 from bladefem.aero.polars import pack_polars  # noqa: E402
 from bladefem.builders.openfast_fst import read_openfast_deck  # noqa: E402
@@ -49,7 +49,7 @@ def repeat_node(count, vx, vy, r, chord, theta, tip_c, hub_c, tip_ratio, chi0, s
     for i in range(count):
         scale = 1.0 + 1e-3 * (i % 2)
         out = node_loads(vx * scale, vy, r, chord, theta, tip_c, hub_c, 3.0, tip_ratio, chi0, skew_cos, 1.0,
-                         airfoil, knots, values, coefs, start, count_af, options, rho, guess)
+                         airfoil, knots, values, coefs, start, count_af, options, rho, guess, 0.0, 0.0, 1.0)
         total += out[9]
         if warm:
             guess = out[0]
@@ -62,7 +62,7 @@ def repeat_section(count, vx, vy, a, ap, chord, theta, airfoil, knots, values, c
     total = 0.0
     for i in range(count):
         out = section_loads(vx * (1.0 + 1e-3 * (i % 2)), vy, a, ap, chord, theta, airfoil, knots, values, coefs,
-                            start, count_af, options, rho)
+                            start, count_af, options, rho, 0.0, 0.0)
         total += out[6]
     return total
 
@@ -100,7 +100,7 @@ def main() -> None:
         seconds = best(lambda w=warm: repeat_node(calls, *node, *table.arrays, options, rotor.air_density, w), 3)
         rows.append((f"one node, {'warm' if warm else 'cold'} (compiled loop)", seconds / calls))
     solution = node_loads(*node[:7], 3.0, *node[7:10], 1.0, node[10], *table.arrays, options, rotor.air_density,
-                          math.nan)
+                          math.nan, 0.0, 0.0, 1.0)
     held = (node[0], node[1], solution[1], solution[2], node[3], node[4], node[10])
     seconds = best(lambda: repeat_section(calls, *held, *table.arrays, options, rotor.air_density), 3)
     rows.append(("one node, loads with the induction held (section_loads)", seconds / calls))
@@ -120,7 +120,7 @@ def main() -> None:
             vx = inflows[calls[0] % 2]
         solve_nodes(vx, flat["vy"], flat["r"], flat["chord"], flat["theta"], flat["tip"], flat["hub"], 3.0,
                     flat["ratio"], flat["chi0"], flat["skew"], 1.0, flat["airfoil"], *table.arrays, options,
-                    rotor.air_density, guess, out)
+                    rotor.air_density, guess, *plane_geometry(out.shape[0]), out)
 
     cold = np.full(flat["vx"].size, np.nan)
     solve(cold, flat["vx"])

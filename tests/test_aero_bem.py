@@ -98,7 +98,7 @@ def test_momentum_balance_at_converged_nodes(deck):
         tip_c = 3 * (z[-1] - z) / (2 * z)
         hub_c = 3 * (z - rotor.hub_radius) / (2 * rotor.hub_radius)
         opts = options.vector()
-        loss = np.array([loss_factor(p, t, h, opts) for p, t, h in zip(result.phi[0, 0], tip_c, hub_c)])
+        loss = np.array([loss_factor(p, t, h, opts, 1.0) for p, t, h in zip(result.phi[0, 0], tip_c, hub_c)])
         thrust = 4 * np.pi * r * rho * speed ** 2 * loss * a * (1 - a)
         torque = 4 * np.pi * r ** 2 * rho * speed * omega * loss * ap * (1 - a)
         assert np.allclose(3 * result.fn[0, 0][inner], thrust[inner], rtol=1e-7)
@@ -127,18 +127,19 @@ def test_guaranteed_convergence():
     out = np.empty((n, NODE_OUTPUTS))
     args = (vx, vy, r, chord, theta, tip_c, hub_c, 3.0, r / 63, zeros, zeros, 1.0, np.zeros(n, dtype=np.int64),
             *table.arrays, options, 1.225)
-    solve_nodes(*args, np.full(n, np.nan), out)
+    plane = (zeros, zeros, ones)
+    solve_nodes(*args, np.full(n, np.nan), *plane, out)
     assert np.all(np.isfinite(out))
     valid = out[:, 12] > 0.5
     assert valid.mean() > 0.95
     for i in np.flatnonzero(valid & (np.abs(vx) > 1e-3) & (np.abs(vy) > 1e-3)):
         f = residual(out[i, 0], vx[i], vy[i], 3 * chord[i] / (2 * np.pi * r[i]), theta[i], tip_c[i], hub_c[i], 0.0,
-                     0, *table.arrays, options)
+                     0, *table.arrays, options, (0.0, 0.0, 1.0))
         assert abs(f[0]) < 1e-9 or not f[3], (i, f)
     warm = np.empty_like(out)
-    solve_nodes(*args, out[:, 0] + 1e-3 * ones, warm)          # a previous solution that is no root any more
+    solve_nodes(*args, out[:, 0] + 1e-3 * ones, *plane, warm)          # a previous solution that is no root any more
     np.testing.assert_array_equal(warm, out)
-    solve_nodes(*args, out[:, 0], warm)                          # the root itself (AeroDyn keeps it)
+    solve_nodes(*args, out[:, 0], *plane, warm)                          # the root itself (AeroDyn keeps it)
     np.testing.assert_array_equal(warm[valid, 0], out[valid, 0])
 
 

@@ -10,12 +10,12 @@ Differences by name (docs/aero.md, "Comparisons"):
   agree to 1e-4, thrust to 1e-4 (measured 7e-5).
 - RtAeroMxh is 0.03-0.08 % above the exact moment of AeroDyn's own nodal tangential loads (computed here from the
   reference's nodes), which bladefem's torque reproduces to 8e-5: torque within 1e-3 of RtAeroMxh.
-- ``notilt_nocone``: BEM_Mod 2 resolves the velocity of a node swept off the pitch axis (BlSwpAC up to 0.57 m) in
-  the local polar frame (vy = Omega r), bladefem in the blade's frame (vy = Omega (HubRad + BlSpn)): 1e-3 at the
-  inboard nodes, below 1e-3 on the totals (measured 8e-4).
-- ``deck``: BEM_Mod 2's projection of the coned blade (cant angle = precone, dr/dz, the angle of attack from the
-  projected inflow; terms of order 1 - cos^2(2.5 deg) = 2e-3 at a node) and its skew model for the 5 deg tilt:
-  totals within 2e-3 (measured 1.5e-3).
+- ``notilt_nocone`` and ``deck``: bladefem models BEM_Mod 2's polar projection (a node swept off the pitch axis,
+  BlSwpAC up to 0.57 m, resolved in its local polar frame with its toe; the coned blade's cant, dr/dz and the angle
+  of attack from the projected inflow; :mod:`bladefem.aero.polar`): totals within 5e-4 without tilt and cone
+  (measured 2.5e-4), within 1e-3 with them (measured 8.7e-4 at 25 m/s, 1.2e-4 at 11.4 m/s; what is left grows with
+  the pitch and is of the size of the skew model's terms for the 5 deg tilt). With the legacy projection in its
+  place they were 8e-4 and 1.5e-3.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from bladefem.builders.openfast_fst import read_openfast_deck
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = json.loads((ROOT / "tests" / "data" / "openfast" / "rigid_rotor_bem.json").read_text())
 #: variant -> (thrust, torque) relative tolerance, justified in the module docstring
-TOLERANCE = {"plain": (1e-4, 1e-3), "notilt_nocone": (1e-3, 1e-3), "deck": (2e-3, 2e-3)}
+TOLERANCE = {"plain": (1e-4, 1e-3), "notilt_nocone": (5e-4, 1e-3), "deck": (1e-3, 1e-3)}
 POINTS = [(name, point) for name in TOLERANCE for point in REFERENCE["variants"][name]["points"]]
 
 

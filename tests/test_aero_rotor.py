@@ -28,10 +28,23 @@ def variant(rotor, **changes):
 
 def test_cone_and_tilt_geometry(rotor):
     """r_local = (HubRad + BlSpn) cos(precone); with shaft tilt and level wind the skew angle is the tilt and the
-    disk-averaged axial wind U cos(tilt). Blade up (azimuth 0): vy = Omega r_local, vx = U cos(precone - tilt);
-    blade level (azimuth 90 deg, moving down): vy = Omega r_local - U sin(tilt), vx = U cos(precone) cos(tilt)."""
+    disk-averaged axial wind U cos(tilt). Legacy projection (BEM_Mod 1): blade up (azimuth 0): vy = Omega r_local,
+    vx = U cos(precone - tilt); blade level (azimuth 90 deg, moving down): vy = Omega r_local - U sin(tilt),
+    vx = U cos(precone) cos(tilt); the section plane (no cant, no toe, dr/dz 1). Polar projection (BEM_Mod 2) of a
+    blade without aerodynamic-centre offsets: vx = U cos(tilt) along the shaft at every azimuth, the same vy, the
+    cant the precone, no toe and dr/dz = cos(precone)."""
     inflow = Inflow(10.0, 90.0)
+    plain = variant(rotor, curve=None, sweep=None, options=BEMOptions(formulation=2))
+    polar = rigid_rotor(plain, inflow, 1.2, np.radians([0.0, 90.0]))
+    assert np.allclose(polar.vx, 10.0 * math.cos(rotor.shaft_tilt), rtol=1e-13)
+    assert np.allclose(polar.cant, rotor.precone, rtol=1e-13)
+    assert np.allclose(polar.toe, 0.0, atol=1e-13)
+    assert np.allclose(polar.drdz, math.cos(rotor.precone), rtol=1e-13)
+    assert np.allclose(polar.vy[0, 0], 1.2 * polar.r_local[0, 0], rtol=1e-13)
+    assert np.allclose(polar.vy[1, 0], 1.2 * polar.r_local[1, 0] - 10.0 * math.sin(rotor.shaft_tilt), rtol=1e-13)
+    rotor = variant(rotor, options=BEMOptions(formulation=1))
     kin = rigid_rotor(rotor, inflow, 1.2, np.radians([0.0, 90.0]))
+    assert np.all(kin.cant == 0) and np.all(kin.toe == 0) and np.all(kin.drdz == 1)
     along = rotor.hub_radius + rotor.span
     assert np.allclose(kin.r_local, along * math.cos(rotor.precone), rtol=1e-13)
     assert np.allclose(kin.chi0, abs(rotor.shaft_tilt), atol=1e-13)

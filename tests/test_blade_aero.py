@@ -78,7 +78,7 @@ def generalized_loads(op, node: int, rotor: Rotor, d: np.ndarray, rate: np.ndarr
     relative = np.array([0.0, -op.Y[node], op.X[node]]) - N @ rate - op.rotor_speed * np.cross(op.shaft_axis, N @ d)
     table = pack_polars(rotor.polars)
     loads = section_loads(relative[2], -relative[1], 0.0, 0.0, op.chord[node], op.theta[node] - d[3],
-                          int(rotor.airfoil[node]), *table.arrays, rotor.options.vector(), op.air_density)
+                          int(rotor.airfoil[node]), *table.arrays, rotor.options.vector(), op.air_density, 0.0, 0.0)
     fn, ft, m = loads[6], loads[7], loads[8]
     return N.T @ np.array([0.0, ft, fn]) + np.array([0.0, 0.0, 0.0, m, 0.0, 0.0])
 

@@ -1,6 +1,6 @@
-"""The NREL 5MW with aerodynamics in the Kane model against OpenFAST v4.2.1 on the same deck (issue 11): rated wind
-at fixed speed (the deck's BEM_Mod 2 and the legacy BEM_Mod 1 bladefem shares), the torque law at 8 and 11.4 m/s,
-the power balance, and every output channel's sign from a deflected, yawed initial state."""
+"""The NREL 5MW with aerodynamics in the Kane model against OpenFAST (v4.2.1 and v5.0.0) on the same deck: rated
+wind at fixed speed (the deck's BEM_Mod 2, AeroDyn's polar projection), the torque law at 8 and 11.4 m/s, the power
+balance, and every output channel's sign from a deflected, yawed initial state."""
 
 from __future__ import annotations
 
@@ -51,30 +51,72 @@ def rated():
 
 
 def test_rated_wind_fixed_speed_against_openfast(rated):
-    """Means over 80-100 s against OpenFAST with the deck's BEM_Mod 2: thrust and power within 3 %, deflection
-    means within 6 % (the issue's acceptance); measured -1.1 % thrust, -1.6 % power, OoPDefl1 -0.6 %, IPDefl1 +4 %,
-    TTDspFA -1.5 %, TTDspSS -1 %. The thrust and power difference is the polar projection of BEM_Mod 2 on the
-    deflected blade (cant up to 12 deg): against the same OpenFAST run with the legacy BEM_Mod 1 (bladefem's
-    projection) thrust and torque agree to 0.6 % (measured +0.34 %, +0.06 %; the rest is ElastoDyn's 0.1 deg
-    elastic twist of the bent tip, docs/turbine.md), the deflections to 2.5 % (the tip 1.7 %) except IPDefl1
-    (FE blade shapes against ElastoDyn's polynomials: 6.5 %, within the issue's 6 % against the deck's run)."""
+    """Means over 80-100 s against OpenFAST v4.2.1 and v5.0.0 with the deck's BEM_Mod 2 (the two agree to 0.1 %;
+    rated_fixed_speed.json, rated_fixed_speed_v5.json): thrust, torque and power within 1 % (measured against v5:
+    RtAeroFxh -0.40 %, RotThrust -0.33 %, RotTorq -0.06 %, RotPwr -0.06 %; the rest is ElastoDyn's elastic twist of
+    the bent tip, 0.1 deg, which bladefem does not have), the out-of-plane tip and the tower top within 2.5 %
+    (measured OoPDefl1 +0.40 %, TTDspFA -0.49 %, TTDspSS +0.85 %), the in-plane tip within 6 % (+5.6 %: bladefem's
+    FE blade shapes against ElastoDyn's polynomials). With the legacy projection run for this BEM_Mod 2 deck thrust
+    was 1.1 % and power 1.6 % low (the polar projection's cant of the bent blade, up to 12 deg at the tip)."""
     _, _, result = rated
-    polar = json.loads((DATA / "rated_fixed_speed.json").read_text())["channels"]
-    legacy = json.loads((DATA / "rated_fixed_speed_bem_mod1.json").read_text())["channels"]
+    v4 = json.loads((DATA / "rated_fixed_speed.json").read_text())["channels"]
+    v5 = json.loads((DATA / "rated_fixed_speed_v5.json").read_text())["channels"]["BEM_Mod 2"]
     ours = {name: window_mean(result, name, 80.0) for name in ("RtAeroFxh", "RotThrust", "RotPwr", "RtAeroPwr",
                                                               "RtAeroMxh", "RotTorq", *DEFLECTIONS)}
-    for name in ("RtAeroFxh", "RotThrust", "RotPwr", "RtAeroPwr"):
-        assert ours[name] == pytest.approx(polar[name]["mean"], rel=0.03), name
-    for name in DEFLECTIONS:
-        assert ours[name] == pytest.approx(polar[name]["mean"], rel=0.06), name
-    for name in ("RtAeroFxh", "RotThrust", "RtAeroMxh", "RotTorq"):
-        assert ours[name] == pytest.approx(legacy[name]["mean"], rel=0.006), name
-    for name in ("OoPDefl1", "TTDspFA", "TTDspSS"):
-        assert ours[name] == pytest.approx(legacy[name]["mean"], rel=0.025), name
-    # the blade's 1P deflection oscillation and the tower's, in amplitude
-    for name in ("OoPDefl1", "IPDefl1"):
-        std = np.std(result.outputs[name][result.time >= 80.0 - 1e-9])
-        assert std == pytest.approx(polar[name]["std"], rel=0.1), name
+    for polar in (v4, v5):
+        for name in ("RtAeroFxh", "RotThrust", "RotPwr", "RtAeroPwr", "RtAeroMxh", "RotTorq"):
+            assert ours[name] == pytest.approx(polar[name]["mean"], rel=0.01), name
+        for name in ("OoPDefl1", "TTDspFA", "TTDspSS"):
+            assert ours[name] == pytest.approx(polar[name]["mean"], rel=0.025), name
+        assert ours["IPDefl1"] == pytest.approx(polar["IPDefl1"]["mean"], rel=0.06)
+    # the blade's 1P in-plane deflection oscillation (gravity), in amplitude
+    std = np.std(result.outputs["IPDefl1"][result.time >= 80.0 - 1e-9])
+    assert std == pytest.approx(v5["IPDefl1"]["std"], rel=0.1)
+
+
+def test_rated_wind_node_inflow_against_openfast(rated):
+    """AeroDyn's polar projection at the nodes: blade 1's Vx (along the shaft) and Vy (in the rotor plane) means over
+    80-100 s against OpenFAST v5's node outputs (rated_fixed_speed_v5.json, ``blade1_nodes``): Vx within 1e-4
+    (measured 5e-6), Vy within 0.1 % or 0.01 m/s, 1.3e-4 of the tip's 79.5 m/s (measured a uniform 4 to 5 mm/s
+    along the span), and the cant at the outer three nodes within 0.3 deg
+    (measured 0.22 deg; inboard up to 0.45 deg, where bladefem's FE blade bends with another slope than ElastoDyn's
+    polynomials). The legacy projection's Vx, along the bent section's normal, is 1.5 % lower at the tip (the
+    cosine of its 9.8 deg cant)."""
+    from bladefem.models.turbine.frozen_wake import node_inflow
+    model, _, result = rated
+    nodes = json.loads((DATA / "rated_fixed_speed_v5.json").read_text())["channels"]["BEM_Mod 2"]["blade1_nodes"]
+    rows = np.flatnonzero(result.time >= 80.0 - 1e-9)
+    vx, vy, cant = [], [], []
+    for i in rows:
+        inflow = node_inflow(model, model.aero, result.q[i], result.u[i])
+        x, y = inflow.components(inflow.velocity)
+        vx.append(x[0])
+        vy.append(y[0])
+        cant.append(np.degrees(inflow.frame.cant[0]))
+    np.testing.assert_allclose(np.mean(vx, axis=0), nodes["Vx"]["mean"], rtol=1e-4)
+    np.testing.assert_allclose(np.mean(vy, axis=0), nodes["Vy"]["mean"], rtol=1e-3, atol=0.01)
+    np.testing.assert_allclose(np.mean(cant, axis=0)[-3:], nodes["Curve"]["mean"][-3:], atol=0.3)
+
+
+@pytest.mark.xfail(strict=True, reason="bladefem's 1P out-of-plane amplitude with the polar projection is 17 % below "
+                                       "OpenFAST's (the section orientation by the in-plane slope: docstring)")
+def test_rated_wind_out_of_plane_1p_amplitude(rated):
+    """The blade tip's 1P out-of-plane oscillation (std over 80-100 s) within 10 % of OpenFAST v5's with BEM_Mod 2.
+    Measured 0.0900 m against 0.1078 m (-17 %). OpenFAST's amplitude hardly depends on the projection (BEM_Mod 1:
+    0.1048 m), bladefem's does (BEM_Mod 1: 0.1175 m, +12 %). The skew model is not the cause: without it (Skew_Mod
+    0, 40-60 s) OpenFAST gives 0.120 m and bladefem 0.1035 m, the skew model taking 0.012 and 0.013 m off in both.
+    Not yet established; the likely share is ElastoDyn's orientation of the sections by the 1P in-plane slope of the
+    gravity-loaded blade (their toe and elastic twist in AeroDyn's polar frame), which bladefem's sections, turned by
+    the out-of-plane slope alone, do not carry: against OpenFAST's node outputs (rated_fixed_speed_v5.json,
+    ``blade1_nodes``) bladefem's tip toe is -0.74 deg against +0.30 deg. Turning the sections by the in-plane slope
+    as well (tried, not shipped) brings every node's toe within 0.12 deg and its 1P std within 3 %, the angle of
+    attack within 0.07 deg and the tangential load per length within 0.5 %, but leaves this swing at 0.089 m (0.121
+    m without the small twist that turn carries on the canted blade: the swing follows twists of 0.1 deg) and puts
+    the rotor torque 1.4 % above OpenFAST's."""
+    _, _, result = rated
+    v5 = json.loads((DATA / "rated_fixed_speed_v5.json").read_text())["channels"]["BEM_Mod 2"]
+    std = np.std(result.outputs["OoPDefl1"][result.time >= 80.0 - 1e-9])
+    assert std == pytest.approx(v5["OoPDefl1"]["std"], rel=0.1)
 
 
 def test_power_balance(rated):
@@ -103,17 +145,18 @@ def test_power_balance(rated):
 
 @pytest.mark.parametrize("wind_speed, rpm", [(8.0, 9.156), (11.4, 12.1)])
 def test_torque_law_steady_operation_against_openfast(wind_speed, rpm):
-    """ServoDyn's torque law with the generator free, pitch 0: steady rotor speed within 0.5 % (measured -0.16 %
-    and -0.12 %), generator power and rotor thrust within 3 % (measured -0.5 % and -0.3 % at 8 m/s, -1.5 % and
-    -1.0 % at 11.4 m/s: the BEM_Mod 2 projection of the more deflected blade, as at fixed speed). Started at
-    OpenFAST's initial speed; the speed settles within 60 s (to 1e-4 rpm), the means are over 80-100 s."""
+    """ServoDyn's torque law with the generator free, pitch 0: steady rotor speed within 0.5 % (measured -0.01 % at
+    both), generator power, torque and rotor thrust within 1 % (measured -0.04 %, -0.03 %, -0.10 % at 8 m/s; -0.10 %,
+    -0.09 %, -0.35 % at 11.4 m/s; with the legacy projection for this BEM_Mod 2 deck power was 1.5 % low at
+    11.4 m/s). Started at OpenFAST's initial speed; the speed settles within 60 s (to 1e-4 rpm), the means are over
+    80-100 s."""
     data = json.loads((DATA / "torque_law.json").read_text())
     reference = next(p for p in data["points"] if p["wind_speed_m_s"] == wind_speed)["channels"]
     _, _, result = run(wind_speed, rpm, 100.0, locked=False)
     assert window_mean(result, "RotSpeed", 80.0) == pytest.approx(reference["RotSpeed"]["mean"], rel=0.005)
     assert window_mean(result, "RotSpeed", 80.0) == pytest.approx(window_mean(result, "RotSpeed", 60.0), abs=1e-3)
     for name in ("GenPwr", "RotThrust", "GenTq"):
-        assert window_mean(result, name, 80.0) == pytest.approx(reference[name]["mean"], rel=0.03), name
+        assert window_mean(result, name, 80.0) == pytest.approx(reference[name]["mean"], rel=0.01), name
 
 
 @pytest.mark.parametrize("case", ["signs_fixed", "signs_free"])

@@ -1,10 +1,10 @@
 """Twins agree: the compiled right-hand side and load channels (numba: ``compiled_kernels``, ``compiled_loads``,
 ``compiled_outputs``) against the numpy reference (``TurbineModel.equations`` with ``aero.py`` and ``control.py``,
 ``outputs.load_row``), on every option of the deck and the command line that reaches them, one at a time from the
-shipped NREL 5MW deck: AeroDyn's BEM_Mod, Wake_Mod, TipLoss, HubLoss, TanInd, AIDrag, TIDrag, Skew_Mod,
-SkewRedistr_Mod, SkewRedistrFactor, UseBlCm, the air density, InflowWind's shear, direction and upflow, ServoDyn's
-torque law (or none: CompServo 0), the blade shapes and --elastodyn-compatible, --pitch-deg, --no-aero, --no-gravity,
---no-damping, a locked generator, a yawed nacelle.
+shipped NREL 5MW deck: AeroDyn's BEM_Mod (the legacy and the polar projection: cant, toe, dr/dz), Wake_Mod,
+TipLoss, HubLoss, TanInd, AIDrag, TIDrag, Skew_Mod, SkewRedistr_Mod, SkewRedistrFactor, UseBlCm, the air density,
+InflowWind's shear, direction and upflow, ServoDyn's torque law (or none: CompServo 0), the blade shapes and
+--elastodyn-compatible, --pitch-deg, --no-aero, --no-gravity, --no-damping, a locked generator, a yawed nacelle.
 
 Each compiled model is called first at another state, then at the state compared: a solution that depended on the
 previous call (the BEM warm start that took the NREL 5MW's blade tips into the propeller-brake root with BEM_Mod 1,
@@ -40,6 +40,8 @@ VARIANTS = {
     "deck as shipped (BEM_Mod 2)": ({}, {}, {}),
     "BEM_Mod 1": ({AERODYN: {"BEM_Mod": "1"}}, {}, {}),
     "BEM_Mod 1 yawed, sheared": ({AERODYN: {"BEM_Mod": "1"}}, {"shear_exponent": 0.2}, {"yaw": 0.3}),
+    "BEM_Mod 2 yawed, sheared": ({}, {"shear_exponent": 0.2}, {"yaw": 0.3}),
+    "AIDrag alone (BEM_Mod 2 polar coefficients)": ({AERODYN: {"AIDrag": "True"}}, {}, {}),
     "Wake_Mod 0 (no induction)": ({AERODYN: {"Wake_Mod": "0"}}, {}, {}),
     "TipLoss False": ({AERODYN: {"TipLoss": "False"}}, {}, {}),
     "HubLoss False": ({AERODYN: {"HubLoss": "False"}}, {}, {}),

@@ -30,8 +30,10 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ._jit import kernel
-from .induction import induction, loss_factor
+from .induction import induction, loss_factor, plane_coefficients
 from .options import (
     FORMULATION,
     HUB_LOSS,
@@ -43,6 +45,7 @@ from .options import (
     TOLERANCE,
     USE_CM,
 )
+from .polar import polar_coefficients, section_angle
 from .polars import polar_lookup
 
 #: A velocity component below this counts as zero (AeroDyn's VelocityIsZero), m/s.
@@ -57,21 +60,31 @@ NODE_OUTPUTS = 13
 
 @kernel
 def residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start,
-             count, options):
-    """(residual, a, a', valid) at phi with the polar looked up at alpha = phi - theta."""
-    cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
-    loss = loss_factor(phi, tip_constant, hub_constant, options)
-    return induction(phi, vx, vy, solidity, cl, cd, loss, chi0, options)
+             count, options, geometry):
+    """(residual, a, a', valid) at phi with the polar looked up at alpha = phi - theta; in the polar formulation
+    at the section's own angle (:mod:`bladefem.aero.polar`) with the momentum balance on vx cos(cant) and the
+    normal coefficient times dr/dz. ``geometry`` = (cant, toe, dr/dz) of the node (0, 0, 1: a plane section)."""
+    if options[FORMULATION] != 2.0:
+        cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
+        cn, ct = plane_coefficients(phi, cl, cd, options)
+        loss = loss_factor(phi, tip_constant, hub_constant, options, 1.0)
+        return induction(phi, vx, vy, solidity, cn, ct, loss, chi0, options)
+    cant, toe, drdz = geometry
+    alpha = section_angle(phi, cant, toe) - theta
+    cl, cd, _ = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
+    cn, ct = polar_coefficients(alpha, theta, cant, toe, cl, cd, options)
+    loss = loss_factor(phi, tip_constant, hub_constant, options, math.cos(cant))
+    return induction(phi, vx * math.cos(cant), vy, solidity, cn * drdz, ct, loss, chi0, options)
 
 
 @kernel
 def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
-          coefs, start, count, options):
+          coefs, start, count, options, geometry):
     """Root of the residual in [lo, hi] (f_lo, f_hi of opposite signs) by Brent's method (inverse quadratic
     interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad.
     Returns (phi, a, a', valid) at the root."""
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
-            options)
+            options, geometry)
     tolerance = options[TOLERANCE]
     a, b, fa, fb = lo, hi, f_lo, f_hi
     c, fc = b, fb
@@ -134,7 +147,7 @@ def search_intervals(vx, guess):
 
 @kernel
 def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs,
-                       start, count, options, guess):
+                       start, count, options, guess, geometry):
     """(phi, valid, a, a'): the inflow angle solving the BEM equations (rad) and the induction there.
 
     As AeroDyn's ``BEMT_UnCoupledSolve``: a finite ``guess`` (the previous solution) is returned if it still
@@ -143,13 +156,13 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     There is no search near the guess: where the equations have several roots (a blade tip in the propeller-brake
     region, stall) a bracket next to the previous root follows that root and the loads then depend on the path
     (BEM_Mod 1 lost 14-29 % of the NREL 5MW's loads that way). Without a valid BEM solution: the geometric angle
-    atan2(vx, vy), valid False and zero induction (as AeroDyn)."""
+    atan2(vx cos(cant), vy), valid False and zero induction (as AeroDyn)."""
     if abs(vx) < ZERO_VELOCITY:
         return 0.0, True, 0.0, 0.0
     if abs(vy) < ZERO_VELOCITY:
         return math.copysign(math.pi / 2.0, vx), True, 0.0, 0.0
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
-            options)
+            options, geometry)
     tolerance = options[TOLERANCE]
     if math.isfinite(guess) and abs(guess) > EDGE and abs(abs(guess) - math.pi / 2.0) > EDGE:
         f_guess, a, ap, valid = residual(guess, *args)
@@ -173,7 +186,7 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
             phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args)
             if valid:
                 return phi, True, a, ap
-    return math.atan2(vx, vy), False, 0.0, 0.0
+    return math.atan2(vx * math.cos(geometry[0]), vy), False, 0.0, 0.0
 
 
 @kernel
@@ -188,7 +201,8 @@ def skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options):
 
 @kernel
 def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0, skew_cos,
-               induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, guess):
+               induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, guess, cant, toe,
+               drdz):
     """Quasi-steady BEM loads at one blade node.
 
     Inputs (SI, rad): vx, vy the relative velocity of the air at the node without induction (wind minus structural
@@ -198,47 +212,56 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
     centre along the blade; n_blades; tip_ratio r_local / R_tip, chi0 the wake skew angle and skew_cos the cosine of
     the angle between the blade and the most downwind direction (skewed-wake model); induction_weight (1, or
     AeroDyn's low-tip-speed-ratio blend); airfoil the polar index; the packed polars; the option vector;
-    air_density; guess the previous phi (nan for none).
+    air_density; guess the previous phi (nan for none); in the polar formulation (BEM_Mod 2, vx and vy then in
+    AeroDyn's local polar frame) the section's cant and toe (rad) and dr/dz of the annulus (0, 0, 1 otherwise;
+    :mod:`bladefem.aero.polar`).
 
     Returns (phi_solved, a, a', phi, alpha, W, cl, cd, cm, fn, ft, m, valid): fn the force per unit length along
     +x (downwind normal), ft along the direction of rotation (-y), m the pitching moment per unit length (N m/m,
-    nose up); phi_solved is the root of the BEM equations (keep it as the next guess), phi the inflow angle after
-    the skew correction.
+    nose up) — in the polar formulation fn along the untwisted section's chord normal x' and ft along -y' —;
+    phi_solved is the root of the BEM equations (keep it as the next guess), phi the inflow angle after the skew
+    correction.
     """
     solidity = n_blades * chord / (2.0 * math.pi * r_local)
     fixed = ((options[TIP_LOSS] != 0.0 and tip_constant == 0.0)
              or (options[HUB_LOSS] != 0.0 and hub_constant == 0.0))
     a, ap, valid = 0.0, 0.0, True
     if options[INDUCTION] == 0.0:
-        phi_solved = math.atan2(vx, vy)
+        phi_solved = math.atan2(vx * math.cos(cant), vy)
     elif fixed:                                        # node at the tip or hub with loss: no flow through it
-        phi_solved, a = math.atan2(vx, vy), 1.0
+        phi_solved, a = math.atan2(vx * math.cos(cant), vy), 1.0
     else:
         phi_solved, valid, a, ap = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0,
-                                                      airfoil, knots, values, coefs, start, count, options, guess)
+                                                      airfoil, knots, values, coefs, start, count, options, guess,
+                                                      (cant, toe, drdz))
         a, ap = min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
         if valid and abs(vx) >= ZERO_VELOCITY and abs(vy) >= ZERO_VELOCITY:
             if options[SKEW_REDISTRIBUTION] != 0.0:
-                loss = loss_factor(phi_solved, tip_constant, hub_constant, options)
+                loss = loss_factor(phi_solved, tip_constant, hub_constant, options, math.cos(cant))
                 a = skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options)
         a, ap = a * induction_weight, ap * induction_weight
     phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs,
-                                                         start, count, options, air_density)
+                                                         start, count, options, air_density, cant, toe)
     return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
 
 
 @kernel
-def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options, air_density):
+def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options, air_density,
+                  cant, toe):
     """Loads of a blade section for given induction factors a, a' (no solve): (phi, alpha, W, cl, cd, cm, fn, ft, m)
     as in :func:`node_loads`; drag always included. About a tenth of a node solve: for right-hand sides evaluated
-    between two solves with the induction held."""
-    x, y = vx * (1.0 - a), vy * (1.0 + ap)
+    between two solves with the induction held. A canted or toed section (cant, toe in rad, polar formulation)
+    sees W from (vx cos(cant) (1 - a), vy (1 + a')) at its own angle (:func:`bladefem.aero.polar.section_angle`),
+    and fn, ft act along its untwisted chord normal and against y' (AeroDyn's loads in the airfoil frame turned
+    back by the section's orientation)."""
+    x, y = vx * math.cos(cant) * (1.0 - a), vy * (1.0 + ap)
     phi = math.atan2(x, y) if (x != 0.0 or y != 0.0) else 0.0
-    alpha = phi - theta
+    inflow = section_angle(phi, cant, toe)
+    alpha = inflow - theta
     cl, cd, cm = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
     w = math.sqrt(x * x + y * y)
     q = 0.5 * air_density * w * w
-    s, c = math.sin(phi), math.cos(phi)
+    s, c = math.sin(inflow), math.cos(inflow)
     fn = q * chord * (cl * c + cd * s)
     ft = q * chord * (cl * s - cd * c)
     m = q * chord * chord * cm if options[USE_CM] != 0.0 else 0.0
@@ -247,14 +270,21 @@ def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, st
 
 @kernel
 def solve_nodes(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0, skew_cos,
-                induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, guess, out):
+                induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, guess, cant, toe,
+                drdz, out):
     """:func:`node_loads` at every node of flat arrays (scalars n_blades, induction_weight, air_density shared);
     row i of ``out`` (n, NODE_OUTPUTS) receives node i's outputs in :func:`node_loads` order (valid as 1.0/0.0)."""
     for i in range(vx.shape[0]):
         phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
             vx[i], vy[i], r_local[i], chord[i], theta[i], tip_constant[i], hub_constant[i], n_blades, tip_ratio[i],
             chi0[i], skew_cos[i], induction_weight, airfoil[i], knots, values, coefs, start, count, options,
-            air_density, guess[i])
+            air_density, guess[i], cant[i], toe[i], drdz[i])
         out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4] = phi_solved, a, ap, phi, alpha
         out[i, 5], out[i, 6], out[i, 7], out[i, 8] = w, cl, cd, cm
         out[i, 9], out[i, 10], out[i, 11], out[i, 12] = fn, ft, m, 1.0 if valid else 0.0
+
+
+def plane_geometry(n: int) -> tuple:
+    """(cant, toe, dr/dz) arrays of ``n`` plane sections (0, 0, 1) for :func:`solve_nodes`: the legacy
+    projection, and the polar one for sections normal to the rotor plane."""
+    return np.zeros(n), np.zeros(n), np.ones(n)

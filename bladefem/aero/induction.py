@@ -30,10 +30,14 @@ THRUST_AT_ONE = 2.0
 
 
 @kernel
-def loss_factor(phi, tip_constant, hub_constant, options):
+def loss_factor(phi, tip_constant, hub_constant, options, cos_cant):
     """Prandtl's tip and hub loss F = F_tip F_hub at inflow angle phi; the constants are B (z_tip - z) / (2 z) and
-    B (z - z_hub) / (2 z_hub). Kept above 1e-4 like AeroDyn; the polar formulation applies it only for phi > 0."""
+    B (z - z_hub) / (2 z_hub). Kept above 1e-4 like AeroDyn; the polar formulation applies it only for phi > 0,
+    with sin phi_N of the inflow angle in the plane normal to a blade canted by the angle whose cosine is
+    ``cos_cant`` (AeroDyn's getNewPhi: tan phi_N = tan phi / cos(cant); 1 for an uncanted section)."""
     s = abs(math.sin(phi))
+    if cos_cant != 1.0:
+        s = s / math.hypot(math.sin(phi), math.cos(phi) * cos_cant)
     f = 1.0
     if s > 1e-12 and (options[FORMULATION] != 2.0 or phi > 0.0):
         if options[TIP_LOSS] != 0.0:
@@ -115,11 +119,18 @@ def polar_axial_induction(phi, vx, k, loss, chi0, high_induction):
 
 
 @kernel
-def induction(phi, vx, vy, solidity, cl, cd, loss, chi0, options):
-    """(residual, a, a', valid) of the BEM equations at inflow angle phi for the coefficients cl, cd."""
+def plane_coefficients(phi, cl, cd, options):
+    """(cn, ct): the section's force coefficients normal to the rotor plane and in it (towards the leading edge) at
+    inflow angle phi, drag only with AIDrag / TIDrag (AeroDyn's Transform_ClCd_to_CxCy)."""
     s, c = math.sin(phi), math.cos(phi)
-    cn = cl * c + (cd * s if options[AI_DRAG] != 0.0 else 0.0)
-    ct = cl * s - (cd * c if options[TI_DRAG] != 0.0 else 0.0)
+    return cl * c + (cd * s if options[AI_DRAG] != 0.0 else 0.0), cl * s - (cd * c if options[TI_DRAG] != 0.0 else 0.0)
+
+
+@kernel
+def induction(phi, vx, vy, solidity, cn, ct, loss, chi0, options):
+    """(residual, a, a', valid) of the BEM equations at inflow angle phi for the force coefficients cn (normal to
+    the rotor plane, times dr/dz in the polar formulation) and ct (in the plane)."""
+    s, c = math.sin(phi), math.cos(phi)
     k = solidity * cn / (4.0 * loss * s * s)
     polar = options[FORMULATION] == 2.0
     momentum = polar or (phi > 0.0 and vx >= 0.0) or (phi < 0.0 and vx < 0.0)

@@ -1,8 +1,10 @@
 """Blade-node kinematics of a rigid rotor turning at constant speed, vectorised over azimuths, blades and nodes.
 
-What AeroDyn's legacy BEM (BEM_Mod 1, "no sweep, pitch, twist" frame) hands its BEM solver, computed here for a
-rigid rotor: the relative velocity components vx (along i1, the coned blade's downwind normal) and vy (along
--e_t, opposite to the rotation), the distance r_local from the shaft axis, the tip- and hub-loss constants from the
+What AeroDyn's BEM hands its BEM solver, computed here for a rigid rotor: the relative velocity components vx and vy
+in the projection of the rotor's BEM_Mod (:func:`bladefem.aero.polar.projection`; legacy "no sweep, pitch, twist"
+frame: vx along i1, the coned blade's downwind normal, and vy along -e_t, opposite to the rotation; polar: along the
+shaft and in the rotor plane, with the section's cant, toe and the annulus dr/dz), the distance r_local from the
+shaft axis, the tip- and hub-loss constants from the
 distance z along the blade from the rotor centre, and the skewed-wake inputs: chi0 the angle between the shaft axis
 and the disk-averaged wind, and the cosine of the angle between a blade and the in-plane direction of that wind
 (the most downwind azimuth).
@@ -16,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .polar import projection
 from .rotor import Inflow, Rotor
 
 
@@ -29,6 +32,8 @@ class NodeKinematics:
     tip_constant, hub_constant : Prandtl constants; tip_ratio : r_local / max r_local of the blade
     chi0 : skew angle per azimuth (n_az,), rad; skew_cos : (..,)
     disk_velocity : disk-averaged wind along x_s per azimuth (n_az,), m/s; max_radius : largest r_local, m
+    cant, toe : (..,) the section's angles in its local polar frame (zero in the legacy projection), rad;
+    drdz : (..,) the annulus factor (1 in the legacy projection)
     """
 
     position: NDArray
@@ -47,6 +52,9 @@ class NodeKinematics:
     skew_cos: NDArray
     disk_velocity: NDArray
     max_radius: float
+    cant: NDArray
+    toe: NDArray
+    drdz: NDArray
 
 
 def shaft_frame(tilt: float, yaw: float) -> tuple[NDArray, NDArray, NDArray]:
@@ -77,8 +85,8 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     normal_n = np.broadcast_to(normal[..., None, :], position.shape)
     tangent_n = np.broadcast_to(tangent[..., None, :], position.shape)
     axis_n = np.broadcast_to(axis[..., None, :], position.shape)
-    vx = np.einsum("...k,...k", velocity, normal_n)
-    vy = -np.einsum("...k,...k", velocity, tangent_n)
+    frame = projection(rotor.options.formulation == 2, position, xs, normal_n, tangent_n, axis_n)
+    vx, vy = frame.components(velocity)
     axial = position @ xs
     r_local = np.linalg.norm(position - axial[..., None] * xs, axis=-1)
     z = _distance_along_blade(rotor, position, axis)
@@ -96,7 +104,8 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
                                                                                                          None])
     skew_cos = np.broadcast_to(np.einsum("abk,ak->ab", radial, in_plane)[..., None], vx.shape)
     return NodeKinematics(position, xs, normal_n, tangent_n, axis_n, vx, vy, r_local, z, tip_constant, hub_constant,
-                          tip_ratio, chi0, skew_cos, disk_velocity, float(r_local.max()))
+                          tip_ratio, chi0, skew_cos, disk_velocity, float(r_local.max()), frame.cant, frame.toe,
+                          frame.drdz)
 
 
 def _distance_along_blade(rotor: Rotor, position: NDArray, axis: NDArray) -> NDArray:

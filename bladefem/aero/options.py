@@ -5,8 +5,9 @@ The defaults are AeroDyn's documented defaults and the values of the OpenFAST NR
 Peters skewed-wake redistribution with factor 15 pi / 32 (Skew_Mod 1, SkewRedistr_Mod 1; the legacy SkewMod 2),
 residual tolerance 5e-10 (double precision), at most 100 iterations, pitching moment used.
 
-``formulation`` follows AeroDyn's BEM_Mod in what changes the induction (the projection of the velocities is the
-legacy one in both, see :mod:`bladefem.aero.kinematics`): 1 (legacy, AeroDyn's default when BEM_Mod is absent):
+``formulation`` is AeroDyn's BEM_Mod: it chooses the projection of the velocities (legacy or polar,
+:func:`bladefem.aero.polar.projection`) and what changes the induction: 1 (legacy, AeroDyn's default when BEM_Mod
+is absent):
 Buhl's high-induction thrust curve above a = 0.4, the propeller-brake branch for phi < 0, loss factors at any
 inflow angle, the skew redistribution without F; 2 (polar, OpenFAST 4's recommended setting): the quadratic
 empirical thrust C_T(a) continuing momentum theory C1-smoothly from a_c = min(0.35 / cos chi0, 0.5) to C_T(1) = 2,

@@ -174,11 +174,12 @@ def solve_kinematics(rotor: Rotor, kin: NodeKinematics, rotor_speed: float, pitc
         tsr = rotor_speed * kin.max_radius / kin.disk_velocity[i] if kin.disk_velocity[i] else 0.0
         flat = [np.ascontiguousarray(np.broadcast_to(x, shape[1:]).ravel()) for x in (
             kin.vx[i], kin.vy[i], kin.r_local[i], rotor.chord, theta, kin.tip_constant[i], kin.hub_constant[i],
-            kin.tip_ratio[i], np.full(shape[1:], kin.chi0[i]), kin.skew_cos[i], rotor.airfoil)]
-        vx, vy, r_local, chord, twist, tip_c, hub_c, tip_ratio, chi0, skew_cos, airfoil = flat
+            kin.tip_ratio[i], np.full(shape[1:], kin.chi0[i]), kin.skew_cos[i], rotor.airfoil, kin.cant[i],
+            kin.toe[i], kin.drdz[i])]
+        vx, vy, r_local, chord, twist, tip_c, hub_c, tip_ratio, chi0, skew_cos, airfoil, cant, toe, drdz = flat
         result = np.empty((vx.size, NODE_OUTPUTS))
         solve_nodes(vx, vy, r_local, chord, twist, tip_c, hub_c, float(rotor.n_blades), tip_ratio, chi0, skew_cos,
                     induction_weight(tsr), airfoil, *table.arrays, options, float(rotor.air_density),
-                    np.full(vx.size, np.nan), result)
+                    np.full(vx.size, np.nan), cant, toe, drdz, result)
         out[i] = result.reshape(shape[1:] + (NODE_OUTPUTS,))
     return out

@@ -109,15 +109,6 @@ class AeroDynPrimary:
             skew_factor=self.skew_factor, formulation=2 if self.bem_mod == 2 else 1, tolerance=self.tolerance,
             max_iterations=self.max_iterations)
 
-    def notes(self) -> list[str]:
-        """What bladefem does differently from this file's settings (modelled in part, said on the terminal)."""
-        if self.bem_mod != 2:
-            return []
-        return [f"AeroDyn BEM_Mod 2 ({Path(self.path).name}): its induction (the polar formulation) is used, its "
-                "polar-grid projection of the velocities is not: the inflow is resolved normal to the blade turned "
-                "by its out-of-plane slope, as BEM_Mod 1 does (NREL 5MW at 11.4 m/s: 1 % less thrust and the first "
-                "flap modes up to 3 % stiffer than OpenFAST with BEM_Mod 2; docs/turbine-aero.md)"]
-
     def unmodelled(self) -> list[Unmodelled]:
         """Every switch of this file that asks for physics bladefem does not model."""
         found = []

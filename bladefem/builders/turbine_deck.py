@@ -118,5 +118,4 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
     rigid = "--foundation rigid" in leave_out
     switches, conditions = deck_conditions(main, rigid)
     notes = ((platform_note(main),) if rigid else ()) + deck.left_out
-    notes += tuple(deck.aerodyn.notes()) if loads is not None else ()
     return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True, notes)

@@ -153,7 +153,6 @@ def run_aeroelastic(args: argparse.Namespace) -> int:
     rigid = "--foundation rigid" in taken
     switches, conditions = deck_conditions(deck.elastodyn.path, rigid)
     notes: list[str] = ([platform_note(deck.elastodyn.path)] if rigid else []) + list(deck.left_out)
-    notes += list(deck.aerodyn.notes())
     structure_notes: list[str] = []
     structure = structure_builder(deck, args, structure_notes)
     dofs = dof_names(deck.elastodyn.num_blades)

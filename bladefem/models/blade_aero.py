@@ -81,13 +81,14 @@ def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: 
     (rad/s) and blade pitch ``pitch`` (rad), and the polars' slopes there."""
     inflow = Inflow(wind_speed, rotor.hub_height if math.isfinite(rotor.hub_height) else 1.0)
     performance = performance_at(rotor, inflow, rotor_speed, pitch, 0.0, np.zeros(1))
-    phi, w = performance.phi[0, 0], performance.w[0, 0]
-    alpha = performance.alpha[0, 0]
+    w, alpha = performance.w[0, 0], performance.alpha[0, 0]
+    angle = alpha + rotor.twist + pitch           # the inflow angle in the section's plane (phi, but for a section
+    #                                               canted or toed in AeroDyn's polar projection, BEM_Mod 2)
     slopes = polar_slopes(rotor, alpha)
     cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
     return AeroOperatingPoint(
         span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor),
-        X=w * np.sin(phi), Y=w * np.cos(phi), theta=rotor.twist + pitch, alpha=alpha, cl=performance.cl[0, 0],
+        X=w * np.sin(angle), Y=w * np.cos(angle), theta=rotor.twist + pitch, alpha=alpha, cl=performance.cl[0, 0],
         cd=performance.cd[0, 0], cm=cm,
         dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
         air_density=rotor.air_density, rotor_speed=rotor_speed,

@@ -5,11 +5,15 @@ are linear interpolations of the structural beam's (root, span nodes, tip), as O
 motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
 rotation) ride rigidly in the blade frame. At every state the node's absolute velocity (tower, nacelle, rotor and
 blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
-the node solver (:func:`bladefem.aero.bem.node_loads`) are AeroDyn's legacy projection (``NoSweepPitchTwist``):
+the node solver (:func:`bladefem.aero.bem.node_loads`) are, with BEM_Mod 1, AeroDyn's legacy projection
+(``NoSweepPitchTwist``):
 
     n = (i1 - w' i3) / sqrt(1 + w'^2)     the coned blade's downwind normal turned by the out-of-plane slope w'
     vx = (V_wind - v) . n,   vy = -(V_wind - v) . e_t      e_t the direction of rotation (toward the leading edge)
     r_local = distance from the shaft axis,  theta = BlTwist + pitch
+
+and with BEM_Mod 2 its polar projection (:mod:`bladefem.aero.polar`: vx along the shaft, vy in the rotor plane, the
+section's cant, toe and the annulus dr/dz handed to the solver, which resolves its loads along n and e_t again).
 
 with the disk-averaged relative wind giving the skew angle ``chi0``, the skewed-wake azimuth and the tip-speed ratio
 (AeroDyn's ``DiskAvgValues``). The loads per unit length, ``fn`` along ``n``, ``ft`` along ``e_t`` and the pitching
@@ -33,6 +37,7 @@ from ...aero.performance import COLUMNS, induction_weight
 from ...aero.polars import pack_polars
 from ...aero.rotor import Inflow, Rotor
 from ...errors import InputError
+from ...aero.polar import Projection, projection
 from .kinematics import BeamNodes, NodeGroup, carry_nodes
 from .shapes import ModalBeam
 
@@ -228,13 +233,13 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     normal = (i1 - w_slope * i3) / stretch
     span_axis = (i3 + w_slope * i1) / stretch
     relative = aero.inflow.velocity(r[..., 2]) - v
-    vx = np.einsum("bpk,bpk->bp", relative, normal)
-    vy = -np.einsum("bpk,bpk->bp", relative, np.broadcast_to(e_t, r.shape))
     apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
     arm = r - apex
+    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, normal, e_t, span_axis)
+    vx, vy = frame.components(relative)
     r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
     disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)
-    solution = solve_all(aero, vx, vy, r_local, disk, guess)
+    solution = solve_all(aero, vx, vy, r_local, disk, guess, frame)
     fn, ft, m = (solution[..., COLUMNS.index(name)][..., None] for name in ("fn", "ft", "m"))
     forces = np.einsum("ij,bjk->bik", aero.force_lumping(), fn * normal + ft * e_t)
     moments = aero.moment_weights()[None, :, None] * m * span_axis
@@ -288,20 +293,20 @@ def disk_values(relative: NDArray, shaft: NDArray, pitch_axes: NDArray, speed: f
 
 
 def solve_all(aero: TurbineAero, vx: NDArray, vy: NDArray, r_local: NDArray, disk: DiskValues,
-              guess: NDArray | None) -> NDArray:
-    """The node solver at every node of every blade: (B, Na, NODE_OUTPUTS)."""
+              guess: NDArray | None, frame: Projection) -> NDArray:
+    """The node solver at every node of every blade: (B, Na, NODE_OUTPUTS), the sections oriented by ``frame``."""
     rotor = aero.rotor
     shape = vx.shape
     tip_ratio = r_local / r_local.max(axis=1, keepdims=True)
     per_node = [np.ascontiguousarray(np.broadcast_to(x, shape).ravel()) for x in (
         vx, vy, r_local, rotor.chord, aero.theta, aero.tip_constant, aero.hub_constant, tip_ratio,
         np.full(shape, disk.chi0), disk.skew_cos[:, None], rotor.airfoil,
-        np.full(shape, np.nan) if guess is None else guess)]
-    vx_, vy_, r_, chord, theta, tip_c, hub_c, ratio, chi0, skew_cos, airfoil, start = per_node
+        np.full(shape, np.nan) if guess is None else guess, frame.cant, frame.toe, frame.drdz)]
+    vx_, vy_, r_, chord, theta, tip_c, hub_c, ratio, chi0, skew_cos, airfoil, start, cant, toe, drdz = per_node
     out = np.empty((vx.size, NODE_OUTPUTS))
     solve_nodes(vx_, vy_, r_, chord, theta, tip_c, hub_c, float(rotor.n_blades), ratio, chi0, skew_cos,
                 disk.weight, airfoil.astype(np.int64), *aero.polar_arrays, aero.options,
-                float(rotor.air_density), start, out)
+                float(rotor.air_density), start, cant, toe, drdz, out)
     return out.reshape(shape + (NODE_OUTPUTS,))
 
 

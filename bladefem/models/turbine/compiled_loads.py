@@ -68,6 +68,7 @@ def aero_state(blades: int, nodes: int, modes: int) -> tuple:
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
     from ...aero.bem import node_loads
+    from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
     from .compiled_kernels import beam_node
     from .compiled_state import full_state, state_rate
@@ -127,6 +128,42 @@ if njit is not None:                                   # module-level kernels: n
         return omega
 
     @njit(cache=True)
+    def projected_inflow(rho_w, b, p, rel, normal, span, tangent, shaft, polar):
+        """(vx, vy, cant, toe, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`):
+        the legacy projection on the normal and against the rotation, or (``polar``) AeroDyn's local polar frame."""
+        if not polar:
+            vx = rel[0] * normal[0] + rel[1] * normal[1] + rel[2] * normal[2]
+            vy = -(rel[0] * tangent[0] + rel[1] * tangent[1] + rel[2] * tangent[2])
+            return vx, vy, 0.0, 0.0, 1.0
+        z_l, y_l = np.zeros(3), np.zeros(3)
+        j = max(p, 1)
+        rho, prev = rho_w[b, j], rho_w[b, j - 1]
+        along, step_along = 0.0, 0.0
+        for r in range(3):
+            along += rho_w[b, p, r] * shaft[r]
+            step_along += (rho[r] - prev[r]) * shaft[r]
+        size, step, step_projected = 0.0, 0.0, 0.0
+        for r in range(3):
+            z_l[r] = rho_w[b, p, r] - along * shaft[r]
+            size += z_l[r] ** 2
+            step += (rho[r] - prev[r]) ** 2
+            step_projected += (rho[r] - prev[r] - step_along * shaft[r]) ** 2
+        size = math.sqrt(size)
+        for r in range(3):
+            z_l[r] /= size
+        cross(z_l, shaft, y_l)
+        vx, vy, s_x, n_x, t_z, t_y = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        for r in range(3):
+            vx += rel[r] * shaft[r]
+            vy += rel[r] * y_l[r]
+            s_x += span[r] * shaft[r]
+            n_x += normal[r] * shaft[r]
+            t_z += tangent[r] * z_l[r]
+            t_y += tangent[r] * y_l[r]
+        drdz = math.sqrt(step_projected) / math.sqrt(step) if step > 0.0 else 0.0
+        return vx, vy, math.atan2(s_x, n_x), math.atan2(-t_z, -t_y), drdz
+
+    @njit(cache=True)
     def add_aero(f, q, u, data, aero, work, state):
         """f += the generalized aerodynamic forces at (q, u); fills ``state`` (loads, solutions, rotor summary)."""
         nodes = aero[2].shape[0]
@@ -184,13 +221,12 @@ if njit is not None:                                   # module-level kernels: n
             skew_cos = (radial[0] * in_plane[0] + radial[1] * in_plane[1] + radial[2] * in_plane[2]) / math.sqrt(
                 length)
             for p in range(nodes):
-                rel, normal = rel_w[b, p], normal_w[b, p]
-                vx = rel[0] * normal[0] + rel[1] * normal[1] + rel[2] * normal[2]
-                vy = -(rel[0] * R[0, 1] + rel[1] * R[1, 1] + rel[2] * R[2, 1])
+                vx, vy, cant, toe, drdz = projected_inflow(rho_w, b, p, rel_w[b, p], normal_w[b, p], span_w[b, p],
+                                                           R[:, 1], shaft, options[FORMULATION] == 2.0)
                 phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
                     vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1], r_local[b, p] / tip[b],
                     chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start, count, options, scalars[0],
-                    math.nan)
+                    math.nan, cant, toe, drdz)
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl
                 row[7], row[8], row[9], row[10], row[11] = cd, cm, fn, ft, m

@@ -8,7 +8,9 @@ the structure moves (``BEMT.f90``, ``computeFrozenWake``), so a node's inflow is
     x = vx - (vx a)_op,   y = vy + (vy a')_op,   phi = atan2(x, y),   alpha = phi - theta,
 
 with ``vx``, ``vy`` the node's relative wind projected as in :mod:`bladefem.models.turbine.aero` (the same
-kinematics, :func:`node_inflow`), and the section loads of :func:`bladefem.aero.bem.section_loads` at (x, y). The
+kinematics and projection, :func:`node_inflow`; with BEM_Mod 2 x is further scaled by cos(cant) and the section
+sees its own angle, ``ComputePhiWithInduction``), and the section loads of :func:`bladefem.aero.bem.section_loads`
+at (x, y). The
 quasi-steady alternative re-solves the BEM for every perturbation (:func:`bladefem.models.turbine.aero.aero_loads`).
 
 The Jacobians (:func:`aero_jacobians`) are central differences: over the speeds ``u`` the nodes' velocities change
@@ -27,6 +29,7 @@ from numpy.typing import NDArray
 from ...aero.bem import NODE_OUTPUTS, solve_nodes
 from ...aero.performance import COLUMNS
 from .aero import TurbineAero, aero_loads, aero_nodes
+from ...aero.polar import Projection, projection
 from .kinematics import NodeGroup
 
 #: relative step of the central differences (the loads are smooth between polar knots; 1e-6 balances truncation
@@ -44,6 +47,7 @@ class NodeInflow:
     normal, tangent, span : (B, Na, 3) unit vectors: the coned blade's downwind normal turned by the out-of-plane
         slope, the direction of rotation, the deflected span axis
     rotor_W : (3, n) partial angular velocities of the rotor (the pitching moments act on it)
+    frame : the projection of the relative wind and the sections' orientation (:mod:`bladefem.aero.polar`)
     """
 
     group: NodeGroup
@@ -53,13 +57,12 @@ class NodeInflow:
     tangent: NDArray
     span: NDArray
     rotor_W: NDArray
+    frame: Projection
 
     def components(self, velocity: NDArray) -> tuple[NDArray, NDArray]:
-        """(vx, vy) of the relative wind for node velocities ``velocity`` (..., B, Na, 3): along the normal, and
-        against the direction of rotation."""
-        relative = self.wind - velocity
-        return np.einsum("...k,...k->...", relative, self.normal), -np.einsum("...k,...k->...", relative,
-                                                                              self.tangent)
+        """(vx, vy) of the relative wind for node velocities ``velocity`` (..., B, Na, 3), projected as the
+        BEM takes them."""
+        return self.frame.components(self.wind - velocity)
 
 
 def node_inflow(model, aero: TurbineAero, q: NDArray, u: NDArray) -> NodeInflow:
@@ -71,9 +74,12 @@ def node_inflow(model, aero: TurbineAero, q: NDArray, u: NDArray) -> NodeInflow:
     w_slope = np.einsum("bk,kp->bp", q[model.blade_columns], aero.slope[:, :, 1])[..., None]
     stretch = np.sqrt(1.0 + w_slope**2)
     shape = group.r.shape
+    normal, span = (i1 - w_slope * i3) / stretch, (i3 + w_slope * i1) / stretch
+    frame = projection(aero.rotor.options.formulation == 2, group.r - motion.apex.r, motion.rotor.R[:, 0], normal,
+                       e_t, span)
     return NodeInflow(group=group, velocity=group.velocity(u), wind=aero.inflow.velocity(group.r[..., 2]),
-                      normal=(i1 - w_slope * i3) / stretch, tangent=np.broadcast_to(e_t, shape),
-                      span=(i3 + w_slope * i1) / stretch, rotor_W=motion.rotor.W)
+                      normal=normal, tangent=np.broadcast_to(e_t, shape), span=span, rotor_W=motion.rotor.W,
+                      frame=frame)
 
 
 @dataclass(frozen=True)
@@ -109,17 +115,19 @@ class SectionAero:
         bare = replace(aero, rotor=replace(rotor, options=replace(rotor.options, induction=False)))
         return cls(aero=aero, bare=bare, lumping=aero.force_lumping(), weights=aero.moment_weights())
 
-    def section_loads(self, x: NDArray, y: NDArray) -> NDArray:
-        """(fn, ft, m) per unit length (..., B, Na, 3) at the inflow velocities (x, y) (..., B, Na), m/s."""
+    def section_loads(self, x: NDArray, y: NDArray, frame: Projection) -> NDArray:
+        """(fn, ft, m) per unit length (..., B, Na, 3) at the inflow velocities (x, y) (..., B, Na), m/s, of the
+        sections oriented by ``frame``."""
         bare, rotor = self.bare, self.bare.rotor
         shape = x.shape
-        x_, y_, chord, theta = (np.ascontiguousarray(np.broadcast_to(value, shape), dtype=float).ravel()
-                                for value in (x, y, rotor.chord, bare.theta))
+        x_, y_, chord, theta, cant, toe = (np.ascontiguousarray(np.broadcast_to(value, shape), dtype=float).ravel()
+                                           for value in (x, y, rotor.chord, bare.theta, frame.cant, frame.toe))
         ones = np.ones(x.size)
         airfoil = np.ascontiguousarray(np.broadcast_to(rotor.airfoil, shape)).ravel().astype(np.int64)
         out = np.empty((x.size, NODE_OUTPUTS))
         solve_nodes(x_, y_, ones, chord, theta, ones, ones, float(rotor.n_blades), ones, 0 * ones, 0 * ones, 1.0,
-                    airfoil, *bare.polar_arrays, bare.options, float(rotor.air_density), np.full(x.size, np.nan), out)
+                    airfoil, *bare.polar_arrays, bare.options, float(rotor.air_density), np.full(x.size, np.nan),
+                    cant, toe, ones, out)
         return out[:, [FN, FT, PM]].reshape(shape + (3,))
 
     def nodal_loads(self, inflow: NodeInflow, loads: NDArray) -> tuple[NDArray, NDArray]:
@@ -134,7 +142,7 @@ class SectionAero:
         ``held``."""
         inflow = node_inflow(model, self.aero, q, u)
         vx, vy = inflow.components(inflow.velocity)
-        loads = self.section_loads(vx - held.axial, vy + held.tangential)
+        loads = self.section_loads(vx - held.axial, vy + held.tangential, inflow.frame)
         return per_blade_forces(inflow, *self.nodal_loads(inflow, loads))
 
 
@@ -195,7 +203,7 @@ def aero_jacobians(model, aero: TurbineAero, q: NDArray, u: NDArray, columns: ND
     steps = STEP * np.maximum(1.0, np.abs(u[columns]))
     change = np.moveaxis(inflow.group.J[..., columns] * steps, -1, 0)       # (k, B, Na, 3)
     vx, vy = inflow.components(np.concatenate([inflow.velocity + change, inflow.velocity - change]))
-    loads = sections.section_loads(vx - held.axial, vy + held.tangential)
+    loads = sections.section_loads(vx - held.axial, vy + held.tangential, inflow.frame)
     Q = per_blade_forces(inflow, *sections.nodal_loads(inflow, loads)).sum(axis=-2)    # (2k, n)
     k = len(columns)
     du = ((Q[:k] - Q[k:]) / (2 * steps[:, None])).T
