@@ -240,7 +240,7 @@ if njit is not None:                                   # module-level kernels: n
             f[i] -= torque * generator_angle[i]
         return torque
 
-    @njit(cache=True)
+    @njit(cache=True, inline='always')
     def equations(q, u, data, work):
         """Mass matrix and forcing with the aerodynamic loads and the generator torque."""
         structure, aero, law = data
