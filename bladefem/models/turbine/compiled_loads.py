@@ -103,7 +103,7 @@ if njit is not None:                                   # module-level kernels: n
                 qb[i] = q[b_columns[b, i]]
                 ub[i] = u[b_columns[b, i]]
             for p in range(axial.shape[0]):
-                beam_node(across, short, axial, p, qb, ub, 0, D, d, rate, bias)
+                beam_node(across, short, axial, p, qb, ub, np.int64(0), D, d, rate, bias)
                 w = 0.0
                 for i in range(k):
                     w += slope[i, p] * qb[i]
