@@ -80,7 +80,7 @@ if njit is not None:                                   # module-level kernels: n
         out[1] = a[2] * b[0] - a[0] * b[2]
         out[2] = a[0] * b[1] - a[1] * b[0]
 
-    @njit(cache=True)
+    @njit(cache=True, inline='always')
     def node_kinematics(q, u, data, aero, work, state):
         """Positions, velocities, R D, deflected normals and span axes, relative wind of every aerodynamic node."""
         b_columns = data[9]
@@ -228,7 +228,7 @@ if njit is not None:                                   # module-level kernels: n
 
     law_torque = njit(cache=True)(control.law_torque)       # the torque law, compiled
 
-    @njit(cache=True)
+    @njit(cache=True, inline='always')
     def add_generator(f, u, generator_angle, law):
         """f -= T dtheta_g/du: the generator torque T (law at the generator speed) between generator and nacelle.
         Returns T."""
