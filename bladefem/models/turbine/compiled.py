@@ -98,12 +98,9 @@ def _dop853_tableau() -> tuple[NDArray, ...]:
 
 
 def _dp54_tableau() -> tuple[NDArray, ...]:
-    """scipy's RK45 (Dormand-Prince 5(4)) coefficients: A with the weights B as its last row, C with the step's end
-    (1) appended, E and the dense-output matrix P."""
+    """scipy's RK45 (Dormand-Prince 5(4)) coefficients A, B, C, E and its dense-output matrix P."""
     from scipy.integrate._ivp.rk import RK45
-    A = np.zeros((7, 6))
-    A[:6, :5], A[6] = RK45.A, RK45.B
-    return tuple(np.ascontiguousarray(a, dtype=float) for a in (A, np.append(RK45.C, 1.0), RK45.E, RK45.P))
+    return tuple(np.ascontiguousarray(a, dtype=float) for a in (RK45.A, RK45.B, RK45.C, RK45.E, RK45.P))
 
 
 @dataclass

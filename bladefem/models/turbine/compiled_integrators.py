@@ -34,7 +34,7 @@ if njit is not None:
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
-    @njit(cache=True, inline='always')
+    @njit(cache=True)
     def rate(t, x, q0, u0, index, data, work, hub_radius, row):
         """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
         same evaluation of the equations) if it is not empty."""
@@ -144,9 +144,8 @@ if njit is not None:                                   # module-level kernels: n
     @njit(cache=True)
     def dp54_chunk(t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol, limit, tableau, q0,
                    u0, index, data, work, hub_radius):
-        """Dormand-Prince 5(4) (scipy's RK45 scheme, tableau ``(A, B, C, E, P)`` with B appended to A and 1 to C, so
-        that one call of the right-hand side serves all six stages), as :func:`dop853_chunk`."""
-        A, C, E, P = tableau
+        """Dormand-Prince 5(4) (scipy's RK45 scheme, tableau ``(A, B, C, E, P)``), as :func:`dop853_chunk`."""
+        A, B, C, E, P = tableau
         size = x.shape[0]
         K = np.zeros((7, size))
         count = 0
@@ -158,10 +157,11 @@ if njit is not None:                                   # module-level kernels: n
             h = min(h, t_end - t)
             if h <= 1e-14 * max(1.0, abs(t)):
                 return t, x, K[0], h, next_out, count, 3, -1
-            new = x
-            for s in range(1, 7):                      # A's last row is B: the last stage is the new state
-                new = combination(x, h, A[s], K, s)
-                store_row(K, s, rate(t + C[s] * h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+            for s in range(1, 6):
+                stage = combination(x, h, A[s], K, s)
+                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+            new = combination(x, h, B, K, 6)
+            store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             count += 6
             total = 0.0
             for i in range(size):

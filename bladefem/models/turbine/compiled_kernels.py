@@ -207,7 +207,6 @@ if njit is not None:                                   # module-level kernels: n
          fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
          K, C, base_height) = data
         rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w, hub_J_w, hub_w = work
-        I0, I1, I2, I3 = np.int64(0), np.int64(1), np.int64(2), np.int64(3)   # not literals: one compilation
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
@@ -217,13 +216,13 @@ if njit is not None:                                   # module-level kernels: n
         D = np.zeros((3, 4))
         d, rate, bias, load = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
         for p in range(t_axial.shape[0]):
-            beam_node(t_across, t_short, t_axial, p, qt, ut, I2, D, d, rate, bias)
+            beam_node(t_across, t_short, t_axial, p, qt, ut, 2, D, d, rate, bias)
             m = t_mass[p]
             for r in range(3):
                 load[r] = m * (gravity[r] - bias[r])
             accumulate_node(A, F, D, m, load)
         top_J = np.zeros((3, n))
-        store_block(top_J, I0, I0, D)
+        store_block(top_J, 0, 0, D)
         top_a = bias.copy()
         top_r = d.copy()                     # the last tower node is the tower top
         top_r[2] += base_height
@@ -234,18 +233,18 @@ if njit is not None:                                   # module-level kernels: n
         # frames: tower top (fore-aft then side-side tilt), nacelle (yaw), shaft (tilt), rotor, generator
         R, w, W, al = np.zeros((3, 3)), np.zeros(3), np.zeros((3, n)), np.zeros(3)
         R[0, 0] = R[1, 1] = R[2, 2] = 1.0
-        R, w, W, al = rotate(R, w, W, al, I1, fore_aft, q, u)
-        R, w, W, al = rotate(R, w, W, al, I0, side_side, q, u)
-        RN, wN, WN, alN = rotate(R, w, W, al, I2, yaw, q, u)
+        R, w, W, al = rotate(R, w, W, al, 1, fore_aft, q, u)
+        R, w, W, al = rotate(R, w, W, al, 0, side_side, q, u)
+        RN, wN, WN, alN = rotate(R, w, W, al, 2, yaw, q, u)
         RS = np.zeros((3, 3))
         for r in range(3):
             for c in range(3):
                 RS[r, c] = RN[r, 0] * tilt[0, c] + RN[r, 1] * tilt[1, c] + RN[r, 2] * tilt[2, c]
-        RL, wL, WL, alL = rotate(RS, wN, WN, alN, I0, azimuth, q, u)
+        RL, wL, WL, alL = rotate(RS, wN, WN, alN, 0, azimuth, q, u)
         for r in range(3):
             hub_w[2, r] = alL[r]
             hub_w[3, r] = RL[r, 0]
-        RG, wG, WG, alG = rotate(RS, wN, WN, alN, I0, generator, q, u)
+        RG, wG, WG, alG = rotate(RS, wN, WN, alN, 0, generator, q, u)
         # rigid points in the nacelle frame: nacelle centre of mass, apex, hub centre of mass
         apex_J = np.zeros((3, n))
         apex_a = np.zeros(3)
@@ -270,12 +269,12 @@ if njit is not None:                                   # module-level kernels: n
                 load[r] = m * (gravity[r] - a[r])
             add_rigid_point(M, f, J, m, load)
             if i == 1:
-                store_block(apex_J, I0, I0, J)
+                store_block(apex_J, 0, 0, J)
                 for r in range(3):
                     apex_a[r] = a[r]
                     apex_w[r] = top_r[r] + rho[r]
             elif i == 2:
-                store_block(hub_J_w, I0, I0, J)
+                store_block(hub_J_w, 0, 0, J)
                 for r in range(3):
                     hub_w[0, r] = a[r]
                     hub_w[1, r] = top_r[r] + rho[r] - apex_w[r]
@@ -293,7 +292,7 @@ if njit is not None:                                   # module-level kernels: n
                 for c in range(3):
                     Rb[r, c] = RL[r, 0] * b_rotations[b, 0, c] + RL[r, 1] * b_rotations[b, 1, c] \
                         + RL[r, 2] * b_rotations[b, 2, c]
-            store_block(frame_w[b], I0, I0, Rb)
+            store_block(frame_w[b], 0, 0, Rb)
             cols = b_columns[b]
             qb, ub = np.empty(kb), np.empty(kb)
             for i in range(kb):
@@ -307,7 +306,7 @@ if njit is not None:                                   # module-level kernels: n
             G[2, 2] = 1.0
             w0, w1, w2 = wL[0], wL[1], wL[2]
             for p in range(b_axial.shape[0]):
-                beam_node(b_across, b_short, b_axial, p, qb, ub, I0, D, d, rate, bias)
+                beam_node(b_across, b_short, b_axial, p, qb, ub, 0, D, d, rate, bias)
                 rho = rho_w[b, p]
                 for r in range(3):
                     rho[r] = Rb[r, 0] * d[0] + Rb[r, 1] * d[1] + Rb[r, 2] * d[2]
@@ -336,17 +335,17 @@ if njit is not None:                                   # module-level kernels: n
                 G[2, 3], G[2, 4] = rho[1], -rho[0]
                 accumulate_node(A, F, G, m, load)
             Z = Z_w[b]
-            store_block(Z, I0, I0, apex_J)
-            store_block(Z, I3, I0, WL)
+            store_block(Z, 0, 0, apex_J)
+            store_block(Z, 3, 0, WL)
             for i in range(kb):
                 for c in range(n):
                     Z[6 + i, c] = 0.0
                 Z[6 + i, cols[i]] = 1.0
             add_group(M, f, A, F, Z)
         # rigid bodies with one principal inertia: nacelle about yaw, hub and generator about the shaft
-        add_rotor_body(M, f, RN, wN, WN, alN, I2, inertias[0])
-        add_rotor_body(M, f, RL, wL, WL, alL, I0, inertias[1])
-        add_rotor_body(M, f, RG, wG, WG, alG, I0, inertias[2])
+        add_rotor_body(M, f, RN, wN, WN, alN, 2, inertias[0])
+        add_rotor_body(M, f, RL, wL, WL, alL, 0, inertias[1])
+        add_rotor_body(M, f, RG, wG, WG, alG, 0, inertias[2])
         for i in range(n):
             for j in range(n):
                 f[i] -= K[i, j] * q[j] + C[i, j] * u[j]

@@ -80,7 +80,7 @@ if njit is not None:                                   # module-level kernels: n
         out[1] = a[2] * b[0] - a[0] * b[2]
         out[2] = a[0] * b[1] - a[1] * b[0]
 
-    @njit(cache=True, inline='always')
+    @njit(cache=True)
     def node_kinematics(q, u, data, aero, work, state):
         """Positions, velocities, R D, deflected normals and span axes, relative wind of every aerodynamic node."""
         b_columns = data[9]
@@ -103,7 +103,7 @@ if njit is not None:                                   # module-level kernels: n
                 qb[i] = q[b_columns[b, i]]
                 ub[i] = u[b_columns[b, i]]
             for p in range(axial.shape[0]):
-                beam_node(across, short, axial, p, qb, ub, np.int64(0), D, d, rate, bias)
+                beam_node(across, short, axial, p, qb, ub, 0, D, d, rate, bias)
                 w = 0.0
                 for i in range(k):
                     w += slope[i, p] * qb[i]
@@ -228,7 +228,7 @@ if njit is not None:                                   # module-level kernels: n
 
     law_torque = njit(cache=True)(control.law_torque)       # the torque law, compiled
 
-    @njit(cache=True, inline='always')
+    @njit(cache=True)
     def add_generator(f, u, generator_angle, law):
         """f -= T dtheta_g/du: the generator torque T (law at the generator speed) between generator and nacelle.
         Returns T."""
@@ -240,7 +240,7 @@ if njit is not None:                                   # module-level kernels: n
             f[i] -= torque * generator_angle[i]
         return torque
 
-    @njit(cache=True, inline='always')
+    @njit(cache=True)
     def equations(q, u, data, work):
         """Mass matrix and forcing with the aerodynamic loads and the generator torque."""
         structure, aero, law = data
