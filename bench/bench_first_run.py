@@ -77,9 +77,10 @@ def profile(seconds: float) -> None:
         env = {**os.environ, "NUMBA_CACHE_DIR": os.path.join(folder, "numba"), "PYTHONPATH": str(ROOT)}
         env.pop("BLADEFEM_NO_NUMBA", None)
         print("| function | signatures | compile CPU [s], callees excluded |\n|---|---|---|", flush=True)
-        subprocess.run([sys.executable, "-c", PROFILE, "turbine", str(DECK), "--simulate", f"{seconds:g}",
-                        "--wind-speed", "11.4", "--quiet", "--output", os.path.join(folder, "out.csv")], cwd=ROOT,
-                       env=env, check=True)
+        child = subprocess.run([sys.executable, "-c", PROFILE, "turbine", str(DECK), "--simulate", f"{seconds:g}",
+                                "--wind-speed", "11.4", "--quiet", "--output", os.path.join(folder, "out.csv")],
+                               cwd=ROOT, env=env, check=True, capture_output=True, text=True)
+        print("\n".join(line for line in child.stdout.splitlines() if not line.startswith("#")))
 
 
 def main() -> None:
