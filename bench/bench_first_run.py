@@ -9,6 +9,10 @@ Each repeat starts ``bladefem turbine cases/nrel5mw/NRELOffshrBsline5MW_Onshore.
 compilation included), then again with that cache filled (a warm run: the machine code loaded from disk). Wall
 time and the child's CPU time (user + system) are printed, with the load average: on a shared machine the wall
 time of the cold run follows the load, the CPU time much less. Prints a Markdown table.
+
+``--profile`` instead runs one cold run in a subprocess that listens to numba's compile events and prints, per
+compiled function, the compile time spent in it but not in the functions it calls (numba typing and lowering, and
+LLVM for its library with the callees linked in), and how many functions (signatures) were compiled.
 """
 
 from __future__ import annotations
@@ -40,11 +44,54 @@ def run(cache: str, seconds: float, output: str) -> tuple[float, float]:
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+PROFILE = """
+import collections, sys, time
+from numba.core import event
+stack, own, count = [], collections.Counter(), collections.Counter()
+
+class Listener(event.Listener):
+    def on_start(self, ev):
+        stack.append([time.process_time(), 0.0])
+
+    def on_end(self, ev):
+        start, inner = stack.pop()
+        spent = time.process_time() - start
+        name = ev.data["dispatcher"].py_func.__qualname__
+        own[name] += spent - inner
+        count[name] += 1
+        if stack:
+            stack[-1][1] += spent
+
+event.register("numba:compile", Listener())
+from bladefem.cli import main
+main(sys.argv[1:])
+for name, spent in own.most_common(12):
+    print(f"| {name} | {count[name]} | {spent:.1f} |")
+print(f"\\n{sum(count.values())} functions compiled ({len(count)} distinct), {sum(own.values()):.1f} s CPU")
+"""
+
+
+def profile(seconds: float) -> None:
+    """One cold run with numba's compile events: CPU seconds per compiled function (its own share)."""
+    with tempfile.TemporaryDirectory() as folder:
+        env = {**os.environ, "NUMBA_CACHE_DIR": os.path.join(folder, "numba"), "PYTHONPATH": str(ROOT)}
+        env.pop("BLADEFEM_NO_NUMBA", None)
+        print("| function | signatures | compile CPU [s], callees excluded |\n|---|---|---|", flush=True)
+        child = subprocess.run([sys.executable, "-c", PROFILE, "turbine", str(DECK), "--simulate", f"{seconds:g}",
+                                "--wind-speed", "11.4", "--quiet", "--output", os.path.join(folder, "out.csv")],
+                               cwd=ROOT, env=env, check=True, capture_output=True, text=True)
+        print("\n".join(line for line in child.stdout.splitlines() if not line.startswith("#")))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--seconds", type=float, default=20.0, help="simulated time, s")
+    parser.add_argument("--profile", action="store_true", help="compile time per function of one cold run")
     args = parser.parse_args()
+    if args.profile:
+        profile(args.seconds)
+        return
     print(f"`--simulate {args.seconds:g} --wind-speed 11.4`, NREL 5MW deck, {os.cpu_count()} CPUs\n")
     print("| run | cold: wall [s] | cold: CPU [s] | warm: wall [s] | warm: CPU [s] | load average |")
     print("|---|---|---|---|---|---|")
