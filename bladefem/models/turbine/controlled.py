@@ -1,0 +1,167 @@
+"""A simulation with a Bladed-style controller library (ServoDyn ``PCMode`` 5, ``VSContrl`` 5): the controller is
+called every ``DLL_DT`` seconds with the turbine's state and its pitch and torque demands are held until the next
+call (zero-order hold: ServoDyn with ``DLL_Ramp`` False), the equations integrated in between.
+
+Each interval ``[t_k, t_k + DLL_DT]`` is one call of the compiled adaptive integrator (Dormand-Prince 5(4)) with
+the pitch set on the kernels' arrays (:mod:`.pitching`) and the generator torque held (the torque-law vector of
+:func:`.control.law_torque` with a rated speed of zero: the demanded torque at every positive speed). The output rows
+that fall in the interval are taken from the integrator's dense output; the pitch of a row is the one held over its
+interval. Needs numba (the numpy equations would take hours for a controlled run).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .discon import ControllerError, DisconController, Measurements
+from .outputs import LOAD_COLUMNS
+from .pitching import CompiledPitch
+from .simulate import SimulationResult, diverged, divergence_limits, generator_free, output_times, result_of
+from .system import FreeSystem
+from .watch import Interrupted, Monitor, SimulationStopped
+
+#: largest spread of the blades' pitch demands (rad) taken as collective; beyond, individual pitch is refused
+COLLECTIVE_TOLERANCE = 1e-6
+
+
+class Controlled:
+    """The state of a controlled run: kernels, pitch setter, held torque, and what the controller is sent."""
+
+    def __init__(self, system: FreeSystem, hub_wind: float, efficiency: float) -> None:
+        self.system, self.model = system, system.model
+        self.compiled = self.model.fast_equations()
+        if not hasattr(self.compiled, "integrate"):
+            raise RuntimeError("a controlled simulation needs numba (pip install numba; unset BLADEFEM_NO_NUMBA)")
+        self.pitcher = CompiledPitch(self.model, self.compiled)
+        self.law = self.compiled.law
+        self.law[:] = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+        self.hub_wind, self.efficiency = hub_wind, efficiency
+        self.generator = self.model.dofs.index("generator_azimuth")
+        self.ratio = self.model.params.gearbox_ratio
+
+    @property
+    def torque(self) -> float:
+        return float(self.law[2])
+
+    def measure(self, t: float, x: NDArray) -> Measurements:
+        """What ServoDyn sends the controller at state ``x``: speeds, pitch, wind, root moments of every blade,
+        shaft power, tower-top accelerations (from the equations' accelerations at x)."""
+        system, model, compiled = self.system, self.model, self.compiled
+        q, u = system.full(t, x)
+        blades = model.params.n_blades
+        rows = np.array([compiled.outputs(np.array([t]), x[None], system.q0, system.u0, system.index, b)[0]
+                         for b in range(blades)])
+        rate = compiled.derivative(t, x, system.q0, system.u0, system.index)
+        du = np.zeros(model.n)
+        du[system.index] = rate[system.size:]
+        top = du[model.tower_columns] @ model.params.tower.tip_value
+        rotor_speed = u[5] + u[6]
+        generator_speed = self.ratio * u[self.generator]
+        pitch = np.full(blades, self.pitcher.pitch)
+        return Measurements(
+            pitch=pitch, rotor_speed=rotor_speed, generator_speed=generator_speed, wind_speed=self.hub_wind,
+            azimuth=(q[5] + q[6]) % (2 * math.pi), shaft_power=rows[0, 3] * rotor_speed,
+            generator_torque=self.torque, electrical_power=self.torque * generator_speed * self.efficiency,
+            root_oop=rows[:, 0], root_ip=rows[:, 1], tower_top_fa=float(top[0]), tower_top_ss=float(top[1]),
+            yaw=float(q[4]))
+
+    def apply(self, t: float, pitch: NDArray, torque: float) -> None:
+        """Hold the controller's demands: collective pitch (refused when the blades' demands differ), torque."""
+        if np.ptp(pitch) > COLLECTIVE_TOLERANCE:
+            raise ControllerError(f"the controller demands individual pitch (blades at "
+                                  f"{', '.join(f'{math.degrees(p):.4g}' for p in pitch)} deg at t = {t:.4g} s), "
+                                  "which is not modelled: switch its individual pitch control off", t)
+        if not np.all(np.isfinite(pitch)) or not math.isfinite(torque):
+            raise ControllerError(f"the controller returned a non-finite demand at t = {t:.4g} s", t)
+        self.pitcher.set(float(pitch[0]))
+        self.law[2] = torque
+
+
+def simulate_controlled(system: FreeSystem, controller: DisconController, duration: float,
+                        dt_output: float = 0.05, rtol: float = 1e-6, atol: float = 1e-8, hub_wind: float = 0.0,
+                        efficiency: float = 1.0,
+                        progress: Callable[[float], None] | None = None) -> SimulationResult:
+    """Integrate from 0 to ``duration`` (s) with the controller called every ``controller.setup.time_step``
+    seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
+    at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back).
+    Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
+    failure or Ctrl-C."""
+    run = Controlled(system, hub_wind, efficiency)
+    compiled, step = run.compiled, controller.setup.time_step
+    times = output_times(duration, dt_output)
+    limit = divergence_limits(system)
+    monitor = Monitor(system.model, LOAD_COLUMNS, generator_free(system))
+    calls = int(math.floor(duration / step + 1e-9))
+    boundaries = np.append(np.arange(calls + 1) * step, duration) if calls * step < duration * (1 - 1e-12) else (
+        np.arange(calls + 1) * step)
+    x = system.initial_state()
+    states, loads, pitch = [x], [], []
+    evaluations, row = 0, 1
+    t = 0.0
+
+    def stop(error: SimulationStopped) -> SimulationStopped:
+        error.result = finish(run, system, times[:len(states)], states, loads, pitch, evaluations)
+        return error
+
+    try:
+        for k in range(len(boundaries) - 1):
+            t, end = float(boundaries[k]), float(boundaries[k + 1])
+            commands = controller.call(t, run.measure(t, x))
+            run.apply(t, commands.pitch, commands.torque)
+            if k == 0:
+                loads.append(compiled.outputs(times[:1], x[None], system.q0, system.u0, system.index)[0])
+                pitch.append(run.pitcher.pitch)
+            last = row
+            while last < len(times) and times[last] <= end + 1e-9 * step:
+                last += 1
+            inner = times[row:last]
+            chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
+            out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
+                                     limit=limit)
+            evaluations += out.evaluations
+            if out.status:
+                rows = min(out.rows, len(chunk)) - 1
+                states.extend(out.states[1:rows][:last - row])
+                loads.extend(out.loads[1:rows][:last - row])
+                pitch.extend([run.pitcher.pitch] * (len(states) - len(pitch)))
+                raise stop(diverged(system, out.offending, out.time, out.status, "DP54"))
+            x = out.states[-1]
+            taken = out.states[1:1 + (last - row)]
+            states.extend(taken)
+            loads.extend(out.loads[1:1 + (last - row)])
+            pitch.extend([run.pitcher.pitch] * len(taken))
+            if len(taken):
+                u = np.tile(system.u0, (len(taken), 1))
+                u[:, system.index] = np.asarray(taken)[:, system.size:]
+                reason = monitor.rows(times[row:last], u, np.asarray(loads[-len(taken):]))
+                if reason:
+                    raise stop(SimulationStopped(*reason))
+            row = last
+            if progress is not None:
+                progress(end)
+    except ControllerError as error:
+        raise stop(SimulationStopped(str(error), error.time)) from None
+    except KeyboardInterrupt:
+        raise stop(Interrupted(f"interrupted (Ctrl-C) at t = {t:.4g} s", t)) from None
+    finally:
+        controller.close(t)
+    return finish(run, system, times, states, loads, pitch, evaluations)
+
+
+def finish(run: Controlled, system: FreeSystem, times: NDArray, states: list, loads: list, pitch: list,
+           evaluations: int) -> SimulationResult:
+    """The result of the rows done, with the pitch of each row and the tip deflections at that pitch."""
+    count = min(len(times), len(states), len(loads), len(pitch))
+    result = result_of(system, times[:count], np.asarray(states[:count]), np.asarray(loads[:count]), evaluations)
+    angles = np.asarray(pitch[:count], dtype=float)
+    model = system.model
+    blade = result.q[:, model.blade_columns[0]]
+    tip = np.array([blade[i] @ run.pitcher.tip_values(angles[i]) for i in range(count)]).reshape(count, 2)
+    result.outputs["BldPitch1"] = np.degrees(angles)
+    result.outputs["OoPDefl1"] = tip[:, 1]
+    result.outputs["IPDefl1"] = -tip[:, 0]
+    return result

@@ -1,0 +1,197 @@
+"""A Bladed-style controller library (ROSCO's ``libdiscon.so``, or any library with the ``DISCON`` entry point)
+called through its ``avrSWAP`` record array, as OpenFAST's ServoDyn calls it.
+
+The records (1-based, Bladed's numbering) are filled as ServoDyn's ``Fill_avrSWAP`` fills them
+(OpenFAST ``modules/servodyn/src/BladedInterface.f90``); the commands are read back as its ``Retrieve_avrSWAP``
+reads them: pitch demands 42-44 (individual) or 45 (collective), generator torque 47, yaw rate 48, generator
+contactor 35, brake 36, and the overrides 55, 56 that ServoDyn refuses too. The array has ServoDyn's extended size
+(3300 records): ROSCO with ``Ext_Interface`` 1 reads and writes records past 1000.
+
+The library runs in a process of its own (:mod:`.discon_worker`): one library instance per simulation, and a crash
+of the library reported instead of taking the simulation down. SI throughout (rad, rad/s, N m, W, m/s, s).
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import InputError
+from .discon_worker import MESSAGE
+
+#: records in the array (ServoDyn's EXavrSWAP_Size)
+RECORDS = 3300
+#: ServoDyn's 'R': the record where the (empty) torque-speed table starts, and the largest logging count
+TABLE_START, LOGGING_CHANNELS = 85, 300
+
+
+class ControllerError(RuntimeError):
+    """The controller library failed (aviFAIL < 0, a crash, or a command bladefem does not model) at ``time``."""
+
+    def __init__(self, message: str, time: float) -> None:
+        super().__init__(message)
+        self.time = time
+
+
+@dataclass(frozen=True)
+class ControllerSetup:
+    """What the deck's ServoDyn gives the controller (SI).
+
+    library : the controller library; infile : DLL_InFile (DISCON.IN); time_step : DLL_DT, s; blades : NumBl
+    individual : Ptch_Cntrl 1 (the library returns one pitch per blade); servodyn : the ServoDyn file (for messages)
+    pitch_limits : Ptch_Min, Ptch_Max, rad; rate_limits : PtchRate_Min, PtchRate_Max, rad/s; air_density : kg/m^3
+    hub_height : rotor centre above the ground, m (where the wind speed sent is taken)
+    """
+
+    library: str
+    infile: str
+    time_step: float
+    blades: int
+    individual: bool
+    servodyn: str
+    pitch_limits: tuple[float, float] = (0.0, math.pi / 2)
+    rate_limits: tuple[float, float] = (-math.radians(8.0), math.radians(8.0))
+    air_density: float = 1.225
+    hub_height: float = 0.0
+
+
+@dataclass(frozen=True)
+class Measurements:
+    """The turbine's state sent to the controller at one call (SI): blade pitch (B,), rotor and generator (high-
+    speed shaft) speed, the hub-height horizontal wind speed, rotor azimuth, the shaft power, the previous call's
+    generator torque and electrical power, blade-root out-of-plane and in-plane moments (B,), tower-top fore-aft and
+    side-to-side accelerations, nacelle yaw angle."""
+
+    pitch: np.ndarray
+    rotor_speed: float
+    generator_speed: float
+    wind_speed: float
+    azimuth: float
+    shaft_power: float
+    generator_torque: float
+    electrical_power: float
+    root_oop: np.ndarray
+    root_ip: np.ndarray
+    tower_top_fa: float = 0.0
+    tower_top_ss: float = 0.0
+    yaw: float = 0.0
+
+
+@dataclass(frozen=True)
+class Commands:
+    """What the controller asks for: blade pitch (B,), rad; generator torque, N m."""
+
+    pitch: np.ndarray
+    torque: float
+
+
+class DisconController:
+    """One controller library instance in its own process; :meth:`call` at each controller step, :meth:`close`
+    (the final call, iStatus -1) at the end. Use as a context manager."""
+
+    def __init__(self, setup: ControllerSetup, root_name: str = "bladefem") -> None:
+        self.setup = setup
+        self.records = np.zeros(RECORDS, dtype=np.float32)
+        self.status = 0
+        self.pitch_command = np.zeros(setup.blades)
+        self.folder = tempfile.TemporaryDirectory(prefix="bladefem-discon-")
+        infile = str(Path(setup.infile).resolve()).encode() + b"\0"
+        outname = str(Path(self.folder.name) / root_name).encode() + b"\0"
+        self.lengths = (len(infile), len(outname))
+        worker = Path(__file__).with_name("discon_worker.py")
+        self.process = subprocess.Popen([sys.executable, str(worker), setup.library], stdin=subprocess.PIPE,
+                                        stdout=subprocess.PIPE, cwd=self.folder.name)
+        self.process.stdin.write(struct.pack("<3i", RECORDS, *self.lengths) + infile + outname)
+        self.process.stdin.flush()
+        if self.process.stdout.readline() != b"ready\n":
+            self.process.wait()
+            self.folder.cleanup()
+            raise InputError(f"the controller library could not be loaded (its process ended with exit status "
+                             f"{self.process.returncode}; the reason is above)", file=setup.library)
+
+    def __enter__(self) -> DisconController:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def fill(self, time: float, m: Measurements) -> None:
+        """The records ServoDyn's ``Fill_avrSWAP`` sets (1-based numbers in the comments)."""
+        s, r = self.setup, self.records
+        values = {
+            1: self.status, 2: time, 3: s.time_step, 4: m.pitch[0], 6: s.pitch_limits[0], 7: s.pitch_limits[1],
+            8: s.rate_limits[0], 9: s.rate_limits[1], 10: 0.0, 11: self.pitch_command[0], 14: m.shaft_power,
+            15: m.electrical_power, 20: m.generator_speed, 21: m.rotor_speed, 23: m.generator_torque, 24: 0.0,
+            25: 0.0, 26: 0.0, 27: m.wind_speed, 28: float(s.individual), 29: 0.0, 35: r[34] if self.status else 1.0,
+            37: m.yaw, 49: MESSAGE, 1000: 1.0, 50: self.lengths[0], 51: self.lengths[1], 53: m.tower_top_fa,
+            54: m.tower_top_ss, 60: m.azimuth, 61: s.blades, 62: LOGGING_CHANNELS, 63: TABLE_START,
+            64: 1, 66: 1001, 95: s.air_density, 98: 0.0, 117: 0.0, 129: RECORDS}
+        for blade in range(min(s.blades, 3)):
+            values[30 + blade] = m.root_oop[blade]
+            values[69 + blade] = m.root_ip[blade]
+        if s.blades > 1:
+            values[33] = m.pitch[1]
+        if s.blades > 2:
+            values[34] = m.pitch[2]
+        for record, value in values.items():
+            r[record - 1] = value
+
+    def call(self, time: float, measurements: Measurements) -> Commands:
+        """Call the library at ``time`` (s) with the turbine's state; its pitch and torque demands."""
+        self.fill(time, measurements)
+        records, fail, message = self.exchange(time)
+        if fail < 0:
+            raise ControllerError(f"the controller ({Path(self.setup.library).name} with "
+                                  f"{self.setup.infile}) failed at t = {time:.4g} s: {message or 'no message'}",
+                                  time)
+        self.status = 1
+        blades = self.setup.blades
+        if records[54] != 0 or records[55] != 0:
+            raise ControllerError("the controller asks for a built-in pitch or torque override (records 55, 56), "
+                                  "which ServoDyn refuses too", time)
+        if self.setup.individual:
+            pitch = records[41:41 + min(blades, 3)].astype(float)
+        else:
+            pitch = np.full(blades, float(records[44]))
+        self.pitch_command = pitch
+        return Commands(pitch=pitch, torque=float(records[46]))
+
+    def exchange(self, time: float) -> tuple[np.ndarray, int, str]:
+        """Send the records, wait for the library's; a library that ended its process is a ControllerError."""
+        size = 4 * RECORDS + 4 + MESSAGE
+        try:
+            self.process.stdin.write(self.records.astype("<f4").tobytes())
+            self.process.stdin.flush()
+            reply = self.process.stdout.read(size)
+        except (BrokenPipeError, OSError):
+            reply = b""
+        if len(reply) != size:
+            code = self.process.wait()
+            raise ControllerError(f"the controller library {self.setup.library} ended its process (exit status "
+                                  f"{code}) at t = {time:.4g} s; its messages are above", time)
+        self.records[:] = np.frombuffer(reply[:4 * RECORDS], dtype="<f4")
+        fail = struct.unpack("<i", reply[4 * RECORDS:4 * RECORDS + 4])[0]
+        message = reply[4 * RECORDS + 4:].split(b"\0", 1)[0].decode(errors="replace").strip()
+        return self.records, fail, message
+
+    def close(self, time: float | None = None) -> None:
+        """The last call (iStatus -1, when the library was called at all), then the process ends."""
+        if self.process.poll() is None:
+            try:
+                if self.status and time is not None:
+                    self.records[0] = -1
+                    self.records[1] = time
+                    self.exchange(time)
+                self.process.stdin.close()
+                self.process.wait(timeout=10)
+            except (ControllerError, OSError, subprocess.TimeoutExpired):
+                self.process.kill()
+                self.process.wait()
+        self.folder.cleanup()
