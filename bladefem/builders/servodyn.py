@@ -70,7 +70,8 @@ class ServoDyn:
             label = "PCMode" if self.pitch_mode == 5 else "VSContrl"
             name = f" {self.controller}" if self.controller else ""
             refuse(label, f"the deck's Bladed-style DLL controller (DISCON{name}; PCMode {self.pitch_mode}, VSContrl "
-                          f"{self.torque_control}) runs in a simulation (--simulate) only", "--rpm")
+                          f"{self.torque_control}) is not modelled outside a time simulation (--simulate runs it)",
+                   "--rpm")
         if self.pitch_mode not in (0, 5):
             refuse("PCMode", f"pitch control PCMode {self.pitch_mode} ({CONTROL_NAMES.get(self.pitch_mode, '?')}) "
                              "is not modelled: set PCMode 0 (pitch fixed at ElastoDyn's BlPitch)")

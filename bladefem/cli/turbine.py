@@ -239,8 +239,8 @@ def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
     from .aeroelastic import leave_out
 
     taken = leave_out(args) | ({"--no-aero"} if args.no_aero else set())
-    main = (read_openfast_deck(args.main, leave_out=taken, controller=runs_controller(args)).elastodyn if is_openfast_deck(args.main)
-            else read_elastodyn_main(args.main))
+    main = (read_openfast_deck(args.main, leave_out=taken, controller=runs_controller(args)).elastodyn
+            if is_openfast_deck(args.main) else read_elastodyn_main(args.main))
     keys = [f"BldFile({i + 1})" for i in range(len(main.blade_files))] + ["TwrFile"]
     for key, file in zip(keys, (*main.blade_files, main.tower_file)):
         problem = input_problem(file)

@@ -153,13 +153,14 @@ class CompiledEquations:
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
                   index: NDArray, order: int = 8, limit: NDArray | None = None,
                   watch: Callable[..., str | None] | None = None,
-                  budget: int | None = None) -> Integration:
+                  budget: int | None = None, first_step: float | None = None) -> Integration:
         """Adaptive Dormand-Prince 8(5,3) (``order=8``) or 5(4) (``order=5``) from ``times[0]`` to ``times[-1]``
         with dense output and the load channels at ``times``; stops at the first state beyond ``limit`` (per state,
         default none) or not finite. The compiled kernel returns after at most ``budget`` right-hand sides; between
         calls Ctrl-C is looked for (it only sets a flag while the kernel runs; the first call, which may compile,
         is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
-        the output rows the call wrote may stop the run with a reason."""
+        the output rows the call wrote may stop the run with a reason. ``first_step``: the first trial step, s
+        (default 1e-3; a run restarted every controller interval starts with the interval)."""
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
         from .watch import BUDGET, interruptible
@@ -173,7 +174,8 @@ class CompiledEquations:
         loads = np.full((len(times), len(COLUMNS)), np.nan)
         index = np.ascontiguousarray(index, dtype=np.int64)
         q0, u0 = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float)
-        t, h, rows, evaluations = float(times[0]), min(1e-3, max(times[-1] - times[0], 1e-12)), 1, 0
+        first = 1e-3 if first_step is None else first_step
+        t, h, rows, evaluations = float(times[0]), min(first, max(times[-1] - times[0], 1e-12)), 1, 0
         f, end = np.zeros(len(x)), float(times[-1])
 
         def step(start: bool) -> tuple:

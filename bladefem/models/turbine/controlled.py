@@ -17,6 +17,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from ...errors import InputError
 from .discon import ControllerError, DisconController, Measurements
 from .outputs import LOAD_COLUMNS
 from .pitching import CompiledPitch
@@ -49,7 +50,8 @@ class Controlled:
 
     def measure(self, t: float, x: NDArray) -> Measurements:
         """What ServoDyn sends the controller at state ``x``: speeds, pitch, wind, root moments of every blade,
-        shaft power, tower-top accelerations (from the equations' accelerations at x)."""
+        shaft power, tower-top accelerations and the nacelle's tilting ones (from the equations' accelerations at
+        x: the tower's modal accelerations times its tip shapes and slopes; the shaft tilt is neglected)."""
         system, model, compiled = self.system, self.model, self.compiled
         q, u = system.full(t, x)
         blades = model.params.n_blades
@@ -59,6 +61,7 @@ class Controlled:
         du = np.zeros(model.n)
         du[system.index] = rate[system.size:]
         top = du[model.tower_columns] @ model.params.tower.tip_value
+        turn = du[model.tower_columns] @ model.params.tower.tip_slope       # about y (fore-aft), x (side-side)
         rotor_speed = u[5] + u[6]
         generator_speed = self.ratio * u[self.generator]
         pitch = np.full(blades, self.pitcher.pitch)
@@ -67,7 +70,7 @@ class Controlled:
             azimuth=(q[5] + q[6]) % (2 * math.pi), shaft_power=rows[0, 3] * rotor_speed,
             generator_torque=self.torque, electrical_power=self.torque * generator_speed * self.efficiency,
             root_oop=rows[:, 0], root_ip=rows[:, 1], tower_top_fa=float(top[0]), tower_top_ss=float(top[1]),
-            yaw=float(q[4]))
+            nacelle_roll=-float(turn[1]), nacelle_nod=float(turn[0]), yaw=float(q[4]))
 
     def apply(self, t: float, pitch: NDArray, torque: float) -> None:
         """Hold the controller's demands: collective pitch (refused when the blades' demands differ), torque."""
@@ -89,7 +92,8 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
     at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back).
     Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
-    failure or Ctrl-C."""
+    failure or Ctrl-C; a controller that fails on its first call (its library or input file) is an
+    :class:`InputError`."""
     run = Controlled(system, hub_wind, efficiency)
     compiled, step = run.compiled, controller.setup.time_step
     times = output_times(duration, dt_output)
@@ -121,7 +125,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             inner = times[row:last]
             chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
             out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
-                                     limit=limit)
+                                     limit=limit, first_step=end - t)
             evaluations += out.evaluations
             if out.status:
                 rows = min(out.rows, len(chunk)) - 1
@@ -144,6 +148,8 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             if progress is not None:
                 progress(end)
     except ControllerError as error:
+        if len(loads) == 0:                          # the first call: the library or its input file is bad
+            raise InputError(str(error), file=controller.setup.infile, field="DLL_InFile") from None
         raise stop(SimulationStopped(str(error), error.time)) from None
     except KeyboardInterrupt:
         raise stop(Interrupted(f"interrupted (Ctrl-C) at t = {t:.4g} s", t)) from None

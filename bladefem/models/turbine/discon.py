@@ -5,15 +5,19 @@ The records (1-based, Bladed's numbering) are filled as ServoDyn's ``Fill_avrSWA
 (OpenFAST ``modules/servodyn/src/BladedInterface.f90``); the commands are read back as its ``Retrieve_avrSWAP``
 reads them: pitch demands 42-44 (individual) or 45 (collective), generator torque 47, yaw rate 48, generator
 contactor 35, brake 36, and the overrides 55, 56 that ServoDyn refuses too. The array has ServoDyn's extended size
-(3300 records): ROSCO with ``Ext_Interface`` 1 reads and writes records past 1000.
+(3300 records): ROSCO with ``Ext_Interface`` 1 reads and writes records past 1000 (1000: the extended interface's
+version, 1; 1001-1018: the platform's motion, zero on a fixed foundation).
 
-The library runs in a process of its own (:mod:`.discon_worker`): one library instance per simulation, and a crash
-of the library reported instead of taking the simulation down. SI throughout (rad, rad/s, N m, W, m/s, s).
+Each simulation has its own library instance (a private copy loaded into the process, or a process of its own:
+:class:`DisconController`). SI throughout (rad, rad/s, N m, W, m/s, s).
 """
 
 from __future__ import annotations
 
+import ctypes
 import math
+import os
+import shutil
 import struct
 import subprocess
 import sys
@@ -24,12 +28,14 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError
-from .discon_worker import MESSAGE
+from .discon_worker import MESSAGE, OUTNAME, Library
 
 #: records in the array (ServoDyn's EXavrSWAP_Size)
 RECORDS = 3300
 #: ServoDyn's 'R': the record where the (empty) torque-speed table starts, and the largest logging count
 TABLE_START, LOGGING_CHANNELS = 85, 300
+#: the original libraries loaded once per process (their dependencies serve the private copies)
+_ORIGINALS: dict[str, ctypes.CDLL] = {}
 
 
 class ControllerError(RuntimeError):
@@ -67,7 +73,8 @@ class Measurements:
     """The turbine's state sent to the controller at one call (SI): blade pitch (B,), rotor and generator (high-
     speed shaft) speed, the hub-height horizontal wind speed, rotor azimuth, the shaft power, the previous call's
     generator torque and electrical power, blade-root out-of-plane and in-plane moments (B,), tower-top fore-aft and
-    side-to-side accelerations, nacelle yaw angle."""
+    side-to-side accelerations (m/s^2), the nacelle's roll and nodding angular accelerations from the tower's
+    bending (rad/s^2), nacelle yaw angle."""
 
     pitch: np.ndarray
     rotor_speed: float
@@ -81,6 +88,8 @@ class Measurements:
     root_ip: np.ndarray
     tower_top_fa: float = 0.0
     tower_top_ss: float = 0.0
+    nacelle_roll: float = 0.0
+    nacelle_nod: float = 0.0
     yaw: float = 0.0
 
 
@@ -93,20 +102,36 @@ class Commands:
 
 
 class DisconController:
-    """One controller library instance in its own process; :meth:`call` at each controller step, :meth:`close`
-    (the final call, iStatus -1) at the end. Use as a context manager."""
+    """One controller library instance; :meth:`call` at each controller step, :meth:`close` (the final call,
+    iStatus -1) at the end. Use as a context manager.
 
-    def __init__(self, setup: ControllerSetup, root_name: str = "bladefem") -> None:
-        self.setup = setup
-        self.records = np.zeros(RECORDS, dtype=np.float32)
+    ``isolated``: the library runs in a process of its own (:mod:`.discon_worker`), which reports a crash instead
+    of dying with it, at the cost of a process switch per call (milliseconds on a loaded machine). Otherwise (the
+    default) a private copy of the library is loaded into this process (one instance per simulation: ROSCO's state
+    is global to a loaded library), its prints sent to stderr while it is loaded, and its first call is made
+    first in an isolated twin, so that a library or input file that crashes it (a Fortran runtime error reading
+    DISCON.IN) is reported."""
+
+    def __init__(self, setup: ControllerSetup, root_name: str = "bladefem", isolated: bool = False) -> None:
+        self.setup, self.root_name, self.isolated = setup, root_name, isolated
         self.status = 0
         self.pitch_command = np.zeros(setup.blades)
         self.folder = tempfile.TemporaryDirectory(prefix="bladefem-discon-")
         infile = str(Path(setup.infile).resolve()).encode() + b"\0"
         outname = str(Path(self.folder.name) / root_name).encode() + b"\0"
         self.lengths = (len(infile), len(outname))
+        self.process = self.library = self.stdout = None
+        if isolated:
+            self.records = np.zeros(RECORDS, dtype=np.float32)
+            self.start_worker(infile, outname)
+        else:
+            self.load_copy(infile, outname)
+            self.records = self.library.records
+
+    def start_worker(self, infile: bytes, outname: bytes) -> None:
+        """The library in its own process, told the array size and the two strings."""
         worker = Path(__file__).with_name("discon_worker.py")
-        self.process = subprocess.Popen([sys.executable, str(worker), setup.library], stdin=subprocess.PIPE,
+        self.process = subprocess.Popen([sys.executable, str(worker), self.setup.library], stdin=subprocess.PIPE,
                                         stdout=subprocess.PIPE, cwd=self.folder.name)
         self.process.stdin.write(struct.pack("<3i", RECORDS, *self.lengths) + infile + outname)
         self.process.stdin.flush()
@@ -114,7 +139,24 @@ class DisconController:
             self.process.wait()
             self.folder.cleanup()
             raise InputError(f"the controller library could not be loaded (its process ended with exit status "
-                             f"{self.process.returncode}; the reason is above)", file=setup.library)
+                             f"{self.process.returncode}; the reason is above)", file=self.setup.library)
+
+    def load_copy(self, infile: bytes, outname: bytes) -> None:
+        """A private copy of the library in this process (the original loaded first, for its dependencies: a
+        wheel's libraries are found next to the original, and the copy's are then already loaded); fd 1 to
+        stderr while it is loaded."""
+        original = self.setup.library
+        copy = Path(self.folder.name) / f"controller-{Path(original).name}"
+        try:
+            _ORIGINALS.setdefault(original, ctypes.CDLL(original))
+            shutil.copyfile(original, copy)
+            self.library = Library(str(copy), RECORDS, infile, outname)
+        except (OSError, AttributeError) as error:
+            self.folder.cleanup()
+            raise InputError(f"the controller library could not be loaded: {error}", file=original) from None
+        sys.stdout.flush()
+        self.stdout = os.dup(1)
+        os.dup2(2, 1)
 
     def __enter__(self) -> DisconController:
         return self
@@ -130,9 +172,10 @@ class DisconController:
             8: s.rate_limits[0], 9: s.rate_limits[1], 10: 0.0, 11: self.pitch_command[0], 14: m.shaft_power,
             15: m.electrical_power, 20: m.generator_speed, 21: m.rotor_speed, 23: m.generator_torque, 24: 0.0,
             25: 0.0, 26: 0.0, 27: m.wind_speed, 28: float(s.individual), 29: 0.0, 35: r[34] if self.status else 1.0,
-            37: m.yaw, 49: MESSAGE, 1000: 1.0, 50: self.lengths[0], 51: self.lengths[1], 53: m.tower_top_fa,
+            37: m.yaw, 49: MESSAGE, 50: self.lengths[0], 51: self.lengths[1], 53: m.tower_top_fa,
             54: m.tower_top_ss, 60: m.azimuth, 61: s.blades, 62: LOGGING_CHANNELS, 63: TABLE_START,
-            64: 1, 66: 1001, 95: s.air_density, 98: 0.0, 117: 0.0, 129: RECORDS}
+            64: OUTNAME, 66: 1001, 82: m.nacelle_roll, 83: m.nacelle_nod, 84: 0.0, 95: s.air_density, 98: 0.0,
+            117: 0.0, 129: RECORDS, 1000: 1.0}
         for blade in range(min(s.blades, 3)):
             values[30 + blade] = m.root_oop[blade]
             values[69 + blade] = m.root_ip[blade]
@@ -145,6 +188,9 @@ class DisconController:
 
     def call(self, time: float, measurements: Measurements) -> Commands:
         """Call the library at ``time`` (s) with the turbine's state; its pitch and torque demands."""
+        if self.status == 0 and not self.isolated:
+            with DisconController(self.setup, self.root_name, isolated=True) as probe:
+                probe.call(time, measurements)
         self.fill(time, measurements)
         records, fail, message = self.exchange(time)
         if fail < 0:
@@ -164,7 +210,10 @@ class DisconController:
         return Commands(pitch=pitch, torque=float(records[46]))
 
     def exchange(self, time: float) -> tuple[np.ndarray, int, str]:
-        """Send the records, wait for the library's; a library that ended its process is a ControllerError."""
+        """One call of the library on the records; a library that ended its process is a ControllerError."""
+        if self.library is not None:
+            fail, raw = self.library()
+            return self.records, fail, raw.split(b"\0", 1)[0].decode(errors="replace").strip()
         size = 4 * RECORDS + 4 + MESSAGE
         try:
             self.process.stdin.write(self.records.astype("<f4").tobytes())
@@ -182,8 +231,19 @@ class DisconController:
         return self.records, fail, message
 
     def close(self, time: float | None = None) -> None:
-        """The last call (iStatus -1, when the library was called at all), then the process ends."""
-        if self.process.poll() is None:
+        """The last call (iStatus -1, when the library was called at all), then the process ends (or this
+        process's fd 1 is given back)."""
+        if self.library is not None:
+            if self.status and time is not None:
+                self.records[0], self.records[1] = -1, time
+                self.library()
+            self.status = 0
+            self.library = None
+            if self.stdout is not None:
+                os.dup2(self.stdout, 1)
+                os.close(self.stdout)
+                self.stdout = None
+        elif self.process is not None and self.process.poll() is None:
             try:
                 if self.status and time is not None:
                     self.records[0] = -1

@@ -27,6 +27,9 @@ import numpy as np
 
 #: bytes of the controller's message buffer (ServoDyn's ErrMsgSz 1024 plus the NUL)
 MESSAGE = 1025
+#: bytes of the OUTNAME buffer the library may write logging-channel names into (ServoDyn's avcOUTNAME_LEN:
+#: 300 channels of 2 + 20 characters, plus the NUL)
+OUTNAME = 6601
 
 
 def read_exactly(stream, count: int) -> bytes:
@@ -41,31 +44,45 @@ def read_exactly(stream, count: int) -> bytes:
     return b"".join(chunks)
 
 
+class Library:
+    """The ``DISCON`` function of a library (loaded from ``path``) bound to its record array and strings."""
+
+    def __init__(self, path: str, size: int, infile: bytes, outname: bytes) -> None:
+        self.function = ctypes.CDLL(path).DISCON
+        self.function.argtypes = [ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_int32), ctypes.c_char_p,
+                                  ctypes.c_char_p, ctypes.c_char_p]
+        self.function.restype = None
+        self.records = np.zeros(size, dtype=np.float32)
+        self.pointer = self.records.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+        self.infile = ctypes.create_string_buffer(infile)
+        self.outname = ctypes.create_string_buffer(outname, max(len(outname), OUTNAME))
+        self.fail = ctypes.c_int32(0)
+        self.message = ctypes.create_string_buffer(MESSAGE)
+
+    def __call__(self) -> tuple[int, bytes]:
+        """One call on :attr:`records` (changed in place): aviFAIL and the raw message buffer."""
+        self.fail.value = 0
+        ctypes.memset(self.message, 0, MESSAGE)
+        self.function(self.pointer, ctypes.byref(self.fail), self.infile, self.outname, self.message)
+        return self.fail.value, self.message.raw
+
+
 def main(library: str) -> int:
     reply = os.fdopen(os.dup(1), "wb", buffering=0)
     os.dup2(2, 1)                                    # the library's own prints go to stderr
     source = sys.stdin.buffer
     size, infile_length, outname_length = struct.unpack("<3i", read_exactly(source, 12))
-    infile = ctypes.create_string_buffer(read_exactly(source, infile_length))
-    outname = ctypes.create_string_buffer(read_exactly(source, outname_length))
-    function = ctypes.CDLL(library).DISCON
-    function.argtypes = [ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_int32), ctypes.c_char_p,
-                         ctypes.c_char_p, ctypes.c_char_p]
-    function.restype = None
-    records = np.zeros(size, dtype=np.float32)
-    fail = ctypes.c_int32(0)
-    message = ctypes.create_string_buffer(MESSAGE)
-    pointer = records.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+    infile = read_exactly(source, infile_length)
+    outname = read_exactly(source, outname_length)
+    call = Library(library, size, infile, outname)
     reply.write(b"ready\n")
     while True:
         data = read_exactly(source, 4 * size)
         if not data:
             return 0
-        records[:] = np.frombuffer(data, dtype="<f4")
-        fail.value = 0
-        ctypes.memset(message, 0, MESSAGE)
-        function(pointer, ctypes.byref(fail), infile, outname, message)
-        reply.write(records.astype("<f4").tobytes() + struct.pack("<i", fail.value) + message.raw)
+        call.records[:] = np.frombuffer(data, dtype="<f4")
+        fail, message = call()
+        reply.write(call.records.astype("<f4").tobytes() + struct.pack("<i", fail) + message)
 
 
 if __name__ == "__main__":
