@@ -64,6 +64,9 @@ class ServoDyn:
         if dll and controller and (self.pitch_mode, self.torque_control) != (5, 5):
             refuse("PCMode", f"a Bladed-style DLL for pitch or torque alone (PCMode {self.pitch_mode}, VSContrl "
                              f"{self.torque_control}) is not modelled: set both PCMode and VSContrl 5", "--rpm")
+        elif dll and controller and self.dll is None:
+            refuse("PCMode", "the Bladed interface's entries (DLL_FileName, DLL_InFile, DLL_DT, DLL_Ramp, BPCutoff, "
+                             "Ptch_Cntrl, Ptch_Min, Ptch_Max, PtchRate_Min, PtchRate_Max) are missing", "--rpm")
         elif dll and controller:
             found.extend(self.dll.unmodelled(self.path))
         elif dll:
@@ -146,9 +149,14 @@ class BladedInterface:
 MIN_CUTOFF = 1000.0
 
 
+#: the Bladed-interface entries read
+BLADED = ("DLL_FileName", "DLL_InFile", "DLL_DT", "DLL_Ramp", "BPCutoff", "Ptch_Cntrl", "Ptch_Min", "Ptch_Max",
+          "PtchRate_Min", "PtchRate_Max")
+
+
 def read_bladed(labels: Labels) -> BladedInterface:
     """The Bladed-interface entries of a ServoDyn file with a DLL."""
-    names = ("DLL_FileName", "DLL_InFile", "DLL_DT", "DLL_Ramp", "BPCutoff", "Ptch_Cntrl")
+    names = BLADED[:6]
     return BladedInterface(
         infile=labels.string("DLL_InFile"),
         time_step=None if labels.is_default("DLL_DT") else labels.float("DLL_DT", positive=True),
@@ -184,7 +192,8 @@ def read_servodyn(path: str | os.PathLike) -> ServoDyn:
         yaw_damper=_bounded(labels, "YawDamp", MAX_YAW_DAMPING),
         settings=settings, lines=lines,
         controller=labels.string("DLL_FileName") if labels.has("DLL_FileName") else "",
-        dll=read_bladed(labels) if 5 in (labels.int("PCMode"), torque_control) else None)
+        dll=read_bladed(labels) if 5 in (labels.int("PCMode"), torque_control)
+        and all(labels.has(name) for name in BLADED) else None)
 
 
 def _bounded(labels: Labels, label: str, largest: float) -> float:
