@@ -108,7 +108,7 @@ class Integration:
     """States at the output times (T, size) and their load channels (T, len(compiled_outputs.COLUMNS)), the rows
     computed, right-hand sides used, and, if it stopped early, the status (1: not finite, 2: a coordinate beyond its
     limit, 3: step size underflow, 4: stopped by the watch, 5: interrupted), time, index of the offending state and
-    what the watch returned."""
+    what the watch returned; ``rate``: the state's time derivative at the end of a completed run."""
 
     states: NDArray
     loads: NDArray
@@ -118,6 +118,7 @@ class Integration:
     time: float = 0.0
     offending: int = -1
     reason: object = None
+    rate: NDArray | None = None
 
 
 class CompiledEquations:
@@ -198,7 +199,7 @@ class CompiledEquations:
                 if interrupted():
                     return Integration(out, loads, rows, evaluations, 5, float(t))
                 if t >= end:
-                    return Integration(out, loads, rows, evaluations)
+                    return Integration(out, loads, rows, evaluations, rate=f)
                 t_before, rows_before = t, rows
                 t, x, f, h, rows, count, status, bad = step(False)
                 evaluations += count

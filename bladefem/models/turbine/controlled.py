@@ -48,16 +48,24 @@ class Controlled:
     def torque(self) -> float:
         return float(self.law[2])
 
-    def measure(self, t: float, x: NDArray) -> Measurements:
-        """What ServoDyn sends the controller at state ``x``: speeds, pitch, wind, root moments of every blade,
-        shaft power, tower-top accelerations and the nacelle's tilting ones (from the equations' accelerations at
-        x: the tower's modal accelerations times its tip shapes and slopes; the shaft tilt is neglected)."""
+    def measure(self, t: float, x: NDArray, loads: NDArray | None = None, rate: NDArray | None = None,
+                individual: bool = False) -> Measurements:
+        """What ServoDyn sends the controller at state ``x``: speeds, pitch, wind, blade-root moments, shaft power,
+        tower-top accelerations and the nacelle's tilting ones (from the equations' accelerations at x: the tower's
+        modal accelerations times its tip shapes and slopes; the shaft tilt is neglected). ``loads`` (blade 1's
+        load columns at x) and ``rate`` (dx/dt) are computed unless given (the integrator's own at an interval's
+        end). The other blades' root moments only for ``individual`` pitch control; with collective pitch their
+        records repeat blade 1's (the controller uses them only for individual pitch)."""
         system, model, compiled = self.system, self.model, self.compiled
         q, u = system.full(t, x)
         blades = model.params.n_blades
-        rows = np.array([compiled.outputs(np.array([t]), x[None], system.q0, system.u0, system.index, b)[0]
-                         for b in range(blades)])
-        rate = compiled.derivative(t, x, system.q0, system.u0, system.index)
+        if loads is None:
+            loads = compiled.outputs(np.array([t]), x[None], system.q0, system.u0, system.index)[0]
+        others = [compiled.outputs(np.array([t]), x[None], system.q0, system.u0, system.index, b)[0]
+                  for b in range(1, blades)] if individual else [loads] * (blades - 1)
+        rows = np.array([loads, *others])
+        if rate is None:
+            rate = compiled.derivative(t, x, system.q0, system.u0, system.index)
         du = np.zeros(model.n)
         du[system.index] = rate[system.size:]
         top = du[model.tower_columns] @ model.params.tower.tip_value
@@ -104,6 +112,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
         np.arange(calls + 1) * step)
     x = system.initial_state()
     states, loads, pitch = [x], [], []
+    end_loads = end_rate = None
     evaluations, row = 0, 1
     t = 0.0
 
@@ -114,7 +123,8 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     try:
         for k in range(len(boundaries) - 1):
             t, end = float(boundaries[k]), float(boundaries[k + 1])
-            commands = controller.call(t, run.measure(t, x))
+            measured = run.measure(t, x, end_loads, end_rate, controller.setup.individual)
+            commands = controller.call(t, measured)
             run.apply(t, commands.pitch, commands.torque)
             if k == 0:
                 loads.append(compiled.outputs(times[:1], x[None], system.q0, system.u0, system.index)[0])
@@ -133,7 +143,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
                 loads.extend(out.loads[1:rows][:last - row])
                 pitch.extend([run.pitcher.pitch] * (len(states) - len(pitch)))
                 raise stop(diverged(system, out.offending, out.time, out.status, "DP54"))
-            x = out.states[-1]
+            x, end_loads, end_rate = out.states[-1], out.loads[len(chunk) - 1], out.rate
             taken = out.states[1:1 + (last - row)]
             states.extend(taken)
             loads.extend(out.loads[1:1 + (last - row)])
