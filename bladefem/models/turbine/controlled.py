@@ -116,6 +116,9 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     evaluations, row = 0, 1
     t = 0.0
 
+    def steps(start: float, end: float, row_times, rows, row_loads, count: int):
+        return monitor.steps(count, start, end)          # the step-count bound, between kernel calls
+
     def stop(error: SimulationStopped) -> SimulationStopped:
         error.result = finish(run, system, times[:len(states)], states, loads, pitch, evaluations)
         return error
@@ -135,8 +138,10 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             inner = times[row:last]
             chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
             out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
-                                     limit=limit, first_step=end - t)
+                                     limit=limit, first_step=end - t, watch=steps)
             evaluations += out.evaluations
+            if out.status == 4:
+                raise stop(SimulationStopped(*out.reason))
             if out.status:
                 rows = min(out.rows, len(chunk)) - 1
                 states.extend(out.states[1:rows][:last - row])

@@ -118,7 +118,8 @@ class DisconController:
         self.pitch_command = np.zeros(setup.blades)
         self.folder = tempfile.TemporaryDirectory(prefix="bladefem-discon-")
         infile = str(Path(setup.infile).resolve()).encode() + b"\0"
-        outname = str(Path(self.folder.name) / root_name).encode() + b"\0"
+        # ServoDyn's RootName (ROSCO names its debug files from it, cutting at the last dot)
+        outname = str(Path(self.folder.name) / f"{root_name}.SrvD").encode() + b"\0"
         self.lengths = (len(infile), len(outname))
         self.process = self.library = self.stdout = None
         if isolated:

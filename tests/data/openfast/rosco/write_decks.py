@@ -13,7 +13,7 @@ JSON file); rerun with
     python tests/data/openfast/rosco/write_decks.py OPENFAST LIBDISCON RUNS
 
 (OPENFAST: the executable; LIBDISCON: ROSCO 2.10.6's ``rosco/lib/libdiscon.so``; RUNS: a scratch folder), which
-writes ``steady.json`` here.
+writes ``steady.json`` and ``transient.json`` here (``--histories RUNS`` writes the latter from runs made).
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ FST = "NRELOffshrBsline5MW_Onshore_ROSCO.fst"
 #: wind speed (m/s) -> initial rotor speed (rpm), pitch (deg): Jonkman et al. 2009's steady schedule
 CASES = {8.0: (9.16, 0.0), 11.4: (12.1, 0.0), 16.0: (12.1, 10.45), 20.0: (12.1, 17.47)}
 TMAX, WINDOW = 150.0, (100.0, 150.0)
+HISTORY_S, HISTORY_CHANNELS = 60.0, ("BldPitch1", "RotSpeed", "GenPwr", "RotThrust", "OoPDefl1")
 CHANNELS = ("BldPitch1", "RotSpeed", "GenPwr", "GenTq", "RotThrust", "OoPDefl1", "IPDefl1", "TTDspFA", "RtAeroCp")
 
 
@@ -110,6 +111,22 @@ def read_out(path: Path) -> dict[str, np.ndarray]:
     return {name: data[:, j] for j, name in enumerate(names)}
 
 
+def histories(runs: Path) -> None:
+    """``transient.json``: the first 60 s of every case (from the start at the schedule's rotor speed and pitch),
+    every 0.1 s, of the channels the controller moves."""
+    cases = {}
+    for wind in CASES:
+        data = read_out(runs / f"rosco_{wind:g}" / FST.replace(".fst", ".out"))
+        keep = (data["Time"] <= HISTORY_S + 1e-9) & (np.abs(data["Time"] / 0.1 - np.round(data["Time"] / 0.1))
+                                                     < 1e-6)
+        cases[f"{wind:g}"] = {name: [float(f"{v:.7g}") for v in data[name][keep]]
+                              for name in ("Time", *HISTORY_CHANNELS)}
+    out = {"case": "NREL 5MW land-based with ROSCO 2.10.6, steady wind: the first 60 s",
+           "provenance": "as steady.json (same runs, write_decks.py); every 0.1 s of the text output, 7 digits",
+           "cases": cases}
+    (HERE / "transient.json").write_text(json.dumps(out) + "\n")
+
+
 def main(openfast: str, library: str, runs: str) -> None:
     results = {}
     for wind in CASES:
@@ -144,7 +161,11 @@ def main(openfast: str, library: str, runs: str) -> None:
                                         "(deg, rpm, kW, kN m, kN, m)"},
            "window_s": list(WINDOW), "cases": results}
     (HERE / "steady.json").write_text(json.dumps(out, indent=1) + "\n")
+    histories(Path(runs))
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    if sys.argv[1] == "--histories":                 # reduce runs already made: write_decks.py --histories RUNS
+        histories(Path(sys.argv[2]))
+    else:
+        main(*sys.argv[1:4])
