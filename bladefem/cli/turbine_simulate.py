@@ -82,9 +82,9 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     from ..models.turbine.controlled import simulate_controlled
     from ..models.turbine.discon import DisconController
 
-    if args.method not in (None, "auto", "DP54"):
-        raise InputError("a run with the controller library integrates with DP54 between controller calls",
-                         field="--method")
+    if args.method not in (None, "auto", "DP54", "RK4"):
+        raise InputError("a run with the controller library integrates with DP54 (or RK4) between controller "
+                         "calls", field="--method")
     if not hasattr(system.model.fast_equations(), "integrate"):
         raise InputError("a run with the controller library needs numba (unset BLADEFEM_NO_NUMBA); or hold the "
                          "rotor with --rpm", field="--simulate")
@@ -96,7 +96,9 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s", file=sys.stderr)
     with DisconController(setup, Path(args.main).stem) as controller:
         return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * 1e-2,
-                                   hub_wind=hub_wind, efficiency=efficiency, progress=progress)
+                                   hub_wind=hub_wind, efficiency=efficiency, progress=progress,
+                                   method="RK4" if args.method == "RK4" else "DP54",
+                                   rk4_step=0.01 if args.step is None else args.step)
 
 
 def simulation_title(model, args: argparse.Namespace) -> str:

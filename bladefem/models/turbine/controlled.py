@@ -21,7 +21,17 @@ from ...errors import InputError
 from .discon import ControllerError, DisconController, Measurements
 from .outputs import LOAD_COLUMNS
 from .pitching import CompiledPitch
-from .simulate import SimulationResult, diverged, divergence_limits, generator_free, output_times, result_of
+from .compiled import Integration
+from .simulate import (
+    SimulationResult,
+    UnstableStep,
+    diverged,
+    divergence_limits,
+    generator_free,
+    output_times,
+    result_of,
+    rk4_stable_step,
+)
 from .system import FreeSystem
 from .watch import Interrupted, Monitor, SimulationStopped
 
@@ -94,16 +104,23 @@ class Controlled:
 
 def simulate_controlled(system: FreeSystem, controller: DisconController, duration: float,
                         dt_output: float = 0.05, rtol: float = 1e-6, atol: float = 1e-8, hub_wind: float = 0.0,
-                        efficiency: float = 1.0,
-                        progress: Callable[[float], None] | None = None) -> SimulationResult:
+                        efficiency: float = 1.0, progress: Callable[[float], None] | None = None,
+                        method: str = "DP54", rk4_step: float = 0.01) -> SimulationResult:
     """Integrate from 0 to ``duration`` (s) with the controller called every ``controller.setup.time_step``
     seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
-    at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back).
+    at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back);
+    ``method``: "DP54" (adaptive) or "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
+    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit).
     Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
     failure or Ctrl-C; a controller that fails on its first call (its library or input file) is an
     :class:`InputError`."""
     run = Controlled(system, hub_wind, efficiency)
     compiled, step = run.compiled, controller.setup.time_step
+    if method == "RK4":
+        stable, dof = rk4_stable_step(system)
+        if rk4_step > stable:
+            raise UnstableStep(f"RK4 with a step of {rk4_step:g} s is unstable for the fastest mode ({dof}): the "
+                               f"step must be below {stable:.3g} s")
     times = output_times(duration, dt_output)
     limit = divergence_limits(system)
     monitor = Monitor(system.model, LOAD_COLUMNS, generator_free(system))
@@ -137,8 +154,11 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
                 last += 1
             inner = times[row:last]
             chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
-            out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
-                                     limit=limit, first_step=end - t, watch=steps)
+            if method == "RK4":
+                out = rk4_interval(system, compiled, chunk, x, rk4_step, limit, last - row)
+            else:
+                out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
+                                         limit=limit, first_step=end - t, watch=steps)
             evaluations += out.evaluations
             if out.status == 4:
                 raise stop(SimulationStopped(*out.reason))
@@ -147,8 +167,10 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
                 states.extend(out.states[1:rows][:last - row])
                 loads.extend(out.loads[1:rows][:last - row])
                 pitch.extend([run.pitcher.pitch] * (len(states) - len(pitch)))
-                raise stop(diverged(system, out.offending, out.time, out.status, "DP54"))
+                raise stop(diverged(system, out.offending, out.time, out.status, method))
             x, end_loads, end_rate = out.states[-1], out.loads[len(chunk) - 1], out.rate
+            if not np.all(np.isfinite(end_loads)):            # RK4 between output rows: measured afresh
+                end_loads = None
             taken = out.states[1:1 + (last - row)]
             states.extend(taken)
             loads.extend(out.loads[1:1 + (last - row)])
@@ -171,6 +193,37 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     finally:
         controller.close(t)
     return finish(run, system, times, states, loads, pitch, evaluations)
+
+
+def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,
+                 rows: int) -> Integration:
+    """Classical RK4 over the times ``chunk`` (steps no longer than ``step``, landing on each), the compiled
+    right-hand side; the load channels at the first ``rows`` times after the start (the output rows). Stops at a
+    state beyond ``limit`` or not finite (status 1, 2), as the adaptive kernel does."""
+    q0, u0, index = system.q0, system.u0, system.index
+    states, count = np.full((len(chunk), len(x)), np.nan), 0
+    states[0] = x
+    for i, (a, b) in enumerate(zip(chunk[:-1], chunk[1:])):
+        n = max(1, int(math.ceil((b - a) / step - 1e-9)))
+        h, t = (b - a) / n, a
+        for _ in range(n):
+            k1 = compiled.derivative(t, x, q0, u0, index)
+            k2 = compiled.derivative(t + h / 2, x + h / 2 * k1, q0, u0, index)
+            k3 = compiled.derivative(t + h / 2, x + h / 2 * k2, q0, u0, index)
+            k4 = compiled.derivative(t + h, x + h * k3, q0, u0, index)
+            x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            t += h
+        count += 4 * n
+        bad = np.flatnonzero(~np.isfinite(x) | (np.abs(x) > limit))
+        if bad.size:
+            status = 1 if not np.isfinite(x[bad[0]]) else 2
+            loads = np.full((len(chunk), len(LOAD_COLUMNS)), np.nan)
+            return Integration(states, loads, i + 1, count, status, float(b), int(bad[0]))
+        states[i + 1] = x
+    loads = np.full((len(chunk), len(LOAD_COLUMNS)), np.nan)
+    if rows:
+        loads[1:1 + rows] = compiled.outputs(chunk[1:1 + rows], states[1:1 + rows], q0, u0, index)
+    return Integration(states, loads, len(chunk), count)
 
 
 def finish(run: Controlled, system: FreeSystem, times: NDArray, states: list, loads: list, pitch: list,
