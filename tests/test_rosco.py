@@ -96,13 +96,13 @@ def steady(tmp_path_factory):
     folder = tmp_path_factory.mktemp("rosco")
     tables = {}
     for wind, initial in data["provenance"]["initial"].items():
-        out = folder / f"{wind}.csv"
+        out = folder / f"bf_{wind}.csv"
         code = main(["turbine", str(DECK), "--simulate", "150", "--wind-speed", wind, "--initial",
                      f"RotSpeed={initial['RotSpeed_rpm']}", "--pitch-deg", str(initial["BlPitch_deg"]), "--quiet",
                      "-o", str(out)])
         assert code == 0
         tables[wind] = table(out)
-    return data, tables
+    return data, tables, folder
 
 
 @pytest.mark.parametrize("wind", ["8", "11.4", "16", "20"])
@@ -110,7 +110,7 @@ def test_rosco_steady_operation_against_openfast(steady, wind):
     """ROSCO 2.10.6 on the NREL 5MW in steady wind, bladefem against OpenFAST v5.0.0 with the same library, deck
     and start: means over 100-150 s of generator power, rotor speed, rotor thrust and blade-tip out-of-plane
     deflection within 2 %, blade pitch within 0.5 deg (measured figures in docs/turbine-aero.md)."""
-    data, tables = steady
+    data, tables, _ = steady
     ours, theirs = tables[wind], data["cases"][wind]
     window = ours["Time"] >= data["window_s"][0] - 1e-9
     assert np.mean(ours["BldPitch1"][window]) == pytest.approx(theirs["BldPitch1"]["mean"], abs=0.5)
@@ -134,6 +134,20 @@ def test_rosco_start_transient_follows_openfast(steady, wind):
         if np.ptp(theirs) > 0:
             a, b = mine - mine.mean(), theirs - theirs.mean()
             assert a @ b / np.sqrt((a @ a) * (b @ b)) > 0.99, name
+
+
+def test_the_comparison_example_writes_its_table_and_figure(steady, tmp_path):
+    """examples/rosco_against_openfast.py on the runs of the fixture: the table of docs/turbine-aero.md (one row
+    per wind speed and channel) and the figure."""
+    import subprocess
+    import sys
+    completed = subprocess.run([sys.executable, str(ROOT / "examples" / "rosco_against_openfast.py"), str(tmp_path),
+                                "--tables", str(steady[2])], capture_output=True, text=True, timeout=600,
+                               env={**os.environ, "MPLBACKEND": "Agg"})
+    assert completed.returncode == 0, completed.stderr
+    rows = [line for line in completed.stdout.splitlines() if line.startswith("| ") and "[" in line
+            and "channel" not in line]
+    assert len(rows) == 20 and (tmp_path / "rosco-transient.png").stat().st_size > 10_000
 
 
 def test_controller_runs_alone_per_simulation(capsys, tmp_path):
