@@ -57,6 +57,8 @@ EXPECTED_ERRORS: dict[tuple[str, str], str] = {}
 for command in MODEL_COMMANDS:
     EXPECTED_ERRORS["NRELOffshrBsline5MW_Blade.dat", command] = "TipRad"
     EXPECTED_ERRORS["NRELOffshrBsline5MW_Onshore_ElastoDyn_Tower.dat", command] = "TowerHt"
+#: the ROSCO deck's controller runs in --simulate only: --linearize is refused naming PCMode (--rpm runs it)
+EXPECTED_ERRORS["NRELOffshrBsline5MW_Onshore_ROSCO.fst", "turbine"] = "PCMode"
 for command in MODEL_COMMANDS:                                        # a bare ElastoDyn blade file lacks TipRad
     EXPECTED_ERRORS["IEA-15-240-RWT_ElastoDyn_blade.dat", command] = ""
 for name in ("uniform_blade.yaml", "nrel5mw_blade.yaml",            # a case file carries no rotor speed, nor

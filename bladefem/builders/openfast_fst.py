@@ -96,12 +96,14 @@ class OpenFASTDeck:
 
 
 def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
-                       leave_out: frozenset[str] | set[str] = frozenset()) -> OpenFASTDeck:
+                       leave_out: frozenset[str] | set[str] = frozenset(), controller: bool = False
+                       ) -> OpenFASTDeck:
     """Read a .fst and its modules. ``unmodelled``: "error" raises the first unmodelled setting as an
     :class:`InputError` naming the option of :data:`~bladefem.builders.aerodyn_primary.WAYS` that runs without it;
     "keep" returns them in the deck. ``leave_out``: the ways forward taken (options of ``WAYS``): what they cover
     is left out and listed in :attr:`OpenFASTDeck.left_out`; "--no-aero" (the caller leaves the aerodynamic loads
-    out) drops AeroDyn's unmodelled settings."""
+    out) drops AeroDyn's unmodelled settings. ``controller``: the caller runs a Bladed-style DLL of ServoDyn (a
+    simulation without --rpm)."""
     if unmodelled not in ("error", "keep"):
         raise ValueError(f"unmodelled must be 'error' or 'keep', got {unmodelled!r}")
     fst = Labels.read(path)
@@ -145,7 +147,7 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
         _check_airfoil_ids(aerodyn, blades)
     servo = read_servodyn(fst.existing_file("ServoFile")) if servo_switch == 1 else None
     if servo is not None:
-        refused += servo.unmodelled(t_max)
+        refused += servo.unmodelled(t_max, controller)
     left_out = _left_out(refused, leave_out)
     refused = [entry for entry in refused if entry.way not in leave_out or not entry.way]
     if refused and unmodelled == "error":

@@ -30,7 +30,8 @@ class ServoDyn:
     rated_generator_speed : VS_RtGnSp, rad/s; rated_torque : VS_RtTq, N m; region2_constant : VS_Rgn2K in
     N m / (rad/s)^2; slip : VS_SlPc / 100; yaw_neutral : YawNeut, rad; yaw_spring : YawSpr, N m/rad;
     yaw_damper : YawDamp, N m s/rad; events : label -> time (s) of the timed events; lines : label -> line
-    controller : DLL_FileName, the Bladed-style controller library (run with PCMode or VSContrl 5)
+    controller : DLL_FileName, the Bladed-style controller library (run with PCMode and VSContrl 5), as written
+    dll : the Bladed interface's entries (:class:`BladedInterface`), None without a DLL
     """
 
     path: str
@@ -48,20 +49,32 @@ class ServoDyn:
     settings: dict[str, float]
     lines: dict[str, tuple[str, int]]
     controller: str = ""
+    dll: BladedInterface | None = None
 
-    def unmodelled(self, end_time: float) -> list[Unmodelled]:
-        """Settings that ask for behaviour bladefem does not model within a simulation ending at ``end_time``."""
+    def unmodelled(self, end_time: float, controller: bool = False) -> list[Unmodelled]:
+        """Settings that ask for behaviour bladefem does not model within a simulation ending at ``end_time``;
+        ``controller``: the caller runs the Bladed-style DLL (a simulation), else a DLL deck runs only at --rpm."""
         found = []
 
         def refuse(label: str, message: str, way: str = "") -> None:
             key, line = self.lines[label]
             found.append(Unmodelled(self.path, line, key, message, way))
 
-        if 5 in (self.pitch_mode, self.torque_control):
+        dll = 5 in (self.pitch_mode, self.torque_control)
+        if dll and controller and (self.pitch_mode, self.torque_control) != (5, 5):
+            refuse("PCMode", f"a Bladed-style DLL for pitch or torque alone (PCMode {self.pitch_mode}, VSContrl "
+                             f"{self.torque_control}) is not modelled: set both PCMode and VSContrl 5", "--rpm")
+        elif dll and controller and self.dll is None:
+            refuse("PCMode", "the Bladed interface's entries (DLL_FileName, DLL_InFile, DLL_DT, DLL_Ramp, BPCutoff, "
+                             "Ptch_Cntrl, Ptch_Min, Ptch_Max, PtchRate_Min, PtchRate_Max) are missing", "--rpm")
+        elif dll and controller:
+            found.extend(self.dll.unmodelled(self.path))
+        elif dll:
             label = "PCMode" if self.pitch_mode == 5 else "VSContrl"
             name = f" {self.controller}" if self.controller else ""
             refuse(label, f"the deck's Bladed-style DLL controller (DISCON{name}; PCMode {self.pitch_mode}, VSContrl "
-                          f"{self.torque_control}) is not modelled (bladefem does not run it yet)", "--rpm")
+                          f"{self.torque_control}) is not modelled outside a time simulation (--simulate runs it)",
+                   "--rpm")
         if self.pitch_mode not in (0, 5):
             refuse("PCMode", f"pitch control PCMode {self.pitch_mode} ({CONTROL_NAMES.get(self.pitch_mode, '?')}) "
                              "is not modelled: set PCMode 0 (pitch fixed at ElastoDyn's BlPitch)")
@@ -101,6 +114,59 @@ SETTINGS = ("YCMode", "AfCmode", "NumBStC", "NumNStC", "NumTStC", "NumSStC", "TP
 FLAGS = ("GenTiStr", "GenTiStp")
 
 
+@dataclass(frozen=True)
+class BladedInterface:
+    """ServoDyn's Bladed-interface entries (SI).
+
+    infile : DLL_InFile as written (relative to the ServoDyn file); time_step : DLL_DT, s (None: "default", the
+    glue code's DT); ramp : DLL_Ramp; cutoff : BPCutoff, Hz; individual : Ptch_Cntrl 1; pitch_limits : Ptch_Min,
+    Ptch_Max, rad; rate_limits : PtchRate_Min, PtchRate_Max, rad/s; lines : label -> line
+    """
+
+    infile: str
+    time_step: float | None
+    ramp: bool
+    cutoff: float
+    individual: bool
+    pitch_limits: tuple[float, float]
+    rate_limits: tuple[float, float]
+    lines: dict[str, int]
+
+    def unmodelled(self, path: str) -> list[Unmodelled]:
+        """What of the interface bladefem does not model: a ramp between calls, the pitch filter."""
+        found = []
+        if self.ramp:
+            found.append(Unmodelled(path, self.lines["DLL_Ramp"], "DLL_Ramp", "a linear ramp of the DLL's demands "
+                                    "between calls is not modelled (they are held): set DLL_Ramp False"))
+        if self.cutoff < MIN_CUTOFF:
+            found.append(Unmodelled(path, self.lines["BPCutoff"], "BPCutoff", f"ServoDyn's low-pass filter on the "
+                                    f"DLL's pitch ({self.cutoff:g} Hz) is not modelled: set BPCutoff 9999.9"))
+        return found
+
+
+#: BPCutoff (Hz) at and above which ServoDyn's pitch filter is absent: its factor exp(-2 pi DT f) is below 1e-17
+#: at DT = 0.00625 s
+MIN_CUTOFF = 1000.0
+
+
+#: the Bladed-interface entries read
+BLADED = ("DLL_FileName", "DLL_InFile", "DLL_DT", "DLL_Ramp", "BPCutoff", "Ptch_Cntrl", "Ptch_Min", "Ptch_Max",
+          "PtchRate_Min", "PtchRate_Max")
+
+
+def read_bladed(labels: Labels) -> BladedInterface:
+    """The Bladed-interface entries of a ServoDyn file with a DLL."""
+    names = BLADED[:6]
+    return BladedInterface(
+        infile=labels.string("DLL_InFile"),
+        time_step=None if labels.is_default("DLL_DT") else labels.float("DLL_DT", positive=True),
+        ramp=labels.bool("DLL_Ramp"), cutoff=labels.float("BPCutoff", positive=True),
+        individual=labels.int("Ptch_Cntrl") == 1,
+        pitch_limits=(math.radians(labels.float("Ptch_Min")), math.radians(labels.float("Ptch_Max"))),
+        rate_limits=(math.radians(labels.float("PtchRate_Min")), math.radians(labels.float("PtchRate_Max"))),
+        lines={name: labels.line(name) for name in names})
+
+
 def read_servodyn(path: str | os.PathLike) -> ServoDyn:
     """Read a ServoDyn file; malformed entries are :class:`InputError` naming file, line and label. The torque-law
     constants are required only with VSContrl 1."""
@@ -125,7 +191,9 @@ def read_servodyn(path: str | os.PathLike) -> ServoDyn:
         yaw_spring=_bounded(labels, "YawSpr", MAX_YAW_STIFFNESS),
         yaw_damper=_bounded(labels, "YawDamp", MAX_YAW_DAMPING),
         settings=settings, lines=lines,
-        controller=labels.string("DLL_FileName") if labels.has("DLL_FileName") else "")
+        controller=labels.string("DLL_FileName") if labels.has("DLL_FileName") else "",
+        dll=read_bladed(labels) if 5 in (labels.int("PCMode"), torque_control)
+        and all(labels.has(name) for name in BLADED) else None)
 
 
 def _bounded(labels: Labels, label: str, largest: float) -> float:

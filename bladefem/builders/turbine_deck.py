@@ -19,6 +19,7 @@ from ..models.turbine.aero import TurbineAero
 from ..models.turbine.control import Generator
 from ..models.turbine.initial import InitialConditions
 from ..models.turbine.parameters import TurbineParameters
+from .servodyn import ServoDyn
 from .turbine_elastodyn import (
     NREL5MW_YAW_DAMPING,
     NREL5MW_YAW_STIFFNESS,
@@ -49,6 +50,9 @@ class TurbineDeck:
     conditions: InitialConditions
     openfast: bool
     notes: tuple[str, ...] = ()
+    servodyn: ServoDyn | None = None
+    time_step: float = 0.0
+    hub_height: float = 0.0
 
 
 def is_openfast_deck(path: str | Path) -> bool:
@@ -67,7 +71,8 @@ def is_openfast_deck(path: str | Path) -> bool:
 def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float | None = None,
                       shear_exponent: float | None = None, pitch: float | None = None,
                       yaw_stiffness: float | None = None, yaw_damping: float | None = None,
-                      leave_out: frozenset[str] | set[str] = frozenset(), **structure) -> TurbineDeck:
+                      leave_out: frozenset[str] | set[str] = frozenset(), controller: bool = False,
+                      **structure) -> TurbineDeck:
     """The turbine of a .fst or an ElastoDyn main file.
 
     aero : include the aerodynamic loads of a .fst (False: structure and generator only)
@@ -75,6 +80,7 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
     yaw_stiffness, yaw_damping : N m/rad, N m s/rad (default: ServoDyn's, else the NREL 5MW's)
     leave_out : the ways forward taken (options of :data:`~bladefem.builders.aerodyn_primary.WAYS`: "--foundation
     rigid", "--quasi-steady", "--rpm"); what they leave out is named in the notes
+    controller : the caller runs ServoDyn's Bladed-style DLL (else a DLL deck is refused but for --rpm)
     structure : keyword arguments of :func:`turbine_from_elastodyn` (blade_shapes, rpm, tower_shapes, ...)
     """
     if wind_speed is not None and not 0 <= wind_speed <= MAX_WIND_SPEED:
@@ -97,7 +103,8 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
         return TurbineDeck(str(path), str(path), params, None, None, switches, conditions, False,
                            (platform_note(path),) if rigid else ())
     from .openfast_fst import read_openfast_deck
-    deck = read_openfast_deck(path, leave_out=set(leave_out) | ({"--no-aero"} if not aero else set()))
+    deck = read_openfast_deck(path, leave_out=set(leave_out) | ({"--no-aero"} if not aero else set()),
+                              controller=controller)
     servo = deck.servodyn
     if yaw_stiffness is None:
         yaw_stiffness = servo.yaw_spring if servo is not None else NREL5MW_YAW_STIFFNESS
@@ -118,4 +125,5 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
     rigid = "--foundation rigid" in leave_out
     switches, conditions = deck_conditions(main, rigid)
     notes = ((platform_note(main),) if rigid else ()) + deck.left_out
-    return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True, notes)
+    return TurbineDeck(deck.path, str(main), params, loads, generator, switches, conditions, True, notes, servo,
+                       deck.dt, deck.hub_height)

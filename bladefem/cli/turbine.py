@@ -44,7 +44,7 @@ ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflecti
 ANGLES = ("yaw", "generator_azimuth", "drivetrain")
 #: figure formats of --plot (by suffix)
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
-SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial")
+SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial", "discon_library")
 AERO_ONLY = ("wind_speed", "shear_exp")
 
 
@@ -123,6 +123,10 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="time integrator: auto (with numba the compiled Dormand-Prince 8(5,3), or 5(4) with "
                              "aerodynamics; else scipy DOP853), DP853 or DP54 (compiled, need numba), scipy RK45 or "
                              "DOP853, or fixed-step RK4 (--step)")
+    parser.add_argument("--discon-library", metavar="PATH", default=None,
+                        help="the Bladed-style controller library (DISCON entry point) a deck with PCMode and "
+                             "VSContrl 5 runs (default: ServoDyn's DLL_FileName, else an installed ROSCO's "
+                             "libdiscon.so)")
     parser.add_argument("--step", type=float, default=None, help="step of --method RK4, s (default 0.01)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
@@ -235,8 +239,8 @@ def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
     from .aeroelastic import leave_out
 
     taken = leave_out(args) | ({"--no-aero"} if args.no_aero else set())
-    main = (read_openfast_deck(args.main, leave_out=taken).elastodyn if is_openfast_deck(args.main)
-            else read_elastodyn_main(args.main))
+    main = (read_openfast_deck(args.main, leave_out=taken, controller=runs_controller(args)).elastodyn
+            if is_openfast_deck(args.main) else read_elastodyn_main(args.main))
     keys = [f"BldFile({i + 1})" for i in range(len(main.blade_files))] + ["TwrFile"]
     for key, file in zip(keys, (*main.blade_files, main.tower_file)):
         problem = input_problem(file)
@@ -245,6 +249,11 @@ def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
         note_input(file)
     check_output(args.output, "--output")
     check_output(args.plot, "--plot")
+
+
+def runs_controller(args: argparse.Namespace) -> bool:
+    """Whether a deck's Bladed-style DLL runs: in a simulation whose rotor speed is not held at --rpm."""
+    return bool(args.simulate) and args.rpm is None
 
 
 def build_model(args: argparse.Namespace):
@@ -258,7 +267,8 @@ def build_model(args: argparse.Namespace):
         pitch=None if args.pitch_deg is None else math.radians(args.pitch_deg), yaw_stiffness=args.yaw_stiffness,
         yaw_damping=args.yaw_damping, blade_shapes=shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
         elastodyn_compatible=args.elastodyn_compatible, damping=args.damping,
-        gauss_points=1 if args.elastodyn_compatible else 2, leave_out=leave_out(args))
+        gauss_points=1 if args.elastodyn_compatible else 2, leave_out=leave_out(args),
+        controller=runs_controller(args))
     params = deck.params
     if args.no_gravity:
         params = params.with_(gravity=0.0)
@@ -313,9 +323,9 @@ def run(args: argparse.Namespace) -> int:
         q0[model.dofs.index(name)] = value
     for note in notes:
         print(f"# {note}")
-    from .turbine_simulate import simulate_command
+    from .turbine_simulate import controller_of, simulate_command
 
-    return simulate_command(model, free, q0, u0, args)
+    return simulate_command(model, free, q0, u0, args, controller_of(deck, args))
 
 
 def generator_line(generator, free: bool, rotor_speed: float) -> str | None:

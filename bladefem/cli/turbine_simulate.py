@@ -12,7 +12,23 @@ import numpy as np
 from ..errors import InputError
 
 
-def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse.Namespace) -> int:
+def controller_of(deck, args: argparse.Namespace):
+    """The :class:`~bladefem.models.turbine.discon.ControllerSetup` of a deck whose ServoDyn runs a Bladed-style
+    DLL (PCMode and VSContrl 5) in a simulation not held at --rpm; None otherwise."""
+    from .turbine import runs_controller
+
+    servo = getattr(deck, "servodyn", None)
+    if servo is None or servo.dll is None or not runs_controller(args):
+        if args.discon_library is not None:
+            raise InputError("the deck runs no Bladed-style DLL here (ServoDyn PCMode and VSContrl 5, without "
+                             "--rpm)", field="--discon-library")
+        return None
+    from ..builders.controller import controller_setup
+    return controller_setup(deck, args.discon_library)
+
+
+def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse.Namespace,
+                     controller=None) -> int:
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
     from ..models.turbine.simulate import (
@@ -39,9 +55,12 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
         raise InputError(str(error), field="--dt") from None
     try:
         with SimulationProgress(args.simulate, args.quiet) as progress:
-            result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
-                              atol=rtol * 1e-2, method=method, step=0.01 if args.step is None else args.step,
-                              progress=progress)
+            if controller is not None:
+                result = controlled_run(FreeSystem(model, free, q0, u0), controller, args, dt, rtol, progress)
+            else:
+                result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
+                                  atol=rtol * 1e-2, method=method, step=0.01 if args.step is None else args.step,
+                                  progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
     except SimulationStopped as stop:
@@ -56,6 +75,30 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     if args.plot:
         plot_outputs(result, args.plot, title=simulation_title(model, args))
     return 0
+
+
+def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: float, progress):
+    """The simulation with the deck's controller library (:mod:`bladefem.models.turbine.controlled`)."""
+    from ..models.turbine.controlled import simulate_controlled
+    from ..models.turbine.discon import DisconController
+
+    if args.method not in (None, "auto", "DP54", "RK4"):
+        raise InputError("a run with the controller library integrates with DP54 (or RK4) between controller "
+                         "calls", field="--method")
+    if not hasattr(system.model.fast_equations(), "integrate"):
+        raise InputError("a run with the controller library needs numba (unset BLADEFEM_NO_NUMBA); or hold the "
+                         "rotor with --rpm", field="--simulate")
+    model = system.model
+    inflow = model.aero.inflow if model.aero is not None else None
+    hub_wind = 0.0 if inflow is None else inflow.speed * (
+        setup.hub_height / inflow.reference_height) ** inflow.shear_exponent
+    efficiency = model.generator.efficiency if model.generator is not None else 1.0
+    print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s", file=sys.stderr)
+    with DisconController(setup, Path(args.main).stem) as controller:
+        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * 1e-2,
+                                   hub_wind=hub_wind, efficiency=efficiency, progress=progress,
+                                   method="RK4" if args.method == "RK4" else "DP54",
+                                   rk4_step=0.01 if args.step is None else args.step)
 
 
 def simulation_title(model, args: argparse.Namespace) -> str:

@@ -108,7 +108,7 @@ class Integration:
     """States at the output times (T, size) and their load channels (T, len(compiled_outputs.COLUMNS)), the rows
     computed, right-hand sides used, and, if it stopped early, the status (1: not finite, 2: a coordinate beyond its
     limit, 3: step size underflow, 4: stopped by the watch, 5: interrupted), time, index of the offending state and
-    what the watch returned."""
+    what the watch returned; ``rate``: the state's time derivative at the end of a completed run."""
 
     states: NDArray
     loads: NDArray
@@ -118,6 +118,7 @@ class Integration:
     time: float = 0.0
     offending: int = -1
     reason: object = None
+    rate: NDArray | None = None
 
 
 class CompiledEquations:
@@ -153,13 +154,14 @@ class CompiledEquations:
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
                   index: NDArray, order: int = 8, limit: NDArray | None = None,
                   watch: Callable[..., str | None] | None = None,
-                  budget: int | None = None) -> Integration:
+                  budget: int | None = None, first_step: float | None = None) -> Integration:
         """Adaptive Dormand-Prince 8(5,3) (``order=8``) or 5(4) (``order=5``) from ``times[0]`` to ``times[-1]``
         with dense output and the load channels at ``times``; stops at the first state beyond ``limit`` (per state,
         default none) or not finite. The compiled kernel returns after at most ``budget`` right-hand sides; between
         calls Ctrl-C is looked for (it only sets a flag while the kernel runs; the first call, which may compile,
         is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
-        the output rows the call wrote may stop the run with a reason."""
+        the output rows the call wrote may stop the run with a reason. ``first_step``: the first trial step, s
+        (default 1e-3; a run restarted every controller interval starts with the interval)."""
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
         from .watch import BUDGET, interruptible
@@ -173,7 +175,8 @@ class CompiledEquations:
         loads = np.full((len(times), len(COLUMNS)), np.nan)
         index = np.ascontiguousarray(index, dtype=np.int64)
         q0, u0 = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float)
-        t, h, rows, evaluations = float(times[0]), min(1e-3, max(times[-1] - times[0], 1e-12)), 1, 0
+        first = 1e-3 if first_step is None else first_step
+        t, h, rows, evaluations = float(times[0]), min(first, max(times[-1] - times[0], 1e-12)), 1, 0
         f, end = np.zeros(len(x)), float(times[-1])
 
         def step(start: bool) -> tuple:
@@ -196,7 +199,7 @@ class CompiledEquations:
                 if interrupted():
                     return Integration(out, loads, rows, evaluations, 5, float(t))
                 if t >= end:
-                    return Integration(out, loads, rows, evaluations)
+                    return Integration(out, loads, rows, evaluations, rate=f)
                 t_before, rows_before = t, rows
                 t, x, f, h, rows, count, status, bad = step(False)
                 evaluations += count

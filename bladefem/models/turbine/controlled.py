@@ -1,0 +1,241 @@
+"""A simulation with a Bladed-style controller library (ServoDyn ``PCMode`` 5, ``VSContrl`` 5): the controller is
+called every ``DLL_DT`` seconds with the turbine's state and its pitch and torque demands are held until the next
+call (zero-order hold: ServoDyn with ``DLL_Ramp`` False), the equations integrated in between.
+
+Each interval ``[t_k, t_k + DLL_DT]`` is one call of the compiled adaptive integrator (Dormand-Prince 5(4)) with
+the pitch set on the kernels' arrays (:mod:`.pitching`) and the generator torque held (the torque-law vector of
+:func:`.control.law_torque` with a rated speed of zero: the demanded torque at every positive speed). The output rows
+that fall in the interval are taken from the integrator's dense output; the pitch of a row is the one held over its
+interval. Needs numba (the numpy equations would take hours for a controlled run).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import InputError
+from .discon import ControllerError, DisconController, Measurements
+from .outputs import LOAD_COLUMNS
+from .pitching import CompiledPitch
+from .compiled import Integration
+from .simulate import (
+    SimulationResult,
+    UnstableStep,
+    diverged,
+    divergence_limits,
+    generator_free,
+    output_times,
+    result_of,
+    rk4_stable_step,
+)
+from .system import FreeSystem
+from .watch import Interrupted, Monitor, SimulationStopped
+
+#: largest spread of the blades' pitch demands (rad) taken as collective; beyond, individual pitch is refused
+COLLECTIVE_TOLERANCE = 1e-6
+
+
+class Controlled:
+    """The state of a controlled run: kernels, pitch setter, held torque, and what the controller is sent."""
+
+    def __init__(self, system: FreeSystem, hub_wind: float, efficiency: float) -> None:
+        self.system, self.model = system, system.model
+        self.compiled = self.model.fast_equations()
+        if not hasattr(self.compiled, "integrate"):
+            raise RuntimeError("a controlled simulation needs numba (pip install numba; unset BLADEFEM_NO_NUMBA)")
+        self.pitcher = CompiledPitch(self.model, self.compiled)
+        self.law = self.compiled.law
+        self.law[:] = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+        self.hub_wind, self.efficiency = hub_wind, efficiency
+        self.generator = self.model.dofs.index("generator_azimuth")
+        self.ratio = self.model.params.gearbox_ratio
+
+    @property
+    def torque(self) -> float:
+        return float(self.law[2])
+
+    def measure(self, t: float, x: NDArray, loads: NDArray | None = None, rate: NDArray | None = None,
+                individual: bool = False) -> Measurements:
+        """What ServoDyn sends the controller at state ``x``: speeds, pitch, wind, blade-root moments, shaft power,
+        tower-top accelerations and the nacelle's tilting ones (from the equations' accelerations at x: the tower's
+        modal accelerations times its tip shapes and slopes; the shaft tilt is neglected). ``loads`` (blade 1's
+        load columns at x) and ``rate`` (dx/dt) are computed unless given (the integrator's own at an interval's
+        end). The other blades' root moments only for ``individual`` pitch control; with collective pitch their
+        records repeat blade 1's (the controller uses them only for individual pitch)."""
+        system, model, compiled = self.system, self.model, self.compiled
+        q, u = system.full(t, x)
+        blades = model.params.n_blades
+        if loads is None:
+            loads = compiled.outputs(np.array([t]), x[None], system.q0, system.u0, system.index)[0]
+        others = [compiled.outputs(np.array([t]), x[None], system.q0, system.u0, system.index, b)[0]
+                  for b in range(1, blades)] if individual else [loads] * (blades - 1)
+        rows = np.array([loads, *others])
+        if rate is None:
+            rate = compiled.derivative(t, x, system.q0, system.u0, system.index)
+        du = np.zeros(model.n)
+        du[system.index] = rate[system.size:]
+        top = du[model.tower_columns] @ model.params.tower.tip_value
+        turn = du[model.tower_columns] @ model.params.tower.tip_slope       # about y (fore-aft), x (side-side)
+        rotor_speed = u[5] + u[6]
+        generator_speed = self.ratio * u[self.generator]
+        pitch = np.full(blades, self.pitcher.pitch)
+        return Measurements(
+            pitch=pitch, rotor_speed=rotor_speed, generator_speed=generator_speed, wind_speed=self.hub_wind,
+            azimuth=(q[5] + q[6]) % (2 * math.pi), shaft_power=rows[0, 3] * rotor_speed,
+            generator_torque=self.torque, electrical_power=self.torque * generator_speed * self.efficiency,
+            root_oop=rows[:, 0], root_ip=rows[:, 1], tower_top_fa=float(top[0]), tower_top_ss=float(top[1]),
+            nacelle_roll=-float(turn[1]), nacelle_nod=float(turn[0]), yaw=float(q[4]))
+
+    def apply(self, t: float, pitch: NDArray, torque: float) -> None:
+        """Hold the controller's demands: collective pitch (refused when the blades' demands differ), torque."""
+        if np.ptp(pitch) > COLLECTIVE_TOLERANCE:
+            raise ControllerError(f"the controller demands individual pitch (blades at "
+                                  f"{', '.join(f'{math.degrees(p):.4g}' for p in pitch)} deg at t = {t:.4g} s), "
+                                  "which is not modelled: switch its individual pitch control off", t)
+        if not np.all(np.isfinite(pitch)) or not math.isfinite(torque):
+            raise ControllerError(f"the controller returned a non-finite demand at t = {t:.4g} s", t)
+        self.pitcher.set(float(pitch[0]))
+        self.law[2] = torque
+
+
+def simulate_controlled(system: FreeSystem, controller: DisconController, duration: float,
+                        dt_output: float = 0.05, rtol: float = 1e-6, atol: float = 1e-8, hub_wind: float = 0.0,
+                        efficiency: float = 1.0, progress: Callable[[float], None] | None = None,
+                        method: str = "DP54", rk4_step: float = 0.01) -> SimulationResult:
+    """Integrate from 0 to ``duration`` (s) with the controller called every ``controller.setup.time_step``
+    seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
+    at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back);
+    ``method``: "DP54" (adaptive) or "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
+    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit).
+    Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
+    failure or Ctrl-C; a controller that fails on its first call (its library or input file) is an
+    :class:`InputError`."""
+    run = Controlled(system, hub_wind, efficiency)
+    compiled, step = run.compiled, controller.setup.time_step
+    if method == "RK4":
+        stable, dof = rk4_stable_step(system)
+        if rk4_step > stable:
+            raise UnstableStep(f"RK4 with a step of {rk4_step:g} s is unstable for the fastest mode ({dof}): the "
+                               f"step must be below {stable:.3g} s")
+    times = output_times(duration, dt_output)
+    limit = divergence_limits(system)
+    monitor = Monitor(system.model, LOAD_COLUMNS, generator_free(system))
+    calls = int(math.floor(duration / step + 1e-9))
+    boundaries = np.append(np.arange(calls + 1) * step, duration) if calls * step < duration * (1 - 1e-12) else (
+        np.arange(calls + 1) * step)
+    x = system.initial_state()
+    states, loads, pitch = [x], [], []
+    end_loads = end_rate = None
+    evaluations, row = 0, 1
+    t = 0.0
+
+    def steps(start: float, end: float, row_times, rows, row_loads, count: int):
+        return monitor.steps(count, start, end)          # the step-count bound, between kernel calls
+
+    def stop(error: SimulationStopped) -> SimulationStopped:
+        error.result = finish(run, system, times[:len(states)], states, loads, pitch, evaluations)
+        return error
+
+    try:
+        for k in range(len(boundaries) - 1):
+            t, end = float(boundaries[k]), float(boundaries[k + 1])
+            measured = run.measure(t, x, end_loads, end_rate, controller.setup.individual)
+            commands = controller.call(t, measured)
+            run.apply(t, commands.pitch, commands.torque)
+            if k == 0:
+                loads.append(compiled.outputs(times[:1], x[None], system.q0, system.u0, system.index)[0])
+                pitch.append(run.pitcher.pitch)
+            last = row
+            while last < len(times) and times[last] <= end + 1e-9 * step:
+                last += 1
+            inner = times[row:last]
+            chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
+            if method == "RK4":
+                out = rk4_interval(system, compiled, chunk, x, rk4_step, limit, last - row)
+            else:
+                out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
+                                         limit=limit, first_step=end - t, watch=steps)
+            evaluations += out.evaluations
+            if out.status == 4:
+                raise stop(SimulationStopped(*out.reason))
+            if out.status:
+                rows = min(out.rows, len(chunk)) - 1
+                states.extend(out.states[1:rows][:last - row])
+                loads.extend(out.loads[1:rows][:last - row])
+                pitch.extend([run.pitcher.pitch] * (len(states) - len(pitch)))
+                raise stop(diverged(system, out.offending, out.time, out.status, method))
+            x, end_loads, end_rate = out.states[-1], out.loads[len(chunk) - 1], out.rate
+            if not np.all(np.isfinite(end_loads)):            # RK4 between output rows: measured afresh
+                end_loads = None
+            taken = out.states[1:1 + (last - row)]
+            states.extend(taken)
+            loads.extend(out.loads[1:1 + (last - row)])
+            pitch.extend([run.pitcher.pitch] * len(taken))
+            if len(taken):
+                u = np.tile(system.u0, (len(taken), 1))
+                u[:, system.index] = np.asarray(taken)[:, system.size:]
+                reason = monitor.rows(times[row:last], u, np.asarray(loads[-len(taken):]))
+                if reason:
+                    raise stop(SimulationStopped(*reason))
+            row = last
+            if progress is not None:
+                progress(end)
+    except ControllerError as error:
+        if len(loads) == 0:                          # the first call: the library or its input file is bad
+            raise InputError(str(error), file=controller.setup.infile, field="DLL_InFile") from None
+        raise stop(SimulationStopped(str(error), error.time)) from None
+    except KeyboardInterrupt:
+        raise stop(Interrupted(f"interrupted (Ctrl-C) at t = {t:.4g} s", t)) from None
+    finally:
+        controller.close(t)
+    return finish(run, system, times, states, loads, pitch, evaluations)
+
+
+def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,
+                 rows: int) -> Integration:
+    """Classical RK4 over the times ``chunk`` (steps no longer than ``step``, landing on each), the compiled
+    right-hand side; the load channels at the first ``rows`` times after the start (the output rows). Stops at a
+    state beyond ``limit`` or not finite (status 1, 2), as the adaptive kernel does."""
+    q0, u0, index = system.q0, system.u0, system.index
+    states, count = np.full((len(chunk), len(x)), np.nan), 0
+    states[0] = x
+    for i, (a, b) in enumerate(zip(chunk[:-1], chunk[1:])):
+        n = max(1, int(math.ceil((b - a) / step - 1e-9)))
+        h, t = (b - a) / n, a
+        for _ in range(n):
+            k1 = compiled.derivative(t, x, q0, u0, index)
+            k2 = compiled.derivative(t + h / 2, x + h / 2 * k1, q0, u0, index)
+            k3 = compiled.derivative(t + h / 2, x + h / 2 * k2, q0, u0, index)
+            k4 = compiled.derivative(t + h, x + h * k3, q0, u0, index)
+            x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            t += h
+        count += 4 * n
+        bad = np.flatnonzero(~np.isfinite(x) | (np.abs(x) > limit))
+        if bad.size:
+            status = 1 if not np.isfinite(x[bad[0]]) else 2
+            loads = np.full((len(chunk), len(LOAD_COLUMNS)), np.nan)
+            return Integration(states, loads, i + 1, count, status, float(b), int(bad[0]))
+        states[i + 1] = x
+    loads = np.full((len(chunk), len(LOAD_COLUMNS)), np.nan)
+    if rows:
+        loads[1:1 + rows] = compiled.outputs(chunk[1:1 + rows], states[1:1 + rows], q0, u0, index)
+    return Integration(states, loads, len(chunk), count)
+
+
+def finish(run: Controlled, system: FreeSystem, times: NDArray, states: list, loads: list, pitch: list,
+           evaluations: int) -> SimulationResult:
+    """The result of the rows done, with the pitch of each row and the tip deflections at that pitch."""
+    count = min(len(times), len(states), len(loads), len(pitch))
+    result = result_of(system, times[:count], np.asarray(states[:count]), np.asarray(loads[:count]), evaluations)
+    angles = np.asarray(pitch[:count], dtype=float)
+    model = system.model
+    blade = result.q[:, model.blade_columns[0]]
+    tip = np.array([blade[i] @ run.pitcher.tip_values(angles[i]) for i in range(count)]).reshape(count, 2)
+    result.outputs["BldPitch1"] = np.degrees(angles)
+    result.outputs["OoPDefl1"] = tip[:, 1]
+    result.outputs["IPDefl1"] = -tip[:, 0]
+    return result

@@ -1,0 +1,233 @@
+"""The ROSCO controller (ServoDyn's Bladed-style DLL, PCMode and VSContrl 5): the pitch set on the compiled kernels
+against models built at that pitch, the controller run against OpenFAST v5 with the same library, the IEA decks run
+with their own DISCON settings, and the errors of a bad library, input file or demand.
+
+ROSCO's library comes from its wheel (``pip install --no-deps rosco==2.10.6``, the README's test command)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bladefem.builders.controller import rosco_library
+from bladefem.builders.turbine_deck import read_turbine_deck
+from bladefem.cli import main
+from bladefem.models.turbine import TurbineModel
+from bladefem.models.turbine.pitching import CompiledPitch
+from deck_copies import deck_copy as iea_copy
+
+ROOT = Path(__file__).resolve().parents[1]
+CASE = ROOT / "cases" / "nrel5mw"
+DECK = CASE / "NRELOffshrBsline5MW_Onshore_ROSCO.fst"
+REFERENCE = ROOT / "tests" / "data" / "openfast" / "rosco" / "steady.json"
+TRANSIENT = REFERENCE.with_name("transient.json")
+
+pytestmark = pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="controlled runs need numba")
+
+
+def run(capsys, *argv: object) -> tuple[int, str, str]:
+    code = main([str(a) for a in argv])
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def table(path: Path) -> dict[str, np.ndarray]:
+    lines = path.read_text().splitlines()
+    names = [name.rsplit("_", 1)[0] for name in lines[0].split(",")]
+    data = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
+    return {name: data[:, i] for i, name in enumerate(names)}
+
+
+def deck_copy(tmp_path: Path) -> Path:
+    """The NREL 5MW ROSCO case in a temporary folder (to edit)."""
+    folder = tmp_path / "nrel5mw"
+    shutil.copytree(CASE, folder)
+    return folder / DECK.name
+
+
+def replace(path: Path, old: str, new: str) -> None:
+    text = path.read_text()
+    assert old in text
+    path.write_text(text.replace(old, new))
+
+
+def test_rosco_library_is_found_without_importing_rosco():
+    """The installed wheel's library is found by its package's location (ROSCO's own imports need wisdem)."""
+    library = rosco_library()
+    assert library is not None and library.name.startswith("libdiscon") and library.is_file()
+
+
+@pytest.mark.parametrize("shapes", ["polynomial", "fe"])
+def test_pitch_on_the_kernels_equals_the_model_built_at_that_pitch(shapes):
+    """A model built at pitch 0 and pitched to 12 deg on the compiled arrays gives the mass matrix and forcing of
+    the model built at 12 deg: to rounding with ElastoDyn's polynomial shapes (the turn is exact); with bladefem's
+    FE shapes (solved at the rotor speed with the pitched section stiffness) to 1e-3 of the forcing's largest entry
+    (measured 2e-4): the centrifugal softening of the plane of rotation makes the FE modes depend slightly on the
+    pitch, which the turn leaves out."""
+    options = {"blade_shapes": shapes, "elastodyn_compatible": shapes == "polynomial",
+               "gauss_points": 1 if shapes == "polynomial" else 2, "wind_speed": 16.0}
+    base = read_turbine_deck(CASE / "NRELOffshrBsline5MW_Onshore.fst", pitch=0.0, **options)
+    pitched = read_turbine_deck(CASE / "NRELOffshrBsline5MW_Onshore.fst", pitch=math.radians(12.0), **options)
+    model = TurbineModel(base.params, aero=base.aero, generator=base.generator)
+    other = TurbineModel(pitched.params, aero=pitched.aero, generator=pitched.generator)
+    compiled, reference = model.fast_equations(), other.fast_equations()
+    CompiledPitch(model, compiled).set(math.radians(12.0))
+    rng = np.random.default_rng(3)
+    q, u = 0.05 * rng.standard_normal(model.n), 0.1 * rng.standard_normal(model.n)
+    u[5] = 12.1 * math.pi / 30
+    M, f = compiled(q, u)
+    M_ref, f_ref = reference(q, u)
+    tolerance = 1e-9 if shapes == "polynomial" else 1e-3
+    assert np.max(np.abs(f - f_ref)) < tolerance * np.max(np.abs(f_ref))
+    assert np.max(np.abs(M - M_ref)) < tolerance * np.max(np.abs(M_ref))
+    assert np.max(np.abs(f - model.fast_equations()(q, u)[1])) == 0.0
+
+
+@pytest.fixture(scope="module")
+def steady(tmp_path_factory):
+    """bladefem's runs of the four OpenFAST cases (150 s each, the same initial rotor speed and pitch)."""
+    data = json.loads(REFERENCE.read_text())
+    folder = tmp_path_factory.mktemp("rosco")
+    tables = {}
+    for wind, initial in data["provenance"]["initial"].items():
+        out = folder / f"bf_{wind}.csv"
+        code = main(["turbine", str(DECK), "--simulate", "150", "--wind-speed", wind, "--initial",
+                     f"RotSpeed={initial['RotSpeed_rpm']}", "--pitch-deg", str(initial["BlPitch_deg"]), "--quiet",
+                     "-o", str(out)])
+        assert code == 0
+        tables[wind] = table(out)
+    return data, tables, folder
+
+
+@pytest.mark.parametrize("wind", ["8", "11.4", "16", "20"])
+def test_rosco_steady_operation_against_openfast(steady, wind):
+    """ROSCO 2.10.6 on the NREL 5MW in steady wind, bladefem against OpenFAST v5.0.0 with the same library, deck
+    and start: means over 100-150 s of generator power, rotor speed, rotor thrust and blade-tip out-of-plane
+    deflection within 2 %, blade pitch within 0.5 deg (measured figures in docs/turbine-aero.md)."""
+    data, tables, _ = steady
+    ours, theirs = tables[wind], data["cases"][wind]
+    window = ours["Time"] >= data["window_s"][0] - 1e-9
+    assert np.mean(ours["BldPitch1"][window]) == pytest.approx(theirs["BldPitch1"]["mean"], abs=0.5)
+    for name in ("GenPwr", "RotSpeed", "RotThrust", "OoPDefl1"):
+        assert np.mean(ours[name][window]) == pytest.approx(theirs[name]["mean"], rel=0.02), name
+
+
+@pytest.mark.parametrize("wind", ["8", "11.4", "16", "20"])
+def test_rosco_start_transient_follows_openfast(steady, wind):
+    """The first 60 s from the schedule's rotor speed and pitch (the controller's filters, wind-speed estimator and
+    integrators settling, the rotor and blades swinging up), bladefem against OpenFAST every 0.1 s: rotor speed within
+    0.05 rpm, pitch within 0.2 deg, and every channel that moves correlated above 0.99 with OpenFAST's (measured
+    at 8-16 m/s: 0.017, 0.028, 0.014 rpm; 0.063, 0.069 deg; correlations 0.991 to 0.9998)."""
+    history = json.loads(TRANSIENT.read_text())["cases"][wind]
+    ours = steady[1][wind]
+    times = np.array(history["Time"])
+    for name in ("RotSpeed", "BldPitch1", "GenPwr", "RotThrust", "OoPDefl1"):
+        mine, theirs = np.interp(times, ours["Time"], ours[name]), np.array(history[name])
+        if name in ("RotSpeed", "BldPitch1"):
+            assert np.max(np.abs(mine - theirs)) < (0.05 if name == "RotSpeed" else 0.2), name
+        if np.ptp(theirs) > 0:
+            a, b = mine - mine.mean(), theirs - theirs.mean()
+            assert a @ b / np.sqrt((a @ a) * (b @ b)) > 0.99, name
+
+
+def test_the_comparison_example_writes_its_table_and_figure(steady, tmp_path):
+    """examples/rosco_against_openfast.py on the runs of the fixture: the table of docs/turbine-aero.md (one row
+    per wind speed and channel) and the figure."""
+    import subprocess
+    import sys
+    completed = subprocess.run([sys.executable, str(ROOT / "examples" / "rosco_against_openfast.py"), str(tmp_path),
+                                "--tables", str(steady[2])], capture_output=True, text=True, timeout=600,
+                               env={**os.environ, "MPLBACKEND": "Agg"})
+    assert completed.returncode == 0, completed.stderr
+    rows = [line for line in completed.stdout.splitlines() if line.startswith("| ") and "[" in line
+            and "channel" not in line]
+    assert len(rows) == 20 and (tmp_path / "rosco-transient.png").stat().st_size > 10_000
+
+
+def test_controller_runs_alone_per_simulation(capsys, tmp_path):
+    """Two runs of the same case in one process give the same table: each has its own library instance (ROSCO's
+    filters and integrators live in the library's global state)."""
+    outputs = []
+    for k in range(2):
+        out = tmp_path / f"run{k}.csv"
+        code, _, _ = run(capsys, "turbine", DECK, "--simulate", "1", "--wind-speed", "16", "--pitch-deg", "10",
+                         "--quiet", "-o", out)
+        assert code == 0
+        outputs.append(out.read_text())
+    assert outputs[0] == outputs[1]
+    data = table(tmp_path / "run0.csv")
+    assert np.ptp(data["BldPitch1"]) > 0 and np.ptp(data["GenTq"]) > 0        # the controller acted
+
+
+@pytest.mark.parametrize("deck, method", [
+    ("iea15/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile.fst", ("--method", "RK4", "--step", "0.005")),
+    ("iea22/IEA-22-280-RWT-Monopile/IEA-22-280-RWT-Monopile.fst", ())])
+def test_iea_decks_run_with_their_own_rosco_settings(capsys, tmp_path, deck, method):
+    """The IEA-15MW and IEA-22MW monopile decks (rigid foundation, quasi-steady, the IEA-22's ElastoDyn blades)
+    run 2 s with their DISCON.IN
+    (DLL_FileName names a libdiscon.so elsewhere: the installed ROSCO's is taken); the pitch and torque move. The
+    IEA-15MW from its undeflected start with ElastoDyn's fixed step (the adaptive step collapses in its start-up
+    transient, docs/turbine-aero.md), as the controller's interval allows."""
+    fst = iea_copy(Path(deck).parts[0], tmp_path) / Path(*Path(deck).parts[1:])
+    out = tmp_path / "out.csv"
+    code, _, err = run(capsys, "turbine", fst, "--simulate", "2", "--foundation", "rigid", "--quasi-steady",
+                       "--elastodyn-blades", "--wind-speed", "12", "--quiet", "-o", out, *method)
+    assert code == 0, err
+    data = table(out)
+    assert np.ptp(data["GenTq"]) > 0 and np.all(np.isfinite(data["BldPitch1"]))
+
+
+def test_missing_library_names_the_servodyn_line(capsys, tmp_path):
+    """A DLL_FileName that is not there (and not ROSCO's name) is refused with its file, line and the option."""
+    fst = deck_copy(tmp_path)
+    replace(fst.parent / "NRELOffshrBsline5MW_Onshore_ROSCO_ServoDyn.dat", '"libdiscon.so"', '"mycontroller.so"')
+    code, _, err = run(capsys, "turbine", fst, "--simulate", "1", "--quiet")
+    assert code == 2 and "mycontroller.so" in err and "DLL_FileName" in err and "--discon-library" in err
+    assert "Traceback" not in err
+
+
+def test_a_file_that_is_no_library_is_refused(capsys, tmp_path):
+    """--discon-library pointing at a text file: the library cannot be loaded; exit 2, no traceback."""
+    code, _, err = run(capsys, "turbine", DECK, "--simulate", "1", "--quiet", "--discon-library",
+                       CASE / "Cp_Ct_Cq.NREL5MW.txt")
+    assert code == 2 and "could not be loaded" in err and "Traceback" not in err
+
+
+def test_bad_discon_input_is_an_input_error(capsys, tmp_path):
+    """A DISCON.IN whose performance table is missing: ROSCO fails on its first call (aviFAIL < 0); the message
+    names the input file and exit 2."""
+    fst = deck_copy(tmp_path)
+    (fst.parent / "Cp_Ct_Cq.NREL5MW.txt").unlink()
+    code, _, err = run(capsys, "turbine", fst, "--simulate", "1", "--quiet")
+    assert code == 2 and "DISCON.IN" in err and "Traceback" not in err
+
+
+def test_individual_pitch_is_refused_while_running(capsys, tmp_path):
+    """ROSCO's individual pitch control on (Ptch_Cntrl 1, IPC_ControlMode 1, an integral gain): in sheared wind,
+    as soon as the blades' demands
+    differ the run stops, exit 1, naming what is not modelled and keeping the rows so far."""
+    fst = deck_copy(tmp_path)
+    replace(fst.parent / "NRELOffshrBsline5MW_Onshore_ROSCO_ServoDyn.dat", "          0   Ptch_Cntrl",
+            "          1   Ptch_Cntrl")
+    discon = fst.parent / "NRELOffshrBsline5MW_Onshore_ROSCO_DISCON.IN"
+    replace(discon, "0                   ! IPC_ControlMode", "1                   ! IPC_ControlMode")
+    replace(discon, "0.000e+00    0.000e+00    ! IPC_KI", "1.000e-08    0.000e+00    ! IPC_KI")
+    out = tmp_path / "out.csv"
+    code, _, err = run(capsys, "turbine", fst, "--simulate", "20", "--wind-speed", "16", "--pitch-deg", "10",
+                       "--shear-exp", "0.2", "--quiet", "-o", out)
+    assert code == 1 and "individual pitch" in err and out.is_file()
+
+
+def test_dll_ramp_is_refused(capsys, tmp_path):
+    """DLL_Ramp True (a linear ramp between calls) is not modelled: refused at its line."""
+    fst = deck_copy(tmp_path)
+    replace(fst.parent / "NRELOffshrBsline5MW_Onshore_ROSCO_ServoDyn.dat", "False         DLL_Ramp",
+            "True          DLL_Ramp")
+    code, _, err = run(capsys, "turbine", fst, "--simulate", "1", "--quiet")
+    assert code == 2 and "DLL_Ramp" in err
