@@ -12,6 +12,7 @@ is periodic), so it is used as TurbSim's periodic files are (:mod:`bladefem.aero
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -69,9 +70,12 @@ def turbulent_grid(spec: TurbulenceSpec) -> GridWind:
         k = spat_df.loc["k"].values.astype(int)
         return sigma * np.asarray(COMPONENT_RATIOS)[k]
 
-    frame = gen_turb(gen_spat_grid(y, z), T=steps * spec.dt, nt=steps, u_ref=spec.speed, z_ref=spec.hub_height,
-                     alpha=spec.shear_exponent, sig_func=sig_func, seed=spec.key, nf_chunk=64, verbose=False,
-                     dtype=np.float64)
+    with warnings.catch_warnings():                    # pyconturb's own pandas deprecations, not the user's concern
+        warnings.simplefilter("ignore", DeprecationWarning)
+        warnings.simplefilter("ignore", FutureWarning)
+        frame = gen_turb(gen_spat_grid(y, z), T=steps * spec.dt, nt=steps, u_ref=spec.speed,
+                         z_ref=spec.hub_height, alpha=spec.shear_exponent, sig_func=sig_func, seed=spec.key,
+                         nf_chunk=64, verbose=False, dtype=np.float64)
     values = frame.to_numpy()                            # (nt, points: iy * nz + iz, components u v w)
     velocity = values.reshape(steps, spec.points, spec.points, 3).astype(np.float32)
     return GridWind(velocity=velocity, dt=spec.dt, dy=float(y[1] - y[0]), dz=float(z[1] - z[0]), z0=float(z[0]),
