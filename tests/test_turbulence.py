@@ -69,3 +69,49 @@ def test_one_key_one_box_and_another_key_another():
     assert np.array_equal(first.velocity, again.velocity)
     assert not np.allclose(first.velocity, other.velocity)
     assert first.periodic and first.x_start == 0.0
+
+
+def test_a_run_in_a_box_made_for_it(tmp_path):
+    """``--turbulence B`` on the shipped deck: the run ends 0, writes its table and the box as a TurbSim file that
+    reads back with IEC class B's sigma_u at its corner point (the one point Veers' method gives exact amplitudes)."""
+    pytest.importorskip("numba")
+    import contextlib
+    import io
+    from pathlib import Path
+
+    from bladefem.cli import main
+    from bladefem.formats.turbsim import read_turbsim
+
+    deck = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
+    box, table = tmp_path / "box.bts", tmp_path / "run.csv"
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        code = main(["turbine", str(deck), "--simulate", "6", "--wind-speed", "9", "--turbulence", "B",
+                     "--turbulence-grid", "5", "--turbulence-dt", "0.5", "--turbulence-key", "4",
+                     "--turbulence-box", str(box), "--output", str(table), "--quiet"])
+    assert code == 0, err.getvalue()
+    read = read_turbsim(box)
+    u = read.velocity[:, 0, 0, 0].astype(float)
+    assert read.periodic and read.velocity.shape == (12, 5, 5, 3) and read.hub_height == 90.0
+    sigma = 0.14 * (0.75 * 9.0 * (90.0 / 90.0) ** 0.0 + 5.6)
+    assert u.std(ddof=1) == pytest.approx(sigma, rel=2e-3)             # 16-bit counts of the file
+    assert len(table.read_text().splitlines()) == 1 + 121
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["--linearize", "--turbulence", "B"], "--turbulence"),
+    (["--simulate", "5", "--turbulence", "B", "--turbulence-intensity", "12"], "--turbulence-intensity"),
+    (["--simulate", "5", "--turbulence-grid", "5"], "--turbulence-grid"),
+    (["--simulate", "5", "--turbulence", "A", "--turbulence-grid", "2"], "--turbulence-grid"),
+])
+def test_bad_turbulence_options_exit_2(argv, field):
+    import contextlib
+    import io
+    from pathlib import Path
+
+    from bladefem.cli import main
+    deck = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        code = main(["turbine", str(deck), *argv, "--quiet"])
+    assert code == 2 and f"field '{field}'" in err.getvalue(), err.getvalue()

@@ -1,5 +1,5 @@
 """The wind options of ``bladefem turbine DECK --simulate``: a turbulent box made for the case (``--turbulence``,
-``--turbulence-intensity``, ``--turbulence-seed``, its grid and time step, ``--turbulence-box`` to keep it as a
+``--turbulence-intensity``, ``--turbulence-key``, its grid and time step, ``--turbulence-box`` to keep it as a
 TurbSim ``.bts`` for OpenFAST), and the check that a full-field wind holds the rotor for the whole run."""
 
 from __future__ import annotations
@@ -22,8 +22,8 @@ def add_wind_options(parser: argparse.ArgumentParser) -> None:
                             "by pyconturb) about --wind-speed (or HWindSpeed) with the shear of PLExp/--shear-exp")
     group.add_argument("--turbulence-intensity", type=float, default=None, metavar="PERCENT",
                        help="the longitudinal turbulence intensity instead of an IEC class, percent")
-    group.add_argument("--turbulence-seed", type=int, default=None, metavar="N",
-                       help="random key of the box (default 1): one key, one box")
+    group.add_argument("--turbulence-key", "--turbulence-seed", dest="turbulence_seed", type=int, default=None,
+                       metavar="N", help="random key (seed) of the box (default 1): one key, one box")
     group.add_argument("--turbulence-grid", type=int, default=None, metavar="N",
                        help="points per side of the square grid over the rotor (default 9)")
     group.add_argument("--turbulence-dt", type=float, default=None, metavar="SECONDS",
@@ -52,10 +52,11 @@ def check_wind_options(args: argparse.Namespace) -> None:
               ("turbulence_grid", lambda v: 3 <= v <= 65, "between 3 and 65 points"),
               ("turbulence_dt", lambda v: math.isfinite(v) and 0.01 <= v <= 2.0, "between 0.01 and 2 s"),
               ("turbulence_seed", lambda v: 0 <= v < 2**32, "between 0 and 2^32 - 1"))
+    names = {"turbulence_seed": "turbulence-key"}
     for name, good, what in checks:
         value = getattr(args, name)
         if value is not None and not good(value):
-            raise InputError(f"must be {what}, got {value}", field="--" + name.replace("_", "-"))
+            raise InputError(f"must be {what}, got {value}", field="--" + names.get(name, name.replace("_", "-")))
 
 
 def apply_wind(args: argparse.Namespace, model):
