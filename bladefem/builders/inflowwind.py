@@ -75,10 +75,10 @@ def uniform_inflow(labels: Labels) -> Inflow:
 
 def grid_inflow(labels: Labels) -> Inflow:
     """WindType 3: the TurbSim box of ``FileName_BTS`` (its mean speed at its hub height)."""
-    box = read_turbsim(labels.existing_file("FileName_BTS"))
+    box = read_turbsim(labels.existing_file("FileName_BTS", "Filename"))           # v4 and v5 spellings
     if box.mean_speed > MAX_WIND_SPEED:
         raise InputError(f"mean speed {box.mean_speed:g} m/s above {MAX_WIND_SPEED:g}",
-                         str(labels.file("FileName_BTS")), field="mean_speed")
+                         str(labels.file("FileName_BTS", "Filename")), field="mean_speed")
     return Inflow(speed=box.mean_speed, reference_height=box.hub_height, grid=grid_of(box))
 
 
