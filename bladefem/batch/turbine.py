@@ -94,7 +94,8 @@ def turbulent_aero(aero: Any, analysis: Any, key: int) -> Any:
     from ..aero.turbulence import TurbulenceSpec, rotor_width, turbulent_grid
 
     if aero is None:
-        raise InputError("a turbulent box needs the deck's aerodynamics (CompAero 2)", field="analysis.turbulence_class")
+        raise InputError("a turbulent box needs the deck's aerodynamics (CompAero 2)",
+                         field="analysis.turbulence_class")
     inflow, rotor = aero.inflow, aero.rotor
     if inflow.kind != "steady":
         raise InputError(f"the deck gives {inflow.kind} wind: a turbulent box replaces steady wind only",
