@@ -116,15 +116,23 @@ def uniform_velocity(x: float, y: float, z: float, t: float, params: NDArray, ta
             hi += 1
         lo = hi - 1
         alpha = (t - table[lo, 0]) / (table[hi, 0] - table[lo, 0])
-    row = np.empty(9)
-    for c in range(9):
-        row[c] = table[lo, c] if alpha == 0.0 else (1.0 - alpha) * table[lo, c] + alpha * table[lo + 1, c]
+    speed, angle_h, vertical = _blend(table, lo, alpha, 1), _blend(table, lo, alpha, 2), _blend(table, lo, alpha, 3)
+    shear_h, exponent, shear_v = _blend(table, lo, alpha, 4), _blend(table, lo, alpha, 5), _blend(table, lo, alpha, 6)
+    gust, angle_v = _blend(table, lo, alpha, 7), _blend(table, lo, alpha, 8)
     height, length = params[2], params[7]
-    cos_h, sin_h, cos_v, sin_v = math.cos(row[2]), math.sin(row[2]), math.cos(row[8]), math.sin(row[8])
-    v1 = row[1] * ((z / height) ** row[5] + (row[4] * (y * cos_h + x * sin_h) + row[6] * (z - height)) / length) \
-        + row[7]
-    along = cos_v * v1 - sin_v * row[3]
-    out[0], out[1], out[2] = along * cos_h, -along * sin_h, sin_v * v1 + cos_v * row[3]
+    cos_h, sin_h, cos_v, sin_v = math.cos(angle_h), math.sin(angle_h), math.cos(angle_v), math.sin(angle_v)
+    v1 = speed * ((z / height) ** exponent + (shear_h * (y * cos_h + x * sin_h) + shear_v * (z - height)) / length) \
+        + gust
+    along = cos_v * v1 - sin_v * vertical
+    out[0], out[1], out[2] = along * cos_h, -along * sin_h, sin_v * v1 + cos_v * vertical
+
+
+@kernel
+def _blend(table: NDArray, lo: int, alpha: float, column: int) -> float:
+    """Column ``column`` of the table between rows ``lo`` and ``lo + 1`` at the fraction ``alpha``."""
+    if alpha == 0.0:
+        return table[lo, column]
+    return (1.0 - alpha) * table[lo, column] + alpha * table[lo + 1, column]
 
 
 @kernel
