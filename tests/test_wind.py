@@ -245,3 +245,10 @@ def test_the_loads_in_a_constant_box_are_the_steady_ones(tmp_path):
     for t in (0.0, 13.7):
         np.testing.assert_allclose(flat.equations(q, u, t=t)[1], f, rtol=1e-6, atol=1e-6 * np.abs(f).max())
         np.testing.assert_allclose(flat.fast_equations()(q, u, t=t)[1], f, rtol=1e-6, atol=1e-6 * np.abs(f).max())
+
+
+def test_wind_speed_options_are_refused_with_a_wind_file(tmp_path):
+    """The file sets the wind: --wind-speed (and --shear-exp) with WindType 2 exit 2 naming the option."""
+    uniform = deck(tmp_path, {"WindType": "2", "FileName_Uni": '"w.uni"'}, {"w.uni": b"0 10 0 0 0 0 0 0\n"})
+    code, err = cli("turbine", uniform, "--simulate", "1", "--wind-speed", "8", "--quiet")
+    assert code == 2 and "field '--wind-speed'" in err and "uniform wind file sets the wind" in err, err
