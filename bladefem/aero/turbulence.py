@@ -6,7 +6,9 @@ component (length scales 8.1, 2.7, 0.66 Lambda_1, Lambda_1 = 0.7 min(z, 60 m)), 
 turbulence classes A, B, C (I_ref 0.16, 0.14, 0.12) or ``I U`` for a given turbulence intensity I, with sigma_v =
 0.8 sigma_u and sigma_w = 0.5 sigma_u; the mean wind follows the power law ``U (z / z_hub)^alpha``. The square grid
 is centred on the hub and spans the rotor with a margin; the box repeats in time (the inverse FFT of Veers' method
-is periodic), so it is used as TurbSim's periodic files are (:mod:`bladefem.aero.wind`).
+is periodic), so it is used as TurbSim's periodic files are (:mod:`bladefem.aero.wind`). The three components,
+uncorrelated in IEC's model, are made one at a time (random keys ``3 key``, ``3 key + 1``, ``3 key + 2``): the
+coherence factorisation per frequency is then of one component's points, not of all three together.
 """
 
 from __future__ import annotations
@@ -70,14 +72,15 @@ def turbulent_grid(spec: TurbulenceSpec) -> GridWind:
         k = spat_df.loc["k"].values.astype(int)
         return sigma * np.asarray(COMPONENT_RATIOS)[k]
 
-    with warnings.catch_warnings():                    # pyconturb's own pandas deprecations, not the user's concern
-        warnings.simplefilter("ignore", DeprecationWarning)
-        warnings.simplefilter("ignore", FutureWarning)
-        frame = gen_turb(gen_spat_grid(y, z), T=steps * spec.dt, nt=steps, u_ref=spec.speed,
-                         z_ref=spec.hub_height, alpha=spec.shear_exponent, sig_func=sig_func, seed=spec.key,
-                         nf_chunk=64, verbose=False, dtype=np.float64)
-    values = frame.to_numpy()                            # (nt, points: iy * nz + iz, components u v w)
-    velocity = values.reshape(steps, spec.points, spec.points, 3).astype(np.float32)
+    velocity = np.empty((steps, spec.points, spec.points, 3), dtype=np.float32)
+    for component in range(3):                         # uncorrelated with each other in IEC's model: one at a time
+        with warnings.catch_warnings():                # pyconturb's own pandas deprecations, not the user's concern
+            warnings.simplefilter("ignore", DeprecationWarning)
+            warnings.simplefilter("ignore", FutureWarning)
+            frame = gen_turb(gen_spat_grid(y, z, comps=[component]), T=steps * spec.dt, nt=steps, u_ref=spec.speed,
+                             z_ref=spec.hub_height, alpha=spec.shear_exponent, sig_func=sig_func,
+                             seed=(3 * spec.key + component) % 2**32, nf_chunk=64, verbose=False, dtype=np.float64)
+        velocity[..., component] = frame.to_numpy().reshape(steps, spec.points, spec.points)   # iy * nz + iz
     return GridWind(velocity=velocity, dt=spec.dt, dy=float(y[1] - y[0]), dz=float(z[1] - z[0]), z0=float(z[0]),
                     mean_speed=spec.speed, periodic=True)
 
