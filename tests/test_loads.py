@@ -72,11 +72,11 @@ def test_a_small_dlc_plan_runs_and_gives_loads(tmp_path):
     plan_path = tmp_path / "plan.yaml"
     plan_path.write_text(f"""model: {DECK}
 analysis: {{type: turbine_simulate, seconds: 12, dt: 0.05, statistics_from_s: 4, turbulence_class: A,
-           turbulence_grid: 5, turbulence_dt: 0.5}}
+           turbulence_grid: 5, turbulence_dt: 0.5, rtol: 1.0e-5}}
 grid: {{wind_speed_m_s: [7, 10], turbulence_seed: [1, 2]}}
 """)
     plan = read_plan(plan_path)
-    assert len(plan.cases) == 4 and plan.analysis.turbulence == ("A", None, 5, 0.5)
+    assert len(plan.cases) == 4 and plan.analysis.turbulence == ("A", None, 5, 0.5) and plan.analysis.rtol == 1e-5
     rows = [run_case(case) for case in plan.cases[:2]]
     assert all(r["status"] == "ok" for case in rows for r in case), rows[0][0]
     dels = [{r["channel"]: r["del"] for r in case} for case in rows]

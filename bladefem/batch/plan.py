@@ -39,12 +39,14 @@ GRID_BOUNDS: dict[str, tuple[float, float]] = {
     **{f"{c}_scale": (1e-3, 1e3) for c in SCALES}, "tip_mass_kg": (0.0, 1e7), "precone_deg": (-45.0, 45.0),
     "pitch_deg": (-180.0, 180.0), "rpm": (0.0, 1e5), "wind_speed_m_s": (0.0, 100.0),
     "turbulence_seed": (0, 2**32 - 1)}
-#: what makes a turbine_simulate case's turbulent box (bladefem.aero.turbulence), with its JSON Schema
+#: what makes a turbine_simulate case's turbulent box (bladefem.aero.turbulence) and its integrator's relative
+#: tolerance, with their JSON Schema
 TURBULENCE_KEYS: dict[str, Any] = {
     "turbulence_class": {"enum": ["A", "B", "C"]},
     "turbulence_intensity_percent": {"type": "number", "exclusiveMinimum": 0, "maximum": 50},
     "turbulence_grid": {"type": "integer", "minimum": 3, "maximum": 65},
-    "turbulence_dt": {"type": "number", "minimum": 0.01, "maximum": 2}}
+    "turbulence_dt": {"type": "number", "minimum": 0.01, "maximum": 2},
+    "rtol": {"type": "number", "minimum": 1e-13, "maximum": 1e-2}}
 PLAN_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "title": "bladefem batch plan",
@@ -131,6 +133,8 @@ class Analysis:
     induction: str = "frozen"
     #: the turbulent box of each case (class or intensity in percent, grid points, time step), None: the deck's wind
     turbulence: tuple[str | None, float | None, int, float] | None = None
+    #: relative tolerance of a turbine_simulate case's integrator (absolute: a hundredth of it)
+    rtol: float = 1e-6
     #: the command line's ways forward the deck needs (``--foundation rigid``, ``--quasi-steady``,
     #: ``--elastodyn-blades``): what bladefem does not model is left out, and said so, instead of refused
     leave_out: tuple[str, ...] = ()
@@ -145,6 +149,8 @@ class Analysis:
                        induction=self.induction, leave_out=list(self.leave_out))
             if self.turbulence is not None:
                 key.update(turbulence=list(self.turbulence))
+            if self.rtol != 1e-6:
+                key.update(rtol=self.rtol)
         return key
 
 
@@ -220,7 +226,7 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
                 raise refuse("needs turbulence_class or turbulence_intensity_percent", key)
     return Analysis(entry["type"], wind_speed=entry.get("wind_speed_m_s"), turbine_rpm=rpm,
                     pitch_deg=entry.get("pitch_deg"), seconds=seconds, dt=dt, statistics_from=start, leave_out=ways,
-                    turbulence=turbulence)
+                    turbulence=turbulence, rtol=float(entry.get("rtol", 1e-6)))
 
 
 def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> Analysis:
