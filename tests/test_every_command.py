@@ -50,6 +50,7 @@ COMMAND_ARGS: dict[str, list[str]] = {
                 "--blades", "1", "--n-modes", "2", "--elements", "12", "--quiet"],
     "batch": ["-o", "{out}"],
     "batch-summary": [],
+    "batch-loads": [],
 }
 MODEL_COMMANDS = ("modes", "campbell", "export", "report", "elastodyn")
 #: (file name, command) -> the field the one-line error must name ('' for any); other pairs must succeed
@@ -100,6 +101,7 @@ for path in INPUTS:
     if path.name not in SPECS:                                        # check takes a spec, and only a spec
         EXPECTED_ERRORS[path.name, "check"] = ""
     EXPECTED_ERRORS[path.name, "batch-summary"] = ""                  # takes a results folder, not a file
+    EXPECTED_ERRORS[path.name, "batch-loads"] = ""                    # so does batch-loads
     if path.name not in PLANS:                                        # batch takes a plan
         EXPECTED_ERRORS[path.name, "batch"] = ""
     if not KINDS[path]:                                               # spec, plan, AeroDyn, airfoil...: it says so

@@ -117,12 +117,15 @@ def test_aerodyn_layout_of_openfast_5(tmp_path):
 
 
 def test_inflowwind_layouts(tmp_path):
-    """OpenFAST's InflowWind example (WindType 3, lower-case PLexp): refused for its wind type; with WindType 1 its
-    steady-wind entries are read whatever their case."""
+    """OpenFAST's InflowWind example (lower-case PLexp): refused for a wind type not modelled (4, Bladed); with its
+    TurbSim file missing, refused at FileName_BTS; with WindType 1 its steady-wind entries are read whatever their
+    case."""
     path = tmp_path / "inflow.dat"
     shutil.copy(LAYOUTS / "inflowwind_v5.0.dat", path)
+    expect_error(lambda: read_inflowwind(path), path, line_of(path, "  Filename  "), "Filename")
+    edit(path, WindType="4")
     error = expect_error(lambda: read_inflowwind(path), path, line_of(path, "WindType"), "WindType")
-    assert "WindType 3 (TurbSim full field wind) is not modelled" in str(error)
+    assert "WindType 4 (Bladed full field wind) is not modelled" in str(error)
     edit(path, WindType="1", HWindSpeed="7.5")
     inflow = read_inflowwind(path)
     assert (inflow.speed, inflow.reference_height, inflow.shear_exponent) == (7.5, 90.0, 0.2)
@@ -147,7 +150,7 @@ def test_polar_with_non_increasing_angle(deck_copy):
     expect_error(lambda: read_airfoil(path), path, row + 1, "Alpha")
 
 
-@pytest.mark.parametrize("kind", ["2", "9"])
+@pytest.mark.parametrize("kind", ["4", "9"])
 def test_unknown_wind_type(deck_copy, kind):
     path = deck_copy / INFLOW
     edit(path, WindType=kind)

@@ -92,7 +92,7 @@ def test_torque_law_drives_a_free_generator(tmp_path):
 @pytest.mark.parametrize("damage, expected", [
     ("missing-airfoil", ("NRELOffshrBsline5MW_Onshore_AeroDyn.dat:", "AFNames", "not found")),
     ("polar-order", ("DU25_A17.dat:", "Alpha", "must increase strictly")),
-    ("wind-type", ("InflowWind_Steady11p4mps.dat:", "WindType", "WindType 3")),
+    ("wind-type", ("InflowWind_Steady11p4mps.dat:", "WindType", "WindType 4")),
 ])
 def test_bad_deck_input_is_one_line_and_exit_2(deck_copy, capsys, damage, expected):
     if damage == "missing-airfoil":
@@ -105,7 +105,7 @@ def test_bad_deck_input_is_one_line_and_exit_2(deck_copy, capsys, damage, expect
         path.write_text("".join(lines))
     else:
         path = deck_copy / "NRELOffshrBsline5MW_InflowWind_Steady11p4mps.dat"
-        path.write_text(FastText.read(path).replaced({"WindType": "3"}))
+        path.write_text(FastText.read(path).replaced({"WindType": "4"}))
     one_line_exit_2(capsys, [str(deck_copy / FST), "--simulate", "1"], *expected)
 
 

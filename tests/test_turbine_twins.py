@@ -3,7 +3,8 @@
 ``outputs.load_row``), on every option of the deck and the command line that reaches them, one at a time from the
 shipped NREL 5MW deck: AeroDyn's BEM_Mod (the legacy and the polar projection: cant, toe, dr/dz), Wake_Mod,
 TipLoss, HubLoss, TanInd, AIDrag, TIDrag, Skew_Mod, SkewRedistr_Mod, SkewRedistrFactor, UseBlCm, the air density,
-InflowWind's shear, direction and upflow, ServoDyn's torque law (or none: CompServo 0), the blade shapes and
+InflowWind's shear, direction and upflow, its uniform wind files and TurbSim full fields (at times inside the table,
+before it and at the box's wrap), ServoDyn's torque law (or none: CompServo 0), the blade shapes and
 --elastodyn-compatible, --pitch-deg, --no-aero, --no-gravity, --no-damping, a locked generator, a yawed nacelle.
 
 Each compiled model is called first at another state, then at the state compared: a solution that depended on the
@@ -32,6 +33,14 @@ FST = "NRELOffshrBsline5MW_Onshore.fst"
 AERODYN = "NRELOffshrBsline5MW_Onshore_AeroDyn.dat"
 INFLOW = "NRELOffshrBsline5MW_InflowWind_Steady11p4mps.dat"
 RATED = 12.1 * math.pi / 30
+#: a uniform wind table with every column moving (speed, direction, vertical speed, the three shears, gust, upflow)
+UNIFORM = """! time speed dir vert hshear vshear_exp vlinshear gust upflow
+0.0  10.0  0.0  0.0  0.0  0.10  0.0  0.0  0.0
+2.0  11.0  5.0  0.3  0.2  0.15  0.1  0.5  2.0
+9.0  12.5 -8.0 -0.2  0.4  0.20  0.3  1.5 -3.0
+"""
+#: a TurbSim box made here for the 5MW rotor (tests/data/turbsim/README.md)
+BOX = Path(__file__).resolve().parent / "data" / "turbsim" / "nrel5mw_11p4_short.bts"
 #: relative tolerance: the same sums in another order
 ROUNDING = 1e-10
 
@@ -62,6 +71,16 @@ VARIANTS = {
     "elastodyn-compatible": ({}, {"elastodyn_compatible": True, "gauss_points": 1}, {}),
     "FE blade shapes at 12.1 rpm": ({}, {"blade_shapes": "fe", "rpm": 12.1}, {}),
     "no gravity, no damping": ({}, {}, {"no_gravity": True, "no_damping": True}),
+    "uniform wind file (WindType 2) at t = 7.3 s": (
+        {INFLOW: {"WindType": "2", "FileName_Uni": '"gusty.uni"', "RefLength": "120"}}, {},
+        {"time": 7.3, "files": {"gusty.uni": UNIFORM}}),
+    "uniform wind file before its first time": (
+        {INFLOW: {"WindType": "2", "FileName_Uni": '"gusty.uni"'}}, {}, {"time": 0.5, "files": {"gusty.uni": UNIFORM}}),
+    "TurbSim full field (WindType 3) at t = 12.34 s": (
+        {INFLOW: {"WindType": "3", "FileName_BTS": '"box.bts"'}}, {}, {"time": 12.34, "files": {"box.bts": BOX}}),
+    "TurbSim full field, yawed, at its wrap-around": (
+        {INFLOW: {"WindType": "3", "FileName_BTS": '"box.bts"'}}, {}, {"time": 29.95, "yaw": 0.3,
+                                                                         "files": {"box.bts": BOX}}),
 }
 
 
@@ -78,6 +97,8 @@ def variant_model(tmp_path: Path, name: str) -> tuple[TurbineModel, dict]:
     edits, options, changes = VARIANTS[name]
     folder = tmp_path / "deck"
     shutil.copytree(CASE, folder)
+    for name, content in changes.get("files", {}).items():
+        (folder / name).write_bytes(content.read_bytes() if isinstance(content, Path) else content.encode())
     for file, labels in edits.items():
         for label, value in labels.items():
             edit(folder / file, label, value)
@@ -120,22 +141,23 @@ def test_compiled_equals_numpy_for_every_option(tmp_path, name):
     free = np.ones(model.n, dtype=bool)
     free[model.dofs.index("generator_azimuth")] = not changes.get("locked", False)
     system = FreeSystem(model, free, q, u)
+    t = changes.get("time", 0.0)
     compiled(q_before, u_before)
     compiled.derivative(0.0, FreeSystem(model, free, q_before, u_before).initial_state(), q_before, u_before,
                         system.index)
-    M, f = model.equations(q, u)
-    Mc, fc = compiled(q, u)
+    M, f = model.equations(q, u, t=t)
+    Mc, fc = compiled(q, u, t=t)
     np.testing.assert_allclose(Mc, M, rtol=0, atol=ROUNDING * np.abs(M).max())
     np.testing.assert_allclose(fc, f, rtol=0, atol=ROUNDING * np.abs(f).max())
     ix = system.index
     du = np.zeros(model.n)
     du[ix] = np.linalg.solve(M[system.block], f[ix])
     x = system.initial_state()
-    np.testing.assert_allclose(compiled.derivative(0.0, x, q, u, ix), np.concatenate([x[system.size:], du[ix]]),
+    np.testing.assert_allclose(compiled.derivative(t, x, q - u * t, u, ix), np.concatenate([x[system.size:], du[ix]]),
                                rtol=0, atol=ROUNDING * np.abs(du).max())
     compiled(q_before, u_before)
-    row = compiled.outputs(np.zeros(1), x[None], q, u, ix)[0]
-    expected = load_row(model, q, u, du)
+    row = compiled.outputs(np.full(1, t), x[None], q - u * t, u, ix)[0]
+    expected = load_row(model, q, u, du, t=t)
     np.testing.assert_allclose(row, expected, rtol=10 * ROUNDING, atol=1e-6)
 
 

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from .options import BEMOptions
 from .polars import Polar
+from .wind import GridWind, UniformWind, velocities, wind_arrays
 
 
 @dataclass(frozen=True)
@@ -82,14 +83,51 @@ class Rotor:
 
 @dataclass(frozen=True)
 class Inflow:
-    """Steady wind (InflowWind WindType 1): horizontal speed ``speed`` (m/s) at ``reference_height`` (m), power-law
-    shear exponent, propagation direction (rad, positive turns the wind towards -y) and upflow angle (rad)."""
+    """The wind: horizontal speed ``speed`` (m/s) at ``reference_height`` (m), power-law shear exponent, propagation
+    direction (rad, positive turns the wind towards -y) and upflow angle (rad) of steady wind (InflowWind WindType
+    1); with a ``uniform`` table (WindType 2) or a full-field ``grid`` (WindType 3, :mod:`bladefem.aero.wind`)
+    the wind varies in time and space and ``speed`` is its mean at the reference height (the operating point the
+    simulation starts from)."""
 
     speed: float
     reference_height: float
     shear_exponent: float = 0.0
     direction: float = 0.0
     upflow: float = 0.0
+    uniform: UniformWind | None = field(default=None, compare=False, repr=False)
+    grid: GridWind | None = field(default=None, compare=False, repr=False)
+
+    @property
+    def kind(self) -> str:
+        return "grid" if self.grid is not None else "uniform" if self.uniform is not None else "steady"
+
+    def arrays(self) -> tuple[NDArray, NDArray, NDArray]:
+        """The arrays of :func:`bladefem.aero.wind.point_wind` for this wind."""
+        return wind_arrays(self.speed, self.reference_height, self.shear_exponent, self.direction, self.upflow,
+                           self.uniform, self.grid)
+
+    def velocity_at(self, points: NDArray, t: float) -> NDArray:
+        """Wind velocity (..., 3), m/s, at the inertial ``points`` (..., 3), m, and time t (s)."""
+        if self.kind == "steady":
+            return self.velocity(np.asarray(points)[..., 2])
+        return velocities(points, t, self.arrays())
+
+    def check_covers(self, hub_height: float, radius: float, duration: float) -> None:
+        """Refuse (:class:`bladefem.errors.InputError`, field ``FileName_BTS``) a full-field grid that does not hold
+        the rotor disk of ``radius`` (m) about ``hub_height`` (m) or runs out of wind before ``duration`` (s)."""
+        grid = self.grid
+        if grid is None:
+            return
+        from ..errors import InputError
+        if radius > grid.half_width or hub_height - radius < grid.z0 or hub_height + radius > grid.top:
+            raise InputError(f"the wind grid (y within +-{grid.half_width:g} m, z from {grid.z0:g} to {grid.top:g} m) "
+                             f"does not hold the rotor disk ({radius:g} m about the hub at {hub_height:g} m)",
+                             field="FileName_BTS")
+        needed = duration + (grid.x_start + radius) / grid.mean_speed
+        if not grid.periodic and needed > grid.time_span():
+            raise InputError(f"the wind grid holds {grid.time_span():g} s of wind, a run of {duration:g} s reaches "
+                             f"{needed:g} s into it (Taylor's frozen turbulence from half the grid width upwind)",
+                             field="FileName_BTS")
 
     def velocity(self, height: NDArray) -> NDArray:
         """Wind velocity (..., 3) at the heights ``height`` (m above ground): V (z / RefHt)^PLExp along the

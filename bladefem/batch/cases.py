@@ -21,7 +21,7 @@ SCALES = ("mass", "flap_stiffness", "edge_stiffness", "torsion_stiffness", "axia
           "edge_inertia", "stiffness")
 STIFFNESSES = ("flap_stiffness", "edge_stiffness", "torsion_stiffness", "axial_stiffness")
 #: other varied inputs and their result columns (SI inside, named units at the interface)
-COLUMNS = ("tip_mass_kg", "precone_deg", "pitch_deg", "rpm", "wind_speed_m_s")
+COLUMNS = ("tip_mass_kg", "precone_deg", "pitch_deg", "rpm", "wind_speed_m_s", "turbulence_seed")
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,16 @@ _NUMBER = {"type": "number"}
 #: property, rotor speed up to the CLI's limit, pitch, cone and tip mass as a turbine can have them)
 GRID_BOUNDS: dict[str, tuple[float, float]] = {
     **{f"{c}_scale": (1e-3, 1e3) for c in SCALES}, "tip_mass_kg": (0.0, 1e7), "precone_deg": (-45.0, 45.0),
-    "pitch_deg": (-180.0, 180.0), "rpm": (0.0, 1e5), "wind_speed_m_s": (0.0, 100.0)}
+    "pitch_deg": (-180.0, 180.0), "rpm": (0.0, 1e5), "wind_speed_m_s": (0.0, 100.0),
+    "turbulence_seed": (0, 2**32 - 1)}
+#: what makes a turbine_simulate case's turbulent box (bladefem.aero.turbulence) and its integrator's relative
+#: tolerance, with their JSON Schema
+TURBULENCE_KEYS: dict[str, Any] = {
+    "turbulence_class": {"enum": ["A", "B", "C"]},
+    "turbulence_intensity_percent": {"type": "number", "exclusiveMinimum": 0, "maximum": 50},
+    "turbulence_grid": {"type": "integer", "minimum": 3, "maximum": 65},
+    "turbulence_dt": {"type": "number", "minimum": 0.01, "maximum": 2},
+    "rtol": {"type": "number", "minimum": 1e-13, "maximum": 1e-2}}
 PLAN_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "title": "bladefem batch plan",
@@ -68,6 +77,7 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "quasi_steady": {"type": "boolean"},
                 "elastodyn_blades": {"type": "boolean"},
                 **STANDSTILL_PROPERTIES,
+                **TURBULENCE_KEYS,
             },
         },
         "grid": {"type": "object", "minProperties": 1, "additionalProperties": False,
@@ -126,6 +136,10 @@ class Analysis:
     dt: float = 0.05
     statistics_from: float = 0.0
     induction: str = "frozen"
+    #: the turbulent box of each case (class or intensity in percent, grid points, time step), None: the deck's wind
+    turbulence: tuple[str | None, float | None, int, float] | None = None
+    #: relative tolerance of a turbine_simulate case's integrator (absolute: a hundredth of it)
+    rtol: float = 1e-6
     #: the command line's ways forward the deck needs (``--foundation rigid``, ``--quasi-steady``,
     #: ``--elastodyn-blades``): what bladefem does not model is left out, and said so, instead of refused
     leave_out: tuple[str, ...] = ()
@@ -144,6 +158,10 @@ class Analysis:
             key.update(wind_speed=self.wind_speed, turbine_rpm=self.turbine_rpm, pitch_deg=self.pitch_deg,
                        seconds=self.seconds, dt=self.dt, statistics_from=self.statistics_from,
                        induction=self.induction, leave_out=list(self.leave_out))
+            if self.turbulence is not None:
+                key.update(turbulence=list(self.turbulence))
+            if self.rtol != 1e-6:
+                key.update(rtol=self.rtol)
         if self.type == "standstill":
             key.update(aerodyn=None if self.aerodyn is None else file_digest(self.aerodyn),
                        wind_speed=self.wind_speed, pitch_deg=self.pitch_deg, yaw_sweep=self.yaw_sweep,
@@ -190,8 +208,9 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
         return InputError(message, file=str(path), line=_line(lines, ("analysis", field_)), field=f"analysis.{field_}")
 
     simulate = entry["type"] == "turbine_simulate"
-    own = ("seconds", "dt", "statistics_from_s") if simulate else ("induction",)
-    for key in ("n_modes", "elements", "spec", "spec_model", "seconds", "dt", "statistics_from_s", "induction"):
+    own = ("seconds", "dt", "statistics_from_s", *TURBULENCE_KEYS) if simulate else ("induction",)
+    for key in ("n_modes", "elements", "spec", "spec_model", "seconds", "dt", "statistics_from_s", "induction",
+                *TURBULENCE_KEYS):
         if key in entry and key not in own:
             raise refuse(f"not an input of a {entry['type']} analysis", key)
     rpm = entry.get("rpm")
@@ -211,8 +230,19 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
     if dt > seconds or start >= seconds:
         raise refuse(f"need dt <= seconds and statistics_from_s < seconds ({seconds:g} s)",
                      "dt" if dt > seconds else "statistics_from_s")
+    turbulence = None
+    if "turbulence_class" in entry and "turbulence_intensity_percent" in entry:
+        raise refuse("give a turbulence class or an intensity, not both", "turbulence_intensity_percent")
+    if "turbulence_class" in entry or "turbulence_intensity_percent" in entry:
+        turbulence = (entry.get("turbulence_class"), entry.get("turbulence_intensity_percent"),
+                      int(entry.get("turbulence_grid", 9)), float(entry.get("turbulence_dt", 0.25)))
+    else:
+        for key in ("turbulence_grid", "turbulence_dt"):
+            if key in entry:
+                raise refuse("needs turbulence_class or turbulence_intensity_percent", key)
     return Analysis(entry["type"], wind_speed=entry.get("wind_speed_m_s"), turbine_rpm=rpm,
-                    pitch_deg=entry.get("pitch_deg"), seconds=seconds, dt=dt, statistics_from=start, leave_out=ways)
+                    pitch_deg=entry.get("pitch_deg"), seconds=seconds, dt=dt, statistics_from=start, leave_out=ways,
+                    turbulence=turbulence, rtol=float(entry.get("rtol", 1e-6)))
 
 
 def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> Analysis:
@@ -224,7 +254,7 @@ def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> A
             entry, lambda message, key: InputError(message, file=str(path), line=_line(lines, ("analysis", key)),
                                                    field=f"analysis.{key}"),
             lambda name, where: _input_file(name, folder, path, lines, where)))
-    for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg", "induction"):
+    for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg", "induction", *TURBULENCE_KEYS):
         if key in entry:
             raise InputError(f"an input of the turbine analyses, not of {kind}", file=str(path),
                              line=_line(lines, ("analysis", key)), field=f"analysis.{key}")
@@ -346,6 +376,10 @@ def read_plan(path: str | Path) -> Plan:
         if analysis.type not in (*TURBINE_ANALYSES, "standstill") and "wind_speed_m_s" in data.get("grid", {}):
             raise InputError(f"a turbine input: a {analysis.type} analysis has no wind", file=str(path),
                              line=_line(lines, ("grid", "wind_speed_m_s")), field="grid.wind_speed_m_s")
+        if "turbulence_seed" in data.get("grid", {}) and analysis.turbulence is None:
+            raise InputError("turbulence boxes need analysis.turbulence_class or turbulence_intensity_percent",
+                             file=str(path), line=_line(lines, ("grid", "turbulence_seed")),
+                             field="grid.turbulence_seed")
         if "grid" in data:
             names = list(data["grid"])
             variants = [dict(zip(names, values)) for values in itertools.product(*data["grid"].values())]

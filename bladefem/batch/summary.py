@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 RESULT_COLUMNS = {"case_index", "case_hash", "status", "error", "mode", "name", "kind", "frequency_hz",
                   "residual", "damping_ratio", "requirement", "check", "passed", "measured", "margin", "rpm",
-                  "channel", "unit", "mean", "std", "min", "max"}
+                  "channel", "unit", "mean", "std", "min", "max", "del", "wohler_m"}
 
 
 @dataclass(frozen=True)

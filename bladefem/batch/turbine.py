@@ -47,9 +47,12 @@ def turbine_deck(case: Any) -> Any:
 
 
 def simulate_rows(case: Any) -> list[dict[str, Any]]:
-    """Simulate ``analysis.seconds`` (s) from the deck's initial state; one row per output channel with its mean,
-    standard deviation, minimum and maximum over ``[analysis.statistics_from, seconds]`` (s), in the channel's
-    unit (OpenFAST's names and units)."""
+    """Simulate ``analysis.seconds`` (s) from the deck's initial state, in the deck's wind or in the case's turbulent
+    box (``analysis.turbulence``, the case's ``turbulence_seed``); one row per output channel with its mean,
+    standard deviation, minimum, maximum and damage-equivalent load (:mod:`.loads`, 1 Hz equivalent cycles, with
+    the channel's S-N slope ``wohler_m``) over ``[analysis.statistics_from, seconds]`` (s), in the channel's unit
+    (OpenFAST's names and units)."""
+    from .loads import damage_equivalent_load, wohler_slope
     from ..models.turbine import FreeSystem, TurbineModel, select_dofs
     from ..models.turbine.initial import free_from_switches, initial_state
     from ..models.turbine.outputs import CHANNELS
@@ -58,24 +61,54 @@ def simulate_rows(case: Any) -> list[dict[str, Any]]:
     analysis = case.analysis
     deck = turbine_deck(case)
     wind_speed, rpm, pitch_deg = operating_inputs(case)
-    model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
+    aero = deck.aero if analysis.turbulence is None else turbulent_aero(deck.aero, analysis,
+                                                                         int(case.inputs.get("turbulence_seed", 1)))
+    model = TurbineModel(deck.params, aero=aero, generator=deck.generator)
     switches, conditions = deck.switches, deck.conditions
     if rpm is not None:
         switches = {**switches, "GenDOF": False}
         conditions = conditions.with_(rotor_speed=rpm * math.pi / 30)
     free = select_dofs(model.dofs, [], base=free_from_switches(model.dofs, switches))
     q0, u0, _ = initial_state(model, free, conditions)
-    result = simulate(FreeSystem(model, free, q0, u0), analysis.seconds, dt_output=analysis.dt, rtol=1e-6,
-                      atol=1e-8)
+    result = simulate(FreeSystem(model, free, q0, u0), analysis.seconds, dt_output=analysis.dt, rtol=analysis.rtol,
+                      atol=analysis.rtol * 1e-2)
     window = result.time >= analysis.statistics_from - 1e-9
     head = {"wind_speed_m_s": None if model.aero is None else float(model.aero.inflow.speed),
             "rpm": None if rpm is None else rpm, "pitch_deg": None if pitch_deg is None else pitch_deg}
     rows = []
+    span = analysis.seconds - analysis.statistics_from
     for name in (n for n in CHANNELS if n in result.outputs):
         values = np.asarray(result.outputs[name])[window]
+        m = wohler_slope(name)
         rows.append({**head, "channel": name, "unit": CHANNELS[name][0], "mean": float(np.mean(values)),
-                     "std": float(np.std(values)), "min": float(np.min(values)), "max": float(np.max(values))})
+                     "std": float(np.std(values)), "min": float(np.min(values)), "max": float(np.max(values)),
+                     "del": damage_equivalent_load(values, m, span), "wohler_m": m})
     return rows
+
+
+def turbulent_aero(aero: Any, analysis: Any, key: int) -> Any:
+    """The deck's aerodynamics in the case's turbulent box (about the deck's or the case's wind speed at the hub,
+    with the deck's shear), refused if the box does not hold the rotor for the run."""
+    from dataclasses import replace
+
+    from ..aero.turbulence import TurbulenceSpec, rotor_width, turbulent_grid
+
+    if aero is None:
+        raise InputError("a turbulent box needs the deck's aerodynamics (CompAero 2)",
+                         field="analysis.turbulence_class")
+    inflow, rotor = aero.inflow, aero.rotor
+    if inflow.kind != "steady":
+        raise InputError(f"the deck gives {inflow.kind} wind: a turbulent box replaces steady wind only",
+                         field="analysis.turbulence_class")
+    radius, hub = float(rotor.hub_radius + rotor.span[-1]), float(rotor.hub_height)
+    kind, percent, points, dt = analysis.turbulence
+    spec = TurbulenceSpec(speed=inflow.speed * (hub / inflow.reference_height) ** inflow.shear_exponent,
+                          hub_height=hub, shear_exponent=inflow.shear_exponent, duration=analysis.seconds,
+                          width=rotor_width(radius), turbulence_class=kind,
+                          intensity=None if percent is None else percent / 100, key=key, dt=dt, points=points)
+    inflow = replace(inflow, grid=turbulent_grid(spec))
+    inflow.check_covers(hub, radius, analysis.seconds)
+    return replace(aero, inflow=inflow)
 
 
 def linearize_rows(case: Any) -> list[dict[str, Any]]:

@@ -37,6 +37,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "check": ("check", "design checks for CI: frequency windows, resonance margins, soft-stiff band, baselines"),
     "batch": ("batch", "run a plan of cases (grid, Monte Carlo, files) on Dask; results in Parquet"),
     "batch-summary": ("batch", "statistics and sensitivities of batch results"),
+    "batch-loads": ("loads", "damage-equivalent and extreme loads of a DLC 1.2 batch"),
 }
 
 

@@ -31,6 +31,7 @@ from .aeroelastic import (
 )
 from .aeroelastic import wind_speeds as wind_speeds_type
 from .options import check_output, check_turbine_bounds, emit, rpm_sweep
+from .wind_options import add_wind_options, apply_wind, check_wind_options
 
 if TYPE_CHECKING:
     import numpy as np
@@ -131,6 +132,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_wind_options(parser)
     add_aeroelastic_options(parser)
     parser.set_defaults(run=run)
 
@@ -154,6 +156,7 @@ def check_options(args: argparse.Namespace) -> None:
         if value is not None and not (math.isfinite(value) and value > 0):
             raise InputError(f"must be a positive number, got {value}", field="--" + name)
     check_duration(args.simulate, args.dt)
+    check_wind_options(args)
     if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
         raise InputError(f"the figure's format goes by its suffix: one of {', '.join(PLOT_SUFFIXES)}",
                          file=args.plot, field="--plot")
@@ -289,6 +292,8 @@ def run(args: argparse.Namespace) -> int:
     if wants_aeroelastic(args):
         return run_aeroelastic(args)
     deck, params, model = build_model(args)
+    if args.simulate:
+        model = apply_wind(args, model)
     switches, conditions = deck.switches, deck.conditions
     if args.rpm is not None:
         conditions = conditions.with_(rotor_speed=args.rpm * math.pi / 30)
@@ -302,7 +307,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"# {note}", file=notes)
     if model.aero is not None:
         inflow = model.aero.inflow
-        print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, wind "
+        print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, {inflow.kind} wind "
               f"{inflow.speed:g} m/s at {inflow.reference_height:g} m, shear exponent {inflow.shear_exponent:g}, "
               f"pitch {math.degrees(model.aero.pitch):g} deg", file=notes)
     for note in deck.notes:

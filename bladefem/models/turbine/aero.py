@@ -104,9 +104,8 @@ class TurbineAero:
 
     def with_wind(self, speed: float | None = None, shear_exponent: float | None = None) -> TurbineAero:
         """A copy with another wind speed at the reference height (m/s) or shear exponent."""
-        inflow = Inflow(self.inflow.speed if speed is None else speed, self.inflow.reference_height,
-                        self.inflow.shear_exponent if shear_exponent is None else shear_exponent,
-                        self.inflow.direction, self.inflow.upflow)
+        inflow = replace(self.inflow, speed=self.inflow.speed if speed is None else speed,
+                         shear_exponent=self.inflow.shear_exponent if shear_exponent is None else shear_exponent)
         return replace(self, inflow=inflow)
 
     @classmethod
@@ -116,9 +115,8 @@ class TurbineAero:
         ``rotor()`` and ``inflow``) on the turbine ``params`` (:class:`TurbineParameters`); ``wind_speed`` (m/s)
         and ``shear_exponent`` override InflowWind's, ``pitch`` (rad) the structural model's."""
         inflow = deck.inflow
-        inflow = Inflow(inflow.speed if wind_speed is None else wind_speed, inflow.reference_height,
-                        inflow.shear_exponent if shear_exponent is None else shear_exponent, inflow.direction,
-                        inflow.upflow)
+        inflow = replace(inflow, speed=inflow.speed if wind_speed is None else wind_speed,
+                         shear_exponent=inflow.shear_exponent if shear_exponent is None else shear_exponent)
         return turbine_aero(deck.rotor(), inflow, params, params.pitch if pitch is None else pitch)
 
 
@@ -219,7 +217,7 @@ def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) ->
 
 def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
                guess: NDArray | None = None) -> AeroLoads:
-    """Quasi-steady BEM loads on the turbine ``model`` at state (q, u) and time t (s; the wind is steady).
+    """Quasi-steady BEM loads on the turbine ``model`` at state (q, u) in the wind at time t (s).
 
     guess : (B, Na) previous inflow angles ``phi_solved`` (a warm start; None solves from scratch)
     """
@@ -232,7 +230,7 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     stretch = np.sqrt(1.0 + w_slope**2)
     normal = (i1 - w_slope * i3) / stretch
     span_axis = (i3 + w_slope * i1) / stretch
-    relative = aero.inflow.velocity(r[..., 2]) - v
+    relative = aero.inflow.velocity_at(r, t) - v
     apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
     arm = r - apex
     frame = projection(aero.rotor.options.formulation == 2, arm, shaft, normal, e_t, span_axis)

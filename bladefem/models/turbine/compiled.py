@@ -138,10 +138,10 @@ class CompiledEquations:
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
 
-    def __call__(self, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray]:
+    def __call__(self, q: NDArray, u: NDArray, t: float = 0.0) -> tuple[NDArray, NDArray]:
         from .compiled_loads import equations
         args = (np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.loaded,
-                self.all_work)
+                self.all_work, float(t))
         with first_call("equations", "turbine equations", equations, args):
             return equations(*args)
 

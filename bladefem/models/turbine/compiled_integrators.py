@@ -39,7 +39,7 @@ if njit is not None:                                   # module-level kernels: n
         """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
         same evaluation of the equations) if it is not empty."""
         q, u = full_state(t, x, q0, u0, index)
-        M, f = equations(q, u, data, work)
+        M, f = equations(q, u, data, work, t)
         out = state_rate(x, M, f, index)
         if row.shape[0]:
             output_row(q, u, M, f, index, data, work, hub_radius, 0, row)

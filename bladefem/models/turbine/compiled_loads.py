@@ -33,6 +33,7 @@ HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")
 def aero_data(model) -> tuple:
     """The aerodynamic arrays of ``model`` in the order :func:`add_aero` unpacks them (empty arrays without
     aerodynamics, so that the kernels compile once for both)."""
+    from ...aero.rotor import Inflow
     from .aero import TurbineAero
     aero: TurbineAero | None = model.aero
     k = model.params.blade.n_modes
@@ -41,19 +42,16 @@ def aero_data(model) -> tuple:
         return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0)),
                 np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
                 np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
-                np.zeros(13), np.zeros(2), np.zeros(6))
+                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays())
     across = np.zeros((k, aero.n_nodes, 3))
     across[:, :, 1:] = aero.value
     inflow, rotor = aero.inflow, aero.rotor
-    wind = np.array([inflow.speed, inflow.reference_height, inflow.shear_exponent,
-                     math.cos(inflow.upflow) * math.cos(inflow.direction),
-                     -math.cos(inflow.upflow) * math.sin(inflow.direction), math.sin(inflow.upflow)])
     knots, values, coefs, start, count = aero.polar_arrays
     return (across, aero.shortening.copy(), aero.axial.copy(), aero.offset.copy(),
             np.ascontiguousarray(aero.slope[:, :, 1]), aero.force_lumping(), aero.moment_weights(),
             rotor.chord.copy(), np.ascontiguousarray(aero.theta, dtype=float), aero.tip_constant.copy(),
             aero.hub_constant.copy(), rotor.airfoil.astype(np.int64), knots, values, coefs, start, count,
-            aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), wind)
+            aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays())
 
 
 def aero_state(blades: int, nodes: int, modes: int) -> tuple:
@@ -70,6 +68,7 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.bem import node_loads
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
+    from ...aero.wind import point_wind
     from .compiled_kernels import beam_node
     from .compiled_state import full_state, state_rate
     from . import control
@@ -82,11 +81,13 @@ if njit is not None:                                   # module-level kernels: n
         out[2] = a[0] * b[1] - a[1] * b[0]
 
     @njit(cache=True)
-    def node_kinematics(q, u, data, aero, work, state):
-        """Positions, velocities, R D, deflected normals and span axes, relative wind of every aerodynamic node."""
+    def node_kinematics(q, u, data, aero, work, state, t):
+        """Positions, velocities, R D, deflected normals and span axes, relative wind (at time t) of every
+        aerodynamic node."""
         b_columns = data[9]
         across, short, axial, offset, slope = aero[0], aero[1], aero[2], aero[3], aero[4]
-        wind = aero[19]
+        params, table, grid = aero[19], aero[20], aero[21]
+        wind = np.zeros(3)
         Z_w, frame_w, apex_w = work[4], work[5], work[6]
         rho_w, vel_w, RD_w, normal_w, span_w, rel_w = state[0], state[1], state[2], state[3], state[4], state[5]
         n, k = q.shape[0], across.shape[0]
@@ -118,13 +119,11 @@ if njit is not None:                                   # module-level kernels: n
                     normal_w[b, p, r] = (R[r, 2] - w * R[r, 0]) / stretch
                     span_w[b, p, r] = (R[r, 0] + w * R[r, 2]) / stretch
                 cross(omega, rho_w[b, p], wr)
-                height = apex_w[2] + rho_w[b, p, 2]
-                speed = wind[0]
-                if wind[2] != 0.0:
-                    speed = wind[0] * (max(height, 0.0) / wind[1]) ** wind[2]
+                point_wind(apex_w[0] + rho_w[b, p, 0], apex_w[1] + rho_w[b, p, 1], apex_w[2] + rho_w[b, p, 2], t,
+                           params, table, grid, wind)
                 for r in range(3):
                     vel_w[b, p, r] = apex_v[r] + wr[r] + moving[r]
-                    rel_w[b, p, r] = speed * wind[3 + r] - vel_w[b, p, r]
+                    rel_w[b, p, r] = wind[r] - vel_w[b, p, r]
         return omega
 
     @njit(cache=True)
@@ -164,8 +163,8 @@ if njit is not None:                                   # module-level kernels: n
         return vx, vy, math.atan2(s_x, n_x), math.atan2(-t_z, -t_y), drdz
 
     @njit(cache=True)
-    def add_aero(f, q, u, data, aero, work, state):
-        """f += the generalized aerodynamic forces at (q, u); fills ``state`` (loads, solutions, rotor summary)."""
+    def add_aero(f, q, u, data, aero, work, state, t):
+        """f += the generalized aerodynamic forces at (q, u) and time t; fills ``state`` (loads, solutions, rotor summary)."""
         nodes = aero[2].shape[0]
         if nodes == 0:
             return
@@ -176,7 +175,7 @@ if njit is not None:                                   # module-level kernels: n
         Z_w, frame_w, shaft = work[4], work[5], work[8][3]
         rho_w, RD_w, normal_w, span_w, rel_w, out_w, force_w, moment_w, hub = state[0], state[2], state[3], \
             state[4], state[5], state[6], state[7], state[8], state[9]
-        omega = node_kinematics(q, u, data, aero, work, state)
+        omega = node_kinematics(q, u, data, aero, work, state, t)
         B, k = frame_w.shape[0], RD_w.shape[3]
         # disk averages (AeroDyn's DiskAvgValues): relative wind, skew angle and direction, tip-speed ratio
         mean = np.zeros(3)
@@ -277,11 +276,11 @@ if njit is not None:                                   # module-level kernels: n
         return torque
 
     @njit(cache=True)
-    def equations(q, u, data, work):
-        """Mass matrix and forcing with the aerodynamic loads and the generator torque."""
+    def equations(q, u, data, work, t):
+        """Mass matrix and forcing with the aerodynamic loads (wind at time t) and the generator torque."""
         structure, aero, law = data
         M, f = structural_equations(q, u, structure, work[0])
-        add_aero(f, q, u, structure, aero, work[0], work[1])
+        add_aero(f, q, u, structure, aero, work[0], work[1], t)
         add_generator(f, u, structure[15], law)
         return M, f
 
@@ -289,5 +288,5 @@ if njit is not None:                                   # module-level kernels: n
     def derivative(t, x, q0, u0, index, data, work):
         """dx/dt of the free coordinates x = (q_f, u_f)."""
         q, u = full_state(t, x, q0, u0, index)
-        M, f = equations(q, u, data, work)
+        M, f = equations(q, u, data, work, t)
         return state_rate(x, M, f, index)

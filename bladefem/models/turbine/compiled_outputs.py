@@ -33,7 +33,7 @@ if njit is not None:                                   # module-level kernels: n
         out = np.zeros((times.shape[0], len(COLUMNS)))
         for row in range(times.shape[0]):
             q, u = full_state(times[row], states[row], q0, u0, index)
-            M, f = equations(q, u, data, work)
+            M, f = equations(q, u, data, work, times[row])
             output_row(q, u, M, f, index, data, work, hub_radius, blade, out[row])
         return out
 

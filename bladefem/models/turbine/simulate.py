@@ -205,13 +205,14 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     except KeyboardInterrupt:
         rows = len(done)
         partial = np.array(done)
-        loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui))
-                          for qi, ui in (system.full(t, x) for t, x in zip(times[:rows], partial))])
+        loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui, t), t=t)
+                          for t, (qi, ui) in ((t, system.full(t, x)) for t, x in zip(times[:rows], partial))])
         raise Interrupted(f"interrupted (Ctrl-C) at t = {times[rows - 1]:.4g} s", float(times[rows - 1]),
                           result_of(system, times[:rows], partial, loads, count[0])) from None
     states = np.array(done)
     full = [system.full(t, x) for t, x in zip(times, states)]
-    loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui)) for qi, ui in full])
+    loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui, t), t=t)
+                      for t, (qi, ui) in zip(times, full)])
     result = result_of(system, times, states, loads, count[0])
     reason = Monitor(system.model, LOAD_COLUMNS, generator_free(system)).rows(times, result.u, loads)
     if reason:

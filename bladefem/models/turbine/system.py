@@ -102,9 +102,9 @@ class FreeSystem:
         u[self.index] = x[self.size:]
         return q, u
 
-    def accelerations(self, q: NDArray, u: NDArray) -> NDArray:
-        """du/dt of all coordinates (zero for the locked ones)."""
-        M, f = self.model.fast_equations()(q, u)
+    def accelerations(self, q: NDArray, u: NDArray, t: float = 0.0) -> NDArray:
+        """du/dt of all coordinates (zero for the locked ones) at time t."""
+        M, f = self.model.fast_equations()(q, u, t=t)
         du = np.zeros(self.model.n)
         ix = self.index
         du[ix] = np.linalg.solve(M[self.block], f[ix])
@@ -115,5 +115,5 @@ class FreeSystem:
         if hasattr(equations, "derivative"):
             return equations.derivative(t, x, self.q0, self.u0, self.index)
         q, u = self.full(t, x)
-        M, f = equations(q, u)
+        M, f = equations(q, u, t=t)
         return np.concatenate([x[self.size:], np.linalg.solve(M[self.block], f[self.index])])
