@@ -66,7 +66,7 @@ for name in ("uniform_blade.yaml", "nrel5mw_blade.yaml",            # a case fil
              "IEA-15-240-RWT_BeamDyn.dat", "IEA-15-240-RWT_BeamDyn_blade.dat",   # BeamDyn and windIO files
              "IEA-22-280-RWT_BeamDyn.dat", "IEA-22-280-RWT_BeamDyn_Blade.dat",
              "IEA-15-240-RWT_windio1.yaml", "IEA-15-240-RWT_windio2_blade.yaml",
-             "IEA-22-280-RWT_windio2_blade.yaml", "IEA-22MW_blade1_st.dat"):
+             "IEA-22-280-RWT_windio2_blade.yaml", "IEA-22MW_blade1_st.dat", "goland_wing.yaml"):
     EXPECTED_ERRORS[name, "elastodyn"] = "--rpm"
 SPECS = [path.name for path in INPUTS if path.read_text(errors="replace").count("\nrequirements:")]
 PLANS = [path.name for path in INPUTS if path.read_text(errors="replace").count("\nanalysis:")]
@@ -109,7 +109,7 @@ for path in INPUTS:
             EXPECTED_ERRORS[path.name, command] = ""
 #: the blades as long as the NREL 5MW's AeroDyn blade (61.5 m) or longer, which standstill runs with it; the rest are
 #: towers, shorter blades (BlSpn), files that need their main file, or not models: a one-line error
-STANDSTILL_RUNS = {"NRELOffshrBsline5MW_Onshore.fst", "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat", "nrel5mw_blade.yaml",
+STANDSTILL_RUNS = {"NRELOffshrBsline5MW_Onshore.fst", "NRELOffshrBsline5MW_Onshore_ROSCO.fst", "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat", "nrel5mw_blade.yaml",
                    "IEA-15-240-RWT-Monopile.fst", "IEA-15-240-RWT-Monopile_ElastoDyn.dat",
                    "IEA-15-240-RWT-UMaineSemi.fst", "IEA-15-240-RWT-UMaineSemi_ElastoDyn.dat",
                    "IEA-15-240-RWT_BeamDyn.dat", "IEA-15-240-RWT_BeamDyn_blade.dat", "IEA-15-240-RWT_windio1.yaml",
@@ -123,7 +123,7 @@ for path in INPUTS:
 #: flutter (with the Goland wing's 6.096 m AeroDyn blade) runs on the blade models at least that long whose first
 #: AeroDyn node is off the rotor axis; every other input (a tower, a shorter blade, a blade at radius 0 without
 #: --hub-radius, a file that is no model) is one line naming the problem
-FLUTTER_RUNS = {"goland_wing.yaml", "NRELOffshrBsline5MW_Onshore.fst", "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat",
+FLUTTER_RUNS = {"goland_wing.yaml", "NRELOffshrBsline5MW_Onshore.fst", "NRELOffshrBsline5MW_Onshore_ROSCO.fst", "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat",
                 "nrel5mw_blade.yaml", "bmodes_blade.bmi", "Test01_nonunif_blade.bmi", "Test02_blade_with_tip_mass.bmi",
                 "IEA-15-240-RWT-Monopile.fst", "IEA-15-240-RWT-Monopile_ElastoDyn.dat", "IEA-15-240-RWT-UMaineSemi.fst",
                 "IEA-15-240-RWT-UMaineSemi_ElastoDyn.dat", "IEA-15-240-RWT_windio1.yaml",

@@ -107,9 +107,11 @@ def test_step_count_explosion_gives_up(monkeypatch):
 
 
 def test_monitor_bounds():
-    """RtAeroCp above 1 and |RtAeroCt| above 4 (generator free) averaged over 5 s, and a supersonic tip at any
-    instant, are each named with the time; a one-row spike of RtAeroCp (a blade releasing elastic energy: OpenFAST
-    shows 1.15 for an instant) is not; nor is a large thrust coefficient with the generator held (a motor)."""
+    """The power taken over the energy through the disk above 1 and the thrust over its dynamic-pressure force above 4
+    (generator free) over 5 s, and a supersonic tip at any instant, are each named with the time; a one-row spike of
+    RtAeroCp (a blade releasing elastic energy: OpenFAST shows 1.15 for an instant) is not; nor is RtAeroCp above 1
+    where the disk-averaged wind dips (turbulence: the power falls less than the wind cubed for a moment, the
+    energy balance over the window holds); nor a large thrust coefficient with the generator held (a motor)."""
     from types import SimpleNamespace
 
     from bladefem.models.turbine.outputs import LOAD_COLUMNS
@@ -118,32 +120,39 @@ def test_monitor_bounds():
                             azimuth=np.array([1.0, 0.0]), aero=object())
     times = np.arange(0.0, 8.01, 0.5)
     u = np.zeros((len(times), 2))
-    loads = np.zeros((len(times), len(LOAD_COLUMNS)))
-    loads[:, LOAD_COLUMNS.index("disk_velocity")] = 10.0
-    loads[:, LOAD_COLUMNS.index("cp")] = 0.5
-    loads[:, LOAD_COLUMNS.index("ct")] = 0.8
-    cp, ct = LOAD_COLUMNS.index("cp"), LOAD_COLUMNS.index("ct")
+    half_rho_area = 7600.0                                     # 1/2 rho A of the coefficients, kg/m
+
+    def rotor(wind, cp, ct):
+        loads = np.zeros((len(times), len(LOAD_COLUMNS)))
+        wind, cp, ct = (np.broadcast_to(np.asarray(x, dtype=float), times.shape) for x in (wind, cp, ct))
+        for name, value in (("disk_velocity", wind), ("cp", cp), ("ct", ct), ("aero_power", cp * half_rho_area * wind**3),
+                            ("aero_thrust", ct * half_rho_area * wind**2)):
+            loads[:, LOAD_COLUMNS.index(name)] = value
+        return loads
 
     def check(loads, free=True, u=u):
         monitor = Monitor(model, LOAD_COLUMNS, generator_free=free)
         return monitor.rows(times[:6], u[:6], loads[:6]) or monitor.rows(times[6:], u[6:], loads[6:])
 
-    assert check(loads) is None
-    spike = loads.copy()
-    spike[3, cp] = 1.3
-    assert check(spike) is None
-    sustained = loads.copy()
-    sustained[4:, cp] = 1.2                      # the mean over 0.5-5.5 s: (3 x 0.5 + 8 x 1.2) / 11 = 1.009
-    reason, when = check(sustained)
+    cp = np.full(times.shape, 0.5)
+    assert check(rotor(10.0, cp, 0.8)) is None
+    spike = cp.copy()
+    spike[3] = 1.3
+    assert check(rotor(10.0, spike, 0.8)) is None
+    sustained = cp.copy()
+    sustained[4:] = 1.2                          # over 0.5-5.5 s: (3 x 0.5 + 8 x 1.2) / 11 = 1.009 of the flux
+    reason, when = check(rotor(10.0, sustained, 0.8))
     assert "RtAeroCp" in reason and when == 5.5
-    thrust = loads.copy()
-    thrust[:, ct] = -4.5
-    reason, when = check(thrust)
+    gusty = np.where(np.arange(len(times)) % 4 == 0, 6.0, 11.0)    # the disk wind dips to 6 m/s every 2 s
+    power = 0.45 * half_rho_area * 11.0**3 * np.ones(len(times))   # the power holds for a moment: RtAeroCp 2.8
+    loads = rotor(gusty, power / (half_rho_area * gusty**3), 0.8)
+    assert loads[:, LOAD_COLUMNS.index("cp")].max() > 2.5 and check(loads) is None
+    reason, when = check(rotor(10.0, 0.5, -4.5))
     assert "RtAeroCt" in reason and when == 5.0
-    assert check(thrust, free=False) is None
+    assert check(rotor(10.0, 0.5, -4.5), free=False) is None
     fast = u.copy()
     fast[7, 0] = 6.0                                           # 6 rad/s x 63 m
-    reason, when = check(loads, u=fast)
+    reason, when = check(rotor(10.0, 0.5, 0.8), u=fast)
     assert "speed of sound" in reason and when == 3.5
     assert Monitor.steps(5000, 1.0, 1.01) and Monitor.steps(5000, 1.0, 2.0) is None
 

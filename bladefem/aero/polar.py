@@ -102,7 +102,9 @@ def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tange
         return Projection(x_axis=normal, y_axis=-np.broadcast_to(tangent, arm.shape), cant=np.zeros(shape),
                           toe=np.zeros(shape), drdz=np.ones(shape))
     radial = arm - (arm @ shaft)[..., None] * shaft
-    z_l = radial / np.linalg.norm(radial, axis=-1, keepdims=True)
+    on_axis = np.linalg.norm(radial, axis=-1, keepdims=True) == 0.0   # a node on the shaft (hub radius 0): the
+    outward = np.where(on_axis, span - (span @ shaft)[..., None] * shaft, radial)   # section's span axis points out
+    z_l = outward / np.linalg.norm(outward, axis=-1, keepdims=True)
     x_l = np.broadcast_to(shaft, arm.shape)
     y_l = np.cross(z_l, x_l)
     tangent = np.broadcast_to(tangent, arm.shape)

@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import CubicSpline
 
 from ..errors import InputError
 
@@ -86,6 +85,7 @@ class ReferenceAxis:
             raise InputError("the reference axis must start on the pitch axis (offsets 0 at the root)",
                              field="axis.prebend")
         kind = "not-a-knot" if len(self.span) > 3 else "natural"
+        from scipy.interpolate import CubicSpline    # here: scipy.interpolate brings scipy.optimize
         splines = (CubicSpline(self.span, self.sweep, bc_type=kind), CubicSpline(self.span, self.prebend,
                                                                                   bc_type=kind))
         fine = np.linspace(0.0, self.span[-1], 50 * len(self.span))

@@ -147,6 +147,11 @@ if njit is not None:                                   # module-level kernels: n
             size += z_l[r] ** 2
             step += (rho[r] - prev[r]) ** 2
             step_projected += (rho[r] - prev[r] - step_along * shaft[r]) ** 2
+        if size == 0.0:                   # a node on the shaft (hub radius 0): the section's span axis points out
+            span_along = span[0] * shaft[0] + span[1] * shaft[1] + span[2] * shaft[2]
+            for r in range(3):
+                z_l[r] = span[r] - span_along * shaft[r]
+                size += z_l[r] ** 2
         size = math.sqrt(size)
         for r in range(3):
             z_l[r] /= size
