@@ -12,6 +12,8 @@ from numpy.typing import NDArray
 from skfem import Basis
 
 from ..elements import (
+    FIELD_KINDS,
+    SHEAR_FIELDS,
     beam_element,
     gyroscopic_inertia,
     projected_inertia,
@@ -104,25 +106,39 @@ class BladeMatrices:
         return {name: position[dofs][position[dofs] >= 0] for name, dofs in self.dofs.field_dofs.items()}
 
     @cached_property
-    def field_mass_blocks(self) -> dict[str, sp.csc_matrix]:
-        """Field -> its diagonal block of the free mass matrix (for kinetic-energy shares)."""
+    def free_kind_dofs(self) -> dict[str, NDArray[np.int64]]:
+        """Kind of motion (flap, edge, torsion, axial: :data:`~bladefem.elements.FIELD_KINDS`) -> positions of the
+        DOFs of its fields among the free DOFs (flap: the bending and the shear deflection together)."""
+        kinds: dict[str, list[NDArray[np.int64]]] = {}
+        for name, local in self.free_field_dofs.items():
+            kinds.setdefault(FIELD_KINDS[name], []).append(local)
+        return {kind: np.sort(np.concatenate(parts)) if len(parts) > 1 else parts[0] for kind, parts in kinds.items()}
+
+    @cached_property
+    def kind_mass_blocks(self) -> dict[str, sp.csc_matrix]:
+        """Kind of motion -> its diagonal block of the free mass matrix (for kinetic-energy shares)."""
         M = self.free_parts[2]
-        return {name: M[local][:, local] for name, local in self.free_field_dofs.items()}
+        return {kind: M[local][:, local] for kind, local in self.free_kind_dofs.items()}
 
 
 def model_fields(blade: Blade) -> tuple[str, ...]:
-    """Fields present in the model: bending always, twist if GJ is given, axial if EA is given."""
+    """Fields present in the model: bending always, twist if GJ is given, axial if EA is given, the shear
+    deflections for shear-flexible six-by-six sections (:attr:`~bladefem.sections.FullSections.shear_flexible`)."""
     fields = ["v", "w"]
     if blade.sections.torsion_stiffness is not None:
         fields.append("phi")
     if blade.sections.axial_stiffness is not None:
         fields.append("u")
+    if blade.sections.full is not None and blade.sections.full.shear_flexible:
+        fields.extend(SHEAR_FIELDS)
     return tuple(fields)
 
 
 def elastic_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
-    """K0's terms: bending (with extension when the axial field is present), torsion, and the twist couplings of
-    six-by-six sections where they have any."""
+    """K0's terms: the whole six-by-six section of a shear-flexible beam; otherwise bending (with extension when the
+    axial field is present), torsion, and the twist couplings of six-by-six sections where they have any."""
+    if parameters.section is not None:
+        return [terms.section_stiffness]
     parts: list[Term] = [terms.extension_bending_stiffness if "u" in fields else terms.bending_stiffness]
     if "phi" in fields:
         parts.append(terms.torsion_stiffness)

@@ -13,6 +13,7 @@ from ..sections import (
     bending_stiffness,
     extension_bending_stiffness,
     mass_moments,
+    shear_flexible_stiffness,
     torsion_stiffness,
     twist_coupling_stiffness,
 )
@@ -74,6 +75,7 @@ class SectionParameters:
     tension: NDArray                 # N(x) per Omega^2, N s^2
     gyroscopic: NDArray | None = None  # (6, 6, ...) skew Coriolis matrix per Omega, kg/m .. kg m (rotating beams)
     twist_coupling: NDArray | None = None  # (3, ...) phi' with (u', v'', w''), N m, N m^2 (six-by-six sections)
+    section: NDArray | None = None   # (6, 6, ...) on (u', gamma_y, gamma_z, phi', v'', w'') (shear-flexible sections)
 
 
 def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
@@ -94,6 +96,7 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
         tension=centrifugal_tension(blade, x),
         gyroscopic=gyroscopic_inertia(blade.shaft_axis, moments.m, moments.S, moments.J),
         twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch),
+        section=shear_flexible_stiffness(sections, x, blade.pitch),
     )
 
 

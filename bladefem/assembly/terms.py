@@ -43,15 +43,27 @@ def twist_coupling_stiffness(trial: SectionMotion, test: SectionMotion, p: Secti
             + trial.phi_x * np.einsum("i...,i...->...", g, test.extension_curvatures))
 
 
+def section_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """The whole six-by-six section of a shear-flexible (Timoshenko) beam on the strains (u', gamma_y, gamma_z, phi',
+    v'', w''): extension, both transverse shears, twist and both curvatures with every coupling (replaces the
+    bending, torsion and twist-coupling terms)."""
+    return quadratic(test.strains, p.section, trial.strains)
+
+
 def inertia(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
     """Kinetic energy of the section slice: translation, centre-of-mass offset and rotary inertia."""
     return quadratic(test.kinematic, p.inertia, trial.kinematic)
 
 
 def axial_force_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
-    """Geometric stiffness N(x) v'v' + N(x) w'w' of an axial force acting on the bending slopes: for a blade the
-    centrifugal tension per Omega^2 (:func:`~bladefem.assembly.parameters.centrifugal_tension`)."""
-    return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x)
+    """Geometric stiffness of an axial force N(x), for a blade the centrifugal tension per Omega^2
+    (:func:`~bladefem.assembly.parameters.centrifugal_tension`), on the second-order axial strain of the section
+    (Reissner's, as in geometrically exact beams): ``theta . r' - |theta|^2 / 2`` for the section rotation theta and
+    the axis slope ``r' = theta + gamma``, i.e. ``N (v'v' + v'v_s' + v_s'v')`` and the same in flap; without shear
+    fields ``N (v'v' + w'w')``."""
+    return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x
+                        + test.v_x * trial.v_s_x + test.v_s_x * trial.v_x
+                        + test.w_x * trial.w_s_x + test.w_s_x * trial.w_x)
 
 
 def spin_softening(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:

@@ -36,7 +36,8 @@ def beamdyn_sections(primary: BeamDynPrimary, blade: BeamDynBlade) -> SixBySixBl
 def blade_from_beamdyn(primary: BeamDynPrimary, blade: BeamDynBlade, hub_radius: float = 0.0,
                        precone: float = 0.0, pitch: float = 0.0, sections: str = "full") -> Blade:
     """The blade of a BeamDyn primary and blade file; hub radius in m (BeamDyn has none), angles in rad;
-    ``sections`` ``"full"`` (the whole 6x6 in the FE) or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    ``sections`` ``"full"`` (the whole 6x6 in the FE), ``"condensed"`` or ``"reduced"``
+    (:meth:`SixBySixBlade.table`)."""
     six = beamdyn_sections(primary, blade)
     table, notes = six.table(sections)
     notes = [six.curvature_note(f"BeamDyn blade from {Path(primary.path).name or 'memory'} and "

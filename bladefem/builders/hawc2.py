@@ -112,7 +112,7 @@ def hawc2_sections(subset: StSubset, body: MainBody | None, st_path: str = "") -
 def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "", hub_radius: float = 0.0,
                      precone: float = 0.0, pitch: float = 0.0, sections: str = "full") -> Blade:
     """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
-    named in the notes); ``sections`` ``"full"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    named in the notes); ``sections`` ``"full"``, ``"condensed"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
     six = hawc2_sections(subset, body, st_path)
     table, reduction = six.table(sections)
     layout = "fully populated (FPM)" if subset.fpm else "isotropic"

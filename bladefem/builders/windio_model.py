@@ -93,8 +93,8 @@ def windio_sections(turbine: WindIOTurbine) -> SixBySixBlade:
 
 
 def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0, sections: str = "full") -> Blade:
-    """A :class:`Blade` from the windIO blade; ``pitch`` in rad; ``sections`` ``"full"`` (the whole 6x6 in the FE)
-    or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
+    """A :class:`Blade` from the windIO blade; ``pitch`` in rad; ``sections`` ``"full"`` (the whole 6x6 in the FE),
+    ``"condensed"`` (the shear condensed) or ``"reduced"`` (:meth:`SixBySixBlade.table`)."""
     six = windio_sections(turbine)
     beam = turbine.blade
     chord = None if beam.chord is None else np.interp(six.span / beam.length, beam.chord.grid, beam.chord.values)

@@ -4,6 +4,7 @@ from .beam import (
            ALL_FIELDS,
            BENDING_FIELDS,
            FIELD_KINDS,
+           SHEAR_FIELDS,
            SectionMotion,
            basis_functions,
            beam_element,
@@ -17,6 +18,6 @@ from .rigid_slice import (
            skew,
 )
 
-__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element",
-           "gyroscopic_inertia", "interpolated_motion", "pair_motions", "projected_inertia", "rotation_second_order",
-           "skew"]
+__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SHEAR_FIELDS", "SectionMotion", "basis_functions",
+           "beam_element", "gyroscopic_inertia", "interpolated_motion", "pair_motions", "projected_inertia",
+           "rotation_second_order", "skew"]

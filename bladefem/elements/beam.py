@@ -1,7 +1,11 @@
-"""The beam element: Hermite cubic bending in two planes, quadratic torsion and axial fields.
+"""The beam element: Hermite cubic bending in two planes, quadratic torsion and axial fields, and optionally
+quadratic transverse-shear deflections (a Timoshenko beam).
 
-Fields: ``v`` edgewise (in-plane) and ``w`` flapwise (out-of-plane) deflection, C1 Hermite cubics; ``phi`` elastic
-twist and ``u`` axial displacement, quadratic Lagrange. A model may drop ``phi`` or ``u`` (rigid torsion or axial).
+Fields: ``v`` edgewise (in-plane) and ``w`` flapwise (out-of-plane) bending deflection, C1 Hermite cubics; ``phi``
+elastic twist and ``u`` axial displacement, quadratic Lagrange. A model may drop ``phi`` or ``u`` (rigid torsion or
+axial). A shear-flexible model adds ``v_s`` and ``w_s``, quadratic Lagrange: the deflection is ``v + v_s`` (and
+``w + w_s``), the section turns with the bending part only (``Theta = (phi, -w', v')``), so the transverse shear
+strains are ``v_s'`` and ``w_s'``. Without them the beam is Euler-Bernoulli.
 """
 
 from __future__ import annotations
@@ -48,11 +52,15 @@ class ElementLineHermiteReference(Element):
 
 
 BENDING_FIELDS: tuple[str, ...] = ("v", "w")
+#: the transverse-shear deflections of a shear-flexible (Timoshenko) beam, in the order of BENDING_FIELDS
+SHEAR_FIELDS: tuple[str, ...] = ("v_s", "w_s")
 ALL_FIELDS: tuple[str, ...] = ("v", "w", "phi", "u")
 FIELD_ELEMENTS: dict[str, type[Element]] = {"v": ElementLineHermiteReference, "w": ElementLineHermiteReference,
-                                            "phi": ElementLineP2, "u": ElementLineP2}
+                                            "phi": ElementLineP2, "u": ElementLineP2, "v_s": ElementLineP2,
+                                            "w_s": ElementLineP2}
 #: what each field is called in results
-FIELD_KINDS: dict[str, str] = {"v": "edge", "w": "flap", "phi": "torsion", "u": "axial"}
+FIELD_KINDS: dict[str, str] = {"v": "edge", "w": "flap", "phi": "torsion", "u": "axial", "v_s": "edge",
+                               "w_s": "flap"}
 
 
 def beam_element(fields: tuple[str, ...]) -> ElementComposite:
@@ -64,7 +72,9 @@ def beam_element(fields: tuple[str, ...]) -> ElementComposite:
 class SectionMotion:
     """Displacements and their span derivatives of one basis function at the quadrature points.
 
-    Arrays have shape (elements, quadrature points); absent fields are zero.
+    ``v``, ``w`` are the bending deflections (their slopes turn the section), ``v_s``, ``w_s`` the shear
+    deflections (their slopes are the transverse shear strains). Arrays have shape (elements, quadrature points);
+    absent fields are zero.
     """
 
     u: NDArray
@@ -77,6 +87,10 @@ class SectionMotion:
     phi_x: NDArray
     v_xx: NDArray
     w_xx: NDArray
+    v_s: NDArray
+    w_s: NDArray
+    v_s_x: NDArray
+    w_s_x: NDArray
 
     @property
     def rotation(self) -> NDArray:
@@ -85,8 +99,9 @@ class SectionMotion:
 
     @property
     def kinematic(self) -> NDArray:
-        """Section kinematic vector d = (u, v, w, phi, -w', v'): dr1(s) = d[:3] + d[3:] x s, shape (6, ...)."""
-        return np.stack([self.u, self.v, self.w, self.phi, -self.w_x, self.v_x])
+        """Section kinematic vector d = (u, v + v_s, w + w_s, phi, -w', v'): dr1(s) = d[:3] + d[3:] x s, shape
+        (6, ...)."""
+        return np.stack([self.u, self.v + self.v_s, self.w + self.w_s, self.phi, -self.w_x, self.v_x])
 
     @property
     def curvatures(self) -> NDArray:
@@ -97,6 +112,12 @@ class SectionMotion:
     def extension_curvatures(self) -> NDArray:
         """(u', v'', w''), shape (3, ...)."""
         return np.stack([self.u_x, self.v_xx, self.w_xx])
+
+    @property
+    def strains(self) -> NDArray:
+        """Generalised strains in the blade frame (u', gamma_y, gamma_z, phi', v'', w''), shape (6, ...): the
+        transverse shear strains ``gamma = (v + v_s)' - v' = v_s'`` (and ``w_s'``)."""
+        return np.stack([self.u_x, self.v_s_x, self.w_s_x, self.phi_x, self.v_xx, self.w_xx])
 
 
 def _derivative(field: DiscreteField, order: int) -> NDArray:
@@ -119,7 +140,8 @@ def basis_functions(fields: tuple[str, ...], basis: CellBasis) -> SectionMotion:
 
     return SectionMotion(u=stacked("u", 0), v=stacked("v", 0), w=stacked("w", 0), phi=stacked("phi", 0),
                          u_x=stacked("u", 1), v_x=stacked("v", 1), w_x=stacked("w", 1), phi_x=stacked("phi", 1),
-                         v_xx=stacked("v", 2), w_xx=stacked("w", 2))
+                         v_xx=stacked("v", 2), w_xx=stacked("w", 2), v_s=stacked("v_s", 0), w_s=stacked("w_s", 0),
+                         v_s_x=stacked("v_s", 1), w_s_x=stacked("w_s", 1))
 
 
 def _map(motion: SectionMotion, function: Callable[[NDArray], NDArray]) -> SectionMotion:
