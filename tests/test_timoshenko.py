@@ -20,7 +20,7 @@ from scipy.optimize import brentq
 
 from bladefem.assembly import assemble_blade
 from bladefem.modal import modes
-from bladefem.sections import Blade, FullSections, mass_matrix, stiffness_matrix
+from bladefem.sections import Blade, FullSections, TipMass, mass_matrix, stiffness_matrix
 
 L = 10.0
 MASS = 50.0
@@ -37,8 +37,10 @@ def uniform_blade(shear: bool = True, root: str = "cantilever") -> Blade:
     return Blade(FullSections([0.0, L], [K, K], [M, M], shear_flexible=shear).table(), root=root)
 
 
-def cantilever_determinant(omega: float, EI: float, kGA: float, m: float, J: float, length: float) -> float:
-    """The frequency equation's 4x4 determinant (module text), columns scaled to order one."""
+def cantilever_determinant(omega: float, EI: float, kGA: float, m: float, J: float, length: float,
+                           tip: float = 0.0) -> float:
+    """The frequency equation's 4x4 determinant (module text), columns scaled to order one; with a point mass
+    ``tip`` (kg) at the free end the shear condition is ``kGA (w' - psi) = omega^2 tip w``."""
     w2 = omega**2
     s = np.roots([kGA * EI, (kGA * J + m * EI) * w2, m * w2 * (J * w2 - kGA)])
     a, b = np.sqrt(np.max(s)), np.sqrt(-np.min(s))
@@ -48,15 +50,17 @@ def cantilever_determinant(omega: float, EI: float, kGA: float, m: float, J: flo
                   [0.0, ca, 0.0, -cb],
                   [ca * a * ch, ca * a * sh, cb * b * c, cb * b * sn],
                   [(a - ca) * sh, (a - ca) * ch, -(b + cb) * sn, (b + cb) * c]])
+    A[3] -= w2 * tip / kGA * np.array([ch, sh, c, sn])
     return float(np.linalg.det(A / np.max(np.abs(A), axis=0)))
 
 
-def cantilever_frequencies(EI: float, kGA: float, m: float, J: float, length: float, count: int) -> np.ndarray:
+def cantilever_frequencies(EI: float, kGA: float, m: float, J: float, length: float, count: int,
+                           tip: float = 0.0) -> np.ndarray:
     """The lowest ``count`` roots (rad/s) of the frequency equation, bracketed on a grid and refined by Brent."""
     top = 1.2 * (4 * count * np.pi / 2) ** 2 * np.sqrt(EI / (m * length**4))
     grid = np.linspace(top * 1e-3, top, 4000)
-    values = [cantilever_determinant(w, EI, kGA, m, J, length) for w in grid]
-    roots = [brentq(cantilever_determinant, grid[i], grid[i + 1], args=(EI, kGA, m, J, length), xtol=1e-14,
+    values = [cantilever_determinant(w, EI, kGA, m, J, length, tip) for w in grid]
+    roots = [brentq(cantilever_determinant, grid[i], grid[i + 1], args=(EI, kGA, m, J, length, tip), xtol=1e-14,
                     rtol=1e-15)
              for i in range(len(grid) - 1) if np.sign(values[i]) != np.sign(values[i + 1])]
     return np.array(roots[:count])
@@ -82,6 +86,19 @@ def test_uniform_cantilever_against_the_frequency_equation():
     condensed = modes(uniform_blade(shear=False), 0.0, 8)
     flap_eb = [m.frequency_hz for m in condensed.modes if m.kind == "flap"][0]
     assert 2 * np.pi * flap_eb / exact["flap"][0] - 1 > 0.01
+
+
+def test_tip_mass_moves_with_the_whole_deflection():
+    """A point mass of half the beam's mass at the tip: its inertia acts on the deflection, bending plus shear
+    (``kGA (w' - psi)(L) = omega^2 M w(L)``): flap 1-2 and edge 1 against the frequency equation with that end
+    condition to 2e-6."""
+    tip = 0.5 * MASS * L
+    result = modes(uniform_blade().with_(tip_mass=TipMass(tip)), 0.0, 8)
+    exact = {"flap": cantilever_frequencies(EI_FLAP, GA_NORMAL, MASS, I_FLAP, L, 2, tip),
+             "edge": cantilever_frequencies(EI_EDGE, GA_CHORD, MASS, I_EDGE, L, 1, tip)}
+    for kind, values in exact.items():
+        found = [m.frequency_hz for m in result.modes if m.kind == kind][:len(values)]
+        assert 2 * np.pi * np.array(found) == pytest.approx(values, rel=2e-6), kind
 
 
 def test_convergence_rate_of_the_element():
