@@ -11,6 +11,7 @@ gravity, straight blade (the prebend is not modelled), mesh refined until conver
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -19,6 +20,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from bladefem.builders.detect import read_model
+from bladefem.builders.section_axes import full_sections_from_beamdyn
+from bladefem.formats.beamdyn import read_beamdyn_blade, read_beamdyn_primary
 from bladefem.modal import modes
 from bladefem.sections import Blade, FullSections, full_sections_from_table
 from bladefem.sections.full_section import CLASSICAL, SHEAR, about_reference, condensed
@@ -129,6 +132,51 @@ def contributions(turbine: str = "IEA-15MW", source: str = "BeamDyn", rpm: float
     return {name: first_six(model, rpm) for name, model in variants.items()}
 
 
+#: OpenFAST v5.0.0 with BeamDyn (tests/data/openfast/beamdyn): turbine -> key, BeamDyn primary file, the deck's
+#: HubRad (m), PreCone (deg), rated rpm and the finest order_elem run
+REFERENCE = DATA / "openfast" / "beamdyn" / "linearizations.json"
+DECKS = {"IEA-15MW": ("iea15", DATA / "iea15" / "beamdyn" / "IEA-15-240-RWT_BeamDyn.dat", 3.97, -4.0, 7.56, 14),
+         "IEA-22MW": ("iea22", DATA / "iea22" / "beamdyn" / "IEA-22-280-RWT_BeamDyn.dat", 4.2, -4.0, 7.06, 14),
+         "NREL 5MW": ("nrel5mw", DATA / "nrel5mw_beamdyn" / "bd_primary_nrel_5mw.inp", 1.5, -2.5, 12.1, 18)}
+
+
+def straightened(turbine: str, shear: bool = True) -> Blade:
+    """The BeamDyn blade as the OpenFAST reference ran it straightened (key points' x and y zero), with the deck's
+    hub radius and precone."""
+    _, path, hub, precone, _, _ = DECKS[turbine]
+    primary = read_beamdyn_primary(path)
+    blade_file = read_beamdyn_blade(primary.blade_path())
+    z, twist = primary.key_points[:, 2], primary.key_points[:, 3]
+    span = blade_file.eta * z[-1]
+    full = full_sections_from_beamdyn(span, blade_file.stiffness, blade_file.mass,
+                                      np.radians(np.interp(span, z, twist)))
+    return Blade(full.with_shear(shear).table(), hub_radius=hub, precone=np.radians(precone))
+
+
+def beamdyn_rows() -> list[tuple[str, float, list[str], NDArray, NDArray]]:
+    """(turbine, rpm, bladefem's kinds, bladefem's and BeamDyn's lowest six frequencies in Hz, ascending)."""
+    runs = json.loads(REFERENCE.read_text())["runs"]
+    out = []
+    for turbine, (key, _, _, _, rated, order) in DECKS.items():
+        blade_ = straightened(turbine)
+        for rpm in (0.0, rated):
+            run = next(r for r in runs if (r["turbine"], r["rpm"], r["reference_axis"], r["order_elem"])
+                       == (key, rpm, "straight", order))
+            result = modes(blade_, rpm, 6)
+            out.append((turbine, rpm, result.kinds, result.frequencies_hz, np.array(run["frequencies_hz"][:6])))
+    return out
+
+
+def beamdyn_table(rows_: list[tuple[str, float, list[str], NDArray, NDArray]]) -> str:
+    lines = ["| straightened blade | rpm | mode 1 | mode 2 | mode 3 | mode 4 | mode 5 | mode 6 |",
+             "|---|---|---|---|---|---|---|---|"]
+    for turbine, rpm, kinds, ours, theirs in rows_:
+        lines.append(f"| {turbine} | {rpm:.2f} | " + " | ".join(
+            f"{kind} {b:.4f} / {t:.4f} ({100 * (b / t - 1):+.2f} %)" for kind, b, t in zip(kinds, ours, theirs))
+            + " |")
+    return "\n".join(lines)
+
+
 def table(rows_: list[Row]) -> str:
     """One section model's rows as docs/iea-blades.md holds them."""
     lines = ["| blade, file | rpm | flap 1 | edge 1 | flap 2 | edge 2 | flap 3 | torsion 1 |",
@@ -157,3 +205,4 @@ if __name__ == "__main__":
     for turbine in INPUTS:
         print(contribution_table(contributions(turbine)))
         print()
+    print(beamdyn_table(beamdyn_rows()))
