@@ -18,7 +18,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from skfem import Basis
 
-from ..elements import SectionMotion, basis_functions, interpolated_motion, pair_motions
+from ..elements import SectionMotion, basis_functions, interpolated_components, pair_motions
 
 Term = Callable[..., NDArray]
 
@@ -76,9 +76,10 @@ def pointwise_operator(quadrature: Quadrature, parameters: object, parts: Sequen
 def gram_matrix(quadrature: Quadrature, operator: NDArray, vectors: NDArray) -> NDArray:
     """``V^T A V`` for the columns of ``vectors`` (over all DOFs) and the matrix A of a form given pointwise
     (:func:`pointwise_operator`), summed at the quadrature points from the vectors' own motions there."""
-    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, vectors)
-    stacked = np.stack([getattr(motion, name) for name in SectionMotion.__dataclass_fields__])   # (f, m, e, q)
+    names = tuple(SectionMotion.__dataclass_fields__)
     present = np.flatnonzero(np.any(operator != 0, axis=(1, 2, 3)))
-    X = stacked[present].reshape(len(present), stacked.shape[1], -1)
+    stacked = interpolated_components(quadrature.functions, quadrature.element_dofs, vectors,
+                                      tuple(names[f] for f in present))               # (f, m, e, q)
+    X = stacked.reshape(len(present), stacked.shape[1], -1)
     A = operator[np.ix_(present, present)].reshape(len(present), len(present), -1)
     return np.einsum("fmn,fgn,gkn->mk", X, A, X, optimize=True)

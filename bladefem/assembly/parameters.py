@@ -66,7 +66,7 @@ def centrifugal_tension(blade: Blade, x: NDArray) -> NDArray:
 class SectionParameters:
     """Section matrices at quadrature points (trailing axes: elements, points)."""
 
-    bending: NDArray                 # (2, 2, ...) N m^2
+    bending: NDArray | None          # (2, 2, ...) N m^2 (None for a shear-flexible beam: ``section`` holds it)
     extension_bending: NDArray | None  # (3, 3, ...) when the axial field is present
     torsion: NDArray | None          # GJ, N m^2, when the twist field is present
     inertia: NDArray                 # (6, 6, ...) mass matrix of the slice, kg/m .. kg m
@@ -85,18 +85,20 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
     P = plane_of_rotation(blade)
     node = np.zeros((3,) + np.shape(x))
     node[0] = blade.hub_radius + x
+    section = shear_flexible_stiffness(sections, x, blade.pitch)
+    classical = section is None            # a shear-flexible beam's stiffness is all in ``section``
     return SectionParameters(
-        bending=bending_stiffness(sections, x, blade.pitch),
-        extension_bending=(None if sections.axial_stiffness is None
-                           else extension_bending_stiffness(sections, x, blade.pitch)),
-        torsion=torsion_stiffness(sections, x, blade.pitch),
+        bending=bending_stiffness(sections, x, blade.pitch) if classical else None,
+        extension_bending=(extension_bending_stiffness(sections, x, blade.pitch)
+                           if classical and sections.axial_stiffness is not None else None),
+        torsion=torsion_stiffness(sections, x, blade.pitch) if classical else None,
         inertia=projected_inertia(np.eye(3), moments.m, moments.S, moments.J),
         spin=projected_inertia(P, moments.m, moments.S, moments.J),
         rotation=rotation_second_order(P, node, moments.S, moments.J),
         tension=centrifugal_tension(blade, x),
         gyroscopic=gyroscopic_inertia(blade.shaft_axis, moments.m, moments.S, moments.J),
-        twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch),
-        section=shear_flexible_stiffness(sections, x, blade.pitch),
+        twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch) if classical else None,
+        section=section,
     )
 
 

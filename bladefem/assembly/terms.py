@@ -61,9 +61,8 @@ def axial_force_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionP
     (Reissner's, as in geometrically exact beams): ``theta . r' - |theta|^2 / 2`` for the section rotation theta and
     the axis slope ``r' = theta + gamma``, i.e. ``N (v'v' + v'v_s' + v_s'v')`` and the same in flap; without shear
     fields ``N (v'v' + w'w')``."""
-    return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x
-                        + test.v_x * trial.v_s_x + test.v_s_x * trial.v_x
-                        + test.w_x * trial.w_s_x + test.w_s_x * trial.w_x)
+    return p.tension * (test.v_x * (trial.v_x + trial.v_s_x) + test.w_x * (trial.w_x + trial.w_s_x)
+                        + test.v_s_x * trial.v_x + test.w_s_x * trial.w_x)
 
 
 def spin_softening(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:

@@ -8,7 +8,7 @@ from .beam import (
            SectionMotion,
            basis_functions,
            beam_element,
-           interpolated_motion,
+           interpolated_components,
            pair_motions,
 )
 from .rigid_slice import (
@@ -19,5 +19,5 @@ from .rigid_slice import (
 )
 
 __all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SHEAR_FIELDS", "SectionMotion", "basis_functions",
-           "beam_element", "gyroscopic_inertia", "interpolated_motion", "pair_motions", "projected_inertia",
+           "beam_element", "gyroscopic_inertia", "interpolated_components", "pair_motions", "projected_inertia",
            "rotation_second_order", "skew"]

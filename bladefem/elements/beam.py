@@ -155,9 +155,12 @@ def pair_motions(motion: SectionMotion) -> tuple[SectionMotion, SectionMotion]:
     return _map(motion, lambda a: a[:, None]), _map(motion, lambda a: a[None, :])
 
 
-def interpolated_motion(functions: SectionMotion, element_dofs: NDArray, vectors: NDArray) -> SectionMotion:
-    """The motion of DOF vectors (columns over all DOFs) at the quadrature points, arrays of shape (vectors,
-    elements, points), from the basis ``functions`` (:func:`basis_functions`) and each element's DOFs: curvatures
-    are formed point by point from the element's nodal values and slopes."""
+def interpolated_components(functions: SectionMotion, element_dofs: NDArray, vectors: NDArray,
+                            names: tuple[str, ...]) -> NDArray:
+    """The motion components ``names`` (fields of :class:`SectionMotion`) of DOF vectors (columns over all DOFs) at
+    the quadrature points, shape (components, vectors, elements, points), from the basis ``functions``
+    (:func:`basis_functions`) and each element's DOFs: curvatures are formed point by point from the element's
+    nodal values and slopes."""
     local = np.asarray(vectors)[element_dofs].transpose(1, 0, 2)       # (elements, local, vectors)
-    return _map(functions, lambda a: np.matmul(a.transpose(1, 2, 0), local).transpose(2, 0, 1))
+    return np.stack([np.matmul(getattr(functions, name).transpose(1, 2, 0), local).transpose(2, 0, 1)
+                     for name in names])
