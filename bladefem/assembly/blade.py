@@ -147,6 +147,11 @@ def elastic_terms(fields: tuple[str, ...], parameters: SectionParameters) -> lis
     return parts
 
 
+def centrifugal_terms(fields: tuple[str, ...]) -> tuple[Term, ...]:
+    """K2's terms, with the tension on the shear slopes for a shear-flexible beam."""
+    return CENTRIFUGAL_TERMS + ((terms.axial_force_shear_stiffness,) if SHEAR_FIELDS[0] in fields else ())
+
+
 def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """Mass matrix and K2 share of the tip mass: the rigid-body terms at the tip node (its centrifugal force is in
     the tension)."""
@@ -197,7 +202,7 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))
-    K2 = assemble_terms(quadrature, parameters, CENTRIFUGAL_TERMS) + K2_tip
+    K2 = assemble_terms(quadrature, parameters, centrifugal_terms(fields)) + K2_tip
     M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
     return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,

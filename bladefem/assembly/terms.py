@@ -56,13 +56,18 @@ def inertia(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> 
 
 
 def axial_force_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
-    """Geometric stiffness of an axial force N(x), for a blade the centrifugal tension per Omega^2
-    (:func:`~bladefem.assembly.parameters.centrifugal_tension`), on the second-order axial strain of the section
-    (Reissner's, as in geometrically exact beams): ``theta . r' - |theta|^2 / 2`` for the section rotation theta and
-    the axis slope ``r' = theta + gamma``, i.e. ``N (v'v' + v'v_s' + v_s'v')`` and the same in flap; without shear
-    fields ``N (v'v' + w'w')``."""
-    return p.tension * (test.v_x * (trial.v_x + trial.v_s_x) + test.w_x * (trial.w_x + trial.w_s_x)
-                        + test.v_s_x * trial.v_x + test.w_s_x * trial.w_x)
+    """Geometric stiffness N(x) v'v' + N(x) w'w' of an axial force acting on the bending slopes: for a blade the
+    centrifugal tension per Omega^2 (:func:`~bladefem.assembly.parameters.centrifugal_tension`)."""
+    return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x)
+
+
+def axial_force_shear_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """What the shear deflections add to :func:`axial_force_stiffness` (shear-flexible beams): the axial force acts
+    on Reissner's second-order axial strain ``theta . r' - |theta|^2 / 2``, with the section rotation theta (the
+    bending slopes) and the axis slope ``r' = theta + gamma``; its bilinear form is ``N (v'v' + v'v_s' + v_s'v')``
+    and the same in flap, of which this is the part with the shear slopes."""
+    return p.tension * (test.v_x * trial.v_s_x + test.v_s_x * trial.v_x + test.w_x * trial.w_s_x
+                        + test.w_s_x * trial.w_x)
 
 
 def spin_softening(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
