@@ -1,7 +1,8 @@
 """The IEA-15MW and IEA-22MW blades' first six modes from every format bladefem reads, through the three section
 models (the whole six-by-six in the FE with the transverse shear, a Timoshenko beam; the same with the shear
 condensed, an Euler-Bernoulli beam; and the diagonal reduction), parked and at rated rotor speed; and what the
-shear and the reduction's dropped terms each contribute. ``python examples/iea_blades.py`` prints the tables of docs/iea-blades.md.
+shear and the reduction's dropped terms each contribute; and the full sections against OpenFAST/BeamDyn on the
+straightened blades. ``python examples/iea_blades.py`` prints the tables of docs/iea-blades.md.
 
 Rated rotor speeds are the turbines' controller settings (ROSCO ``PC_RefSpd``, gearbox ratio 1): IEA-15MW 0.79168
 rad/s = 7.560 rpm, IEA-22MW 0.72086 rad/s = 6.884 rpm (IEA-22-280-RWT at 022e8f8, OpenFAST/IEA-22-280-RWT-Monopile/

@@ -6,14 +6,14 @@ modes: within 0.5 % parked, and at rated speed within 1 % on the flap modes and,
 the edge modes (BeamDyn's rotating-frame linearization does not show the in-plane spin softening, -Omega^2 on
 omega^2: :func:`test_rotation_against_beamdyn_spin_softening`); the first torsion within 2 %.
 
-BeamDyn is a geometrically exact beam with transverse shear. bladefem condenses the shear out of the section
-(Euler-Bernoulli with every coupling), so it sits above BeamDyn by what shear deformation is worth on this blade.
-Both halves of that statement are checked: a Timoshenko beam with the same six-by-six sections
-(tests/timoshenko_reference.py) reproduces BeamDyn, and bladefem's excess over BeamDyn is the excess it has over
-that Timoshenko beam. For the condensed sections, the tolerances: BeamDyn's own discretization changes the first six modes by up to 0.07 %
-from order_elem 10 to 14 (both stored), the Timoshenko reference is converged to 5e-5 at 40 elements; 0.3 % leaves
-room for the two codes' different interpolation of the 26 stations (BeamDyn's trapezoidal quadrature at the
-stations, linear interpolation here).
+BeamDyn is a geometrically exact beam with transverse shear. With the shear condensed (``--sections condensed``,
+Euler-Bernoulli with every coupling) bladefem sits above BeamDyn by what shear deformation is worth on the
+IEA-15MW blade. Both halves of that statement are checked: a Timoshenko beam written apart from bladefem
+(tests/timoshenko_reference.py) with the same six-by-six sections reproduces BeamDyn, and the condensed beam's
+excess over BeamDyn is the excess it has over that Timoshenko beam. The tolerances: BeamDyn's own discretization
+changes the first six modes by up to 0.07 % from order_elem 10 to 14 (both stored), the Timoshenko reference is
+converged to 5e-5 at 40 elements; 0.3 % leaves room for the two codes' different interpolation of the 26 stations
+(BeamDyn's trapezoidal quadrature at the stations, linear interpolation here).
 """
 
 from __future__ import annotations
