@@ -142,9 +142,12 @@ def test_sections_option_on_the_command_line():
         return subprocess.run([sys.executable, "-m", "bladefem", "modes", str(BD15), "--n-modes", "2", *args],
                               capture_output=True, text=True)
 
-    full, reduced = run(), run("--sections", "reduced")
-    assert full.returncode == 0 and reduced.returncode == 0, full.stderr + reduced.stderr
-    assert "full six-by-six sections in the FE" in full.stdout
+    full, condensed, reduced = run(), run("--sections", "condensed"), run("--sections", "reduced")
+    assert full.returncode == condensed.returncode == reduced.returncode == 0, (full.stderr + condensed.stderr
+                                                                               + reduced.stderr)
+    assert "full six-by-six sections in the FE" in full.stdout and "transverse shear kept" in full.stdout
+    assert "full six-by-six sections in the FE" in condensed.stdout
+    assert "transverse shear condensed" in condensed.stdout
     assert "sections reduced (--sections reduced)" in reduced.stdout
     bad = run("--sections", "diagonal")
     assert bad.returncode == 2
