@@ -204,3 +204,26 @@ def test_a_design_check_spec_can_straighten_the_axis(tmp_path):
     models = read_spec(spec).models
     curved, straight = (read_structure(models[name].input, None, models[name].geometry) for name in models)
     assert curved.curved and not straight.curved and straight.length == pytest.approx(117.0)
+
+
+def test_the_deflected_axis_of_a_shear_flexible_blade_takes_its_shear_deflection():
+    """At speed the Timoshenko blade's axis moves by the whole deflection ``w + w_s`` (and ``v + v_s``), not by the
+    bending part alone: at the axis knots (mesh nodes) the operating point's displacement is the DOF map's total
+    deflection, of which the shear part is a measurable share (over 1e-3 of the tip's out-of-plane motion)."""
+    from bladefem.assembly import assemble_blade
+    from bladefem.modal.operating_point import ELEMENTS, operating_point
+
+    path, hub_radius, precone, rpm = TURBINES["iea15"]
+    primary = read_beamdyn_primary(path)
+    blade = blade_from_beamdyn(primary, read_beamdyn_blade(primary.blade_path()), hub_radius=hub_radius,
+                               precone=np.radians(precone))
+    point = operating_point(blade, rpm)
+    dofs = assemble_blade(blade, ELEMENTS).dofs
+    at = np.searchsorted(dofs.nodes, point.nodes)
+    np.testing.assert_allclose(dofs.nodes[at], point.nodes, atol=1e-9)
+    frame = blade.axis_frame(point.nodes)
+    local = np.einsum("ji...,j...->i...", frame.rotation, point.displacement)
+    for k, name in ((1, "v"), (2, "w")):
+        np.testing.assert_allclose(local[k], dofs.displacement(point.vector[:, None], name)[at, 0], atol=1e-12)
+    shear = point.vector[dofs.value["w_s"]][-1]
+    assert abs(shear) > 1e-3 * abs(local[2, -1])
