@@ -5,7 +5,8 @@
 The prebent blades' frequencies are compared with BeamDyn's directly (the full six-by-six sections, a Timoshenko
 beam on the curved axis), and so is the effect, prebent over straight: it acts through the coupling of each mode
 with its neighbours (edge with torsion, flap with extension), whose size goes with the spacing of their
-frequencies; the effect on a mode agrees within 0.12 of BeamDyn's effect plus 0.1 percentage points, and 0.3 points
+frequencies; the effect on a mode agrees within 0.1 of BeamDyn's effect plus 0.1 percentage points (measured at most
+0.08 of it beyond the 0.1 points, the IEA-22MW's edge 2 at rated; 0.12 before the shear was kept), and 0.3 points
 on flap 2 and 3 (measured at most 0.28, IEA-22MW flap 3 at rated; with the shear condensed it was 0.32 parked,
 which the earlier 0.35 allowed: the shear closes the IEA-15MW's flap 3 from 0.28 to 0.11 points, the IEA-22MW's
 from 0.32 to 0.23).
@@ -65,7 +66,7 @@ def test_prebend_effect_against_beamdyn(turbine, rated):
     rpm = TURBINES[turbine][3] if rated else 0.0
     ours, kinds = bladefem_effect(turbine, rpm)
     theirs = beamdyn_effect(turbine, rpm)
-    tolerance = 0.12 * np.abs(theirs) + 1e-3
+    tolerance = 0.1 * np.abs(theirs) + 1e-3
     tolerance[2:5] = np.maximum(tolerance[2:5], np.where(np.array(kinds[2:5]) == "flap", 3e-3, 0.0))
     assert np.all(np.abs(ours - theirs) <= tolerance), (ours, theirs)
     edge = [i for i, kind in enumerate(kinds) if kind == "edge"][:2]
