@@ -1,6 +1,8 @@
-"""The IEA-15MW and IEA-22MW blades' first six modes from every format bladefem reads, through both section models
-(the whole six-by-six in the FE, and the diagonal reduction), parked and at rated rotor speed; and what the
-reduction's dropped terms each contribute. ``python examples/iea_blades.py`` prints the tables of docs/iea-blades.md.
+"""The IEA-15MW and IEA-22MW blades' first six modes from every format bladefem reads, through the three section
+models (the whole six-by-six in the FE with the transverse shear, a Timoshenko beam; the same with the shear
+condensed, an Euler-Bernoulli beam; and the diagonal reduction), parked and at rated rotor speed; and what the
+shear and the reduction's dropped terms each contribute; and the full sections against OpenFAST/BeamDyn on the
+straightened blades. ``python examples/iea_blades.py`` prints the tables of docs/iea-blades.md.
 
 Rated rotor speeds are the turbines' controller settings (ROSCO ``PC_RefSpd``, gearbox ratio 1): IEA-15MW 0.79168
 rad/s = 7.560 rpm, IEA-22MW 0.72086 rad/s = 6.884 rpm (IEA-22-280-RWT at 022e8f8, OpenFAST/IEA-22-280-RWT-Monopile/
@@ -12,6 +14,7 @@ gravity, the files' curved reference axis (prebend), at rated speed on the axis 
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -20,6 +23,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from bladefem.builders.detect import read_model
+from bladefem.builders.section_axes import full_sections_from_beamdyn
+from bladefem.formats.beamdyn import read_beamdyn_blade, read_beamdyn_primary
 from bladefem.modal import modes
 from bladefem.modal.operating_point import deflected_blade
 from bladefem.sections import Blade, FullSections, full_sections_from_table
@@ -30,6 +35,7 @@ DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
 SIX = (("flap", 1), ("edge", 1), ("flap", 2), ("edge", 2), ("flap", 3), ("torsion", 1))
 RATED_RPM = {"IEA-15MW": 0.79168 * 60 / (2 * math.pi), "IEA-22MW": 0.72086 * 60 / (2 * math.pi)}
 HUB_RADIUS = {"IEA-15MW": 3.97, "IEA-22MW": 4.2}
+SECTION_MODELS = ("full", "condensed", "reduced")
 INPUTS = {
     "IEA-15MW": {
         "BeamDyn": (DATA / "iea15" / "beamdyn" / "IEA-15-240-RWT_BeamDyn.dat", {}),
@@ -75,7 +81,7 @@ def rows() -> list[Row]:
     out = []
     for turbine, sources in INPUTS.items():
         for source in sources:
-            for sections in ("full", "reduced"):
+            for sections in SECTION_MODELS:
                 model = blade(turbine, source, sections)
                 for rpm in (0.0, RATED_RPM[turbine]):
                     out.append(Row(turbine, source, sections, rpm, first_six(model, rpm)))
@@ -104,17 +110,19 @@ def in_frame_of(full: FullSections, matrices: NDArray, twist: NDArray) -> NDArra
 
 
 def contributions(turbine: str = "IEA-15MW", source: str = "BeamDyn", rpm: float = 0.0) -> dict[str, tuple]:
-    """First six frequencies of: the full sections; the full stiffness with the reduction's mass; the reduction's
+    """First six frequencies of: the full sections with the shear condensed (Euler-Bernoulli, like the reduction);
+    the same with the shear kept (Timoshenko); the full stiffness with the reduction's mass; the reduction's
     stiffness with the full mass; the full mass turned with the principal axes (as the diagonal beam, whose one
     angle turns both, places it); the full sections with the twist rate uncoupled; the reduction written back as
     six-by-six matrices; the reduction. The reduction's matrices are turned into the full sections' frame (the
     reduction's twist holds the principal angle)."""
-    full_blade = blade(turbine, source, "full")
+    full_blade = blade(turbine, source, "condensed")
     reduced_blade = blade(turbine, source, "reduced")
     full = full_blade.sections.full
     as_matrices = full_sections_from_table(reduced_blade.sections)
     variants = {
-        "full six-by-six": full_blade,
+        "condensed six-by-six": full_blade,
+        "full six-by-six, shear kept (Timoshenko)": blade(turbine, source, "full"),
         "full stiffness, reduced mass": with_sections(full_blade, replace(
             full, mass=in_frame_of(full, as_matrices.mass, as_matrices.twist))),
         "reduced stiffness, full mass": with_sections(full_blade, replace(
@@ -128,20 +136,76 @@ def contributions(turbine: str = "IEA-15MW", source: str = "BeamDyn", rpm: float
     return {name: first_six(model, rpm) for name, model in variants.items()}
 
 
+#: OpenFAST v5.0.0 with BeamDyn (tests/data/openfast/beamdyn): turbine -> key, BeamDyn primary file, the deck's
+#: HubRad (m), PreCone (deg), rated rpm and the finest order_elem run
+REFERENCE = DATA / "openfast" / "beamdyn" / "linearizations.json"
+DECKS = {"IEA-15MW": ("iea15", DATA / "iea15" / "beamdyn" / "IEA-15-240-RWT_BeamDyn.dat", 3.97, -4.0, 7.56, 14),
+         "IEA-22MW": ("iea22", DATA / "iea22" / "beamdyn" / "IEA-22-280-RWT_BeamDyn.dat", 4.2, -4.0, 7.06, 14),
+         "NREL 5MW": ("nrel5mw", DATA / "nrel5mw_beamdyn" / "bd_primary_nrel_5mw.inp", 1.5, -2.5, 12.1, 18)}
+
+
+def straightened(turbine: str, shear: bool = True) -> Blade:
+    """The BeamDyn blade as the OpenFAST reference ran it straightened (key points' x and y zero), with the deck's
+    hub radius and precone."""
+    _, path, hub, precone, _, _ = DECKS[turbine]
+    primary = read_beamdyn_primary(path)
+    blade_file = read_beamdyn_blade(primary.blade_path())
+    z, twist = primary.key_points[:, 2], primary.key_points[:, 3]
+    span = blade_file.eta * z[-1]
+    full = full_sections_from_beamdyn(span, blade_file.stiffness, blade_file.mass,
+                                      np.radians(np.interp(span, z, twist)))
+    return Blade(full.with_shear(shear).table(), hub_radius=hub, precone=np.radians(precone))
+
+
+def prebent(turbine: str) -> Blade:
+    """The BeamDyn blade on its key points' curved axis, with the deck's hub radius and precone."""
+    _, path, hub, precone, _, _ = DECKS[turbine]
+    return read_model(path, hub_radius=hub, precone=np.radians(precone))
+
+
+def beamdyn_rows(axis: str = "straight") -> list[tuple[str, float, list[str], NDArray, NDArray]]:
+    """(turbine, rpm, bladefem's kinds, bladefem's and BeamDyn's lowest six frequencies in Hz, ascending) of the
+    straightened blades, or of the ``"prebent"`` ones (the IEA blades; at speed on the deflected axis, as BeamDyn)."""
+    runs = json.loads(REFERENCE.read_text())["runs"]
+    out = []
+    for turbine, (key, _, _, _, rated, order) in DECKS.items():
+        if axis == "prebent" and turbine not in INPUTS:
+            continue
+        blade_ = straightened(turbine) if axis == "straight" else prebent(turbine)
+        for rpm in (0.0, rated):
+            run = next(r for r in runs if (r["turbine"], r["rpm"], r["reference_axis"], r["order_elem"])
+                       == (key, rpm, axis, order))
+            at = deflected_blade(blade_, rpm)[0] if axis == "prebent" and rpm > 0 else blade_
+            result = modes(at, rpm, 6)
+            out.append((turbine, rpm, result.kinds, result.frequencies_hz, np.array(run["frequencies_hz"][:6])))
+    return out
+
+
+def beamdyn_table(rows_: list[tuple[str, float, list[str], NDArray, NDArray]], label: str = "straightened") -> str:
+    lines = [f"| {label} blade | rpm | mode 1 | mode 2 | mode 3 | mode 4 | mode 5 | mode 6 |",
+             "|---|---|---|---|---|---|---|---|"]
+    for turbine, rpm, kinds, ours, theirs in rows_:
+        lines.append(f"| {turbine} | {rpm:.2f} | " + " | ".join(
+            f"{kind} {b:.4f} / {t:.4f} ({100 * (b / t - 1):+.2f} %)" for kind, b, t in zip(kinds, ours, theirs))
+            + " |")
+    return "\n".join(lines)
+
+
 def table(rows_: list[Row]) -> str:
-    lines = ["| blade, file | sections | rpm | flap 1 | edge 1 | flap 2 | edge 2 | flap 3 | torsion 1 |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    """One section model's rows as docs/iea-blades.md holds them."""
+    lines = ["| blade, file | rpm | flap 1 | edge 1 | flap 2 | edge 2 | flap 3 | torsion 1 |",
+             "|---|---|---|---|---|---|---|---|"]
     for r in rows_:
-        lines.append(f"| {r.turbine} {r.source} | {r.sections} | {r.rpm:.3f} | "
+        lines.append(f"| {r.turbine} {r.source} | {r.rpm:.2f} | "
                      + " | ".join(f"{v:.4f}" for v in r.hz) + " |")
     return "\n".join(lines)
 
 
 def contribution_table(values: dict[str, tuple]) -> str:
-    base = np.array(values["full six-by-six"])
+    base = np.array(values["condensed six-by-six"])
     lines = ["| model | flap 1 | edge 1 | flap 2 | edge 2 | flap 3 | torsion 1 |", "|---|---|---|---|---|---|---|"]
     for name, hz in values.items():
-        cells = [f"{v:.4f}" if name == "full six-by-six" else f"{100 * (v / b - 1):+.3f} %"
+        cells = [f"{v:.4f}" if name == "condensed six-by-six" else f"{100 * (v / b - 1):+.3f} %"
                  for v, b in zip(hz, base)]
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
@@ -176,8 +240,15 @@ def prebend_table(values: dict[tuple[str, float], tuple[float, ...]]) -> str:
 
 
 if __name__ == "__main__":
-    print(table(rows()))
+    computed = rows()
+    for model in SECTION_MODELS:
+        print(table([r for r in computed if r.sections == model]))
+        print()
+    for turbine in INPUTS:
+        print(contribution_table(contributions(turbine)))
+        print()
+    print(beamdyn_table(beamdyn_rows()))
     print()
-    print(contribution_table(contributions()))
+    print(beamdyn_table(beamdyn_rows("prebent"), "prebent"))
     print()
     print(prebend_table(prebend_effects()))

@@ -39,9 +39,9 @@ WINDIO2 = IEA15 / "windio" / "IEA-15-240-RWT_windio2_blade.yaml"
 WINDIO1 = IEA15 / "windio" / "IEA-15-240-RWT_windio1.yaml"
 
 
-def beamdyn(path: Path = BD15):
+def beamdyn(path: Path = BD15, sections: str = "full"):
     primary = read_beamdyn_primary(path)
-    return blade_from_beamdyn(primary, read_beamdyn_blade(primary.blade_path()))
+    return blade_from_beamdyn(primary, read_beamdyn_blade(primary.blade_path()), sections=sections)
 
 
 def hawc2(st: Path = FPM):
@@ -98,8 +98,9 @@ def test_beamdyn_v5_layout_with_modal_damping():
 def test_nrel5mw_beamdyn_blade_against_the_elastodyn_blade():
     # OpenFAST's NREL 5MW BeamDyn example holds the 5MW blade's distributed properties without ElastoDyn's mass
     # factor AdjBlMs = 1.04536: its first flap and edge frequencies times sqrt(AdjBlMs) are bladefem's from the
-    # ElastoDyn files within 0.2 % (the BeamDyn file adds section rotary inertia, about 0.1 % on the edge mode)
-    beamdyn5 = modes(beamdyn(BD5), 0.0, 2, elements=60)
+    # ElastoDyn files within 0.2 % (the BeamDyn file adds section rotary inertia, about 0.1 % on the edge mode);
+    # both Euler-Bernoulli (the BeamDyn sections' shear condensed: ElastoDyn has none)
+    beamdyn5 = modes(beamdyn(BD5, "condensed"), 0.0, 2, elements=60)
     elastodyn = modes(read_model(DATA / "NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"), 0.0, 2, elements=60)
     assert beamdyn5.kinds == elastodyn.kinds == ["flap", "edge"]
     np.testing.assert_allclose(beamdyn5.frequencies_hz / math.sqrt(1.04536), elastodyn.frequencies_hz, rtol=2e-3)
@@ -240,9 +241,10 @@ def frequencies() -> dict[str, tuple[np.ndarray, list[str]]]:
 
 @pytest.mark.parametrize("name", list(FORMATS))
 def test_first_mode_is_flap(frequencies, name):
+    # around OpenFAST/BeamDyn's 0.507 / 0.702 Hz on the straightened blade (tests/test_beamdyn_reference.py)
     hz, kinds = frequencies[name]
     assert kinds[:4] == ["flap", "edge", "flap", "edge"]
-    assert 0.50 < hz[0] < 0.53 and 0.70 < hz[1] < 0.73
+    assert 0.50 < hz[0] < 0.52 and 0.69 < hz[1] < 0.71
 
 
 def test_formats_from_one_source_agree(frequencies):

@@ -190,3 +190,38 @@ def test_pitch_turns_the_curved_axis_about_the_pitch_axis():
     a, b = assemble_blade(pitched, 20), assemble_blade(turned, 20)
     for name in ("K0", "K2", "M", "G"):
         assert abs(getattr(a, name) - getattr(b, name)).max() <= 1e-10 * abs(getattr(b, name)).max(), name
+
+
+@pytest.mark.parametrize("load", ["in-plane", "out-of-plane"])
+def test_shear_flexible_arc_cantilever_against_castigliano(load):
+    """The curved Timoshenko beam (shear deflections on the curve, the extension taking the whole deflection): the
+    arc cantilevers above with the shear forces' complementary energy added, ``int Q^2 / (k GA) ds``: in plane the
+    shear force is ``P cos(theta)`` (across the chord, ``k GA`` normal), out of plane ``P`` (along the chord). Soft
+    shear (``3 EI / (k GA L^2)`` 0.2 to 0.5) so that its share, 3 to 25 % of the deflection, is tested."""
+    from bladefem.sections import FullSections, mass_matrix, stiffness_matrix
+
+    ga_chord, ga_normal = 1.0e6, 1.5e5
+    K = stiffness_matrix(EA, GJ, EI_FLAP, EI_EDGE, ga_chord, ga_normal)
+    full = FullSections([0.0, R * ALPHA], [K, K], [mass_matrix(10.0)] * 2, shear_flexible=True)
+    blade = arc_blade().with_(sections=full.table())
+    m = assemble_blade(blade, 120)
+    assert "w_s" in m.dofs.fields
+    P, names = 100.0, {"u": ("u",), "v": ("v", "v_s"), "w": ("w", "w_s")}
+    if load == "in-plane":
+        force = P * np.array([np.sin(ALPHA), 0.0, np.cos(ALPHA)])
+        shear = P * R * quad(lambda t: np.cos(t) ** 2 / ga_normal, 0.0, ALPHA)[0]
+        expected = P * R * quad(lambda t: R**2 * (np.sin(ALPHA) - np.sin(t)) ** 2 / EI_FLAP + np.sin(t) ** 2 / EA,
+                                0.0, ALPHA)[0] + shear
+    else:
+        force = np.array([0.0, P, 0.0])
+        shear = P * R * ALPHA / ga_chord
+        expected = P * R**3 * quad(lambda p: np.sin(p) ** 2 / EI_EDGE + (1 - np.cos(p)) ** 2 / GJ, 0.0, ALPHA)[0] + shear
+    b = np.zeros(m.dofs.size)
+    for name, f in zip("uvw", force):
+        for field in names[name]:
+            b[m.dofs.value[field][-1]] += f            # the force works on the whole deflection
+    q = np.zeros(m.dofs.size)
+    q[m.free] = spla.spsolve(m.K0[m.free][:, m.free].tocsc(), b[m.free])
+    tip = np.array([m.dofs.displacement(q[:, None], name)[-1, 0] for name in "uvw"])
+    assert tip @ force / P == pytest.approx(expected, rel=2e-5)
+    assert shear / expected > 0.03

@@ -2,12 +2,14 @@
 (tests/data/openfast/beamdyn): each of the first six frequencies prebent over straight (the key points' kp_xr set to
 0, the length then the last key point's z), parked and at rated speed, hub held, gravity off.
 
-The difference of the two runs is compared, not the frequencies: bladefem condenses the transverse shear out (its
-straight blades sit 1.5 to 8 % above BeamDyn's, tests/test_beamdyn_reference.py), which the difference mostly
-cancels. What it leaves: the prebend acts through the coupling of each mode with its neighbours (edge with torsion,
-flap with extension), whose size goes with the spacing of their frequencies, and shear moves those spacings by as
-much as it moves the frequencies. So the effect on a mode agrees within 0.12 of BeamDyn's effect plus 0.1
-percentage points, and 0.35 points on the flap modes whose shear excess is largest (flap 2 and 3, 4 to 8 %).
+The prebent blades' frequencies are compared with BeamDyn's directly (the full six-by-six sections, a Timoshenko
+beam on the curved axis), and so is the effect, prebent over straight: it acts through the coupling of each mode
+with its neighbours (edge with torsion, flap with extension), whose size goes with the spacing of their
+frequencies; the effect on a mode agrees within 0.1 of BeamDyn's effect plus 0.1 percentage points (measured at most
+0.08 of it beyond the 0.1 points, the IEA-22MW's edge 2 at rated; 0.12 before the shear was kept), and 0.3 points
+on flap 2 and 3 (measured at most 0.28, IEA-22MW flap 3 at rated; with the shear condensed it was 0.32 parked,
+which the earlier 0.35 allowed: the shear closes the IEA-15MW's flap 3 from 0.28 to 0.11 points, the IEA-22MW's
+from 0.32 to 0.23).
 At rated speed BeamDyn linearizes about the blade deflected by its centrifugal load (QuasiStaticInit); bladefem
 does so with :func:`~bladefem.modal.operating_point.deflected_blade`: the prebent blade bends back about 1 m at the
 tip, which weakens the prebend's coupling (BeamDyn's torsion rise falls from 3.1 to 2.7 %), while the bending
@@ -64,22 +66,66 @@ def test_prebend_effect_against_beamdyn(turbine, rated):
     rpm = TURBINES[turbine][3] if rated else 0.0
     ours, kinds = bladefem_effect(turbine, rpm)
     theirs = beamdyn_effect(turbine, rpm)
-    tolerance = 0.12 * np.abs(theirs) + 1e-3
-    tolerance[2:5] = np.maximum(tolerance[2:5], np.where(np.array(kinds[2:5]) == "flap", 3.5e-3, 0.0))
+    tolerance = 0.1 * np.abs(theirs) + 1e-3
+    tolerance[2:5] = np.maximum(tolerance[2:5], np.where(np.array(kinds[2:5]) == "flap", 3e-3, 0.0))
     assert np.all(np.abs(ours - theirs) <= tolerance), (ours, theirs)
     edge = [i for i, kind in enumerate(kinds) if kind == "edge"][:2]
     assert np.all(ours[edge] < -0.009)                      # the named effect is large: edge falls by 1 to 5 %
 
 
+def prebent_frequencies(turbine: str, rpm: float) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """bladefem's kinds and lowest six frequencies of the prebent blade (at speed on its deflected axis) and
+    BeamDyn's prebent linearization's, Hz."""
+    path, hub_radius, precone, _ = TURBINES[turbine]
+    primary = read_beamdyn_primary(path)
+    blade = blade_from_beamdyn(primary, read_beamdyn_blade(primary.blade_path()), hub_radius=hub_radius,
+                               precone=np.radians(precone))
+    result = modes(deflected_blade(blade, rpm)[0] if rpm > 0 else blade, rpm, 6)
+    runs = json.loads(REFERENCE.read_text())["runs"]
+    run = next(r for r in runs if (r["turbine"], r["rpm"], r["reference_axis"], r["order_elem"]) ==
+               (turbine, rpm, "prebent", 14))
+    return result.kinds, result.frequencies_hz, np.array(run["frequencies_hz"][:6])
+
+
+@pytest.mark.parametrize("turbine", list(TURBINES))
+def test_prebent_blades_against_beamdyn_parked(turbine):
+    """The prebent IEA blades parked: the first five modes within 0.5 % of BeamDyn's (measured at most 0.05 % on the
+    IEA-15MW, 0.22 % on the IEA-22MW's flap 2), the sixth (IEA-15MW torsion, IEA-22MW edge 3) within 2 % (0.03 %,
+    0.08 %)."""
+    kinds, ours, theirs = prebent_frequencies(turbine, 0.0)
+    assert kinds[:5] == ["flap", "edge", "flap", "edge", "flap"]
+    assert np.max(np.abs(ours[:5] / theirs[:5] - 1)) < 5e-3
+    assert abs(ours[5] / theirs[5] - 1) < 2e-2
+
+
+@pytest.mark.parametrize("turbine", list(TURBINES))
+def test_prebent_blades_against_beamdyn_at_rated_speed(turbine):
+    """At rated speed on the deflected axis: the flap modes and edge 2 within 1 % (measured at most 0.08 % on the
+    IEA-15MW, 0.24 % on the IEA-22MW), the sixth within 2 % (-0.30 %, +0.18 %). Edge 1 sits below BeamDyn's by the
+    in-plane spin softening its rotating-frame linearization does not show (-1.5 %, -2.3 %; as on the straight
+    blades, tests/test_beamdyn_reference.py); with it put back, omega^2 + Omega^2, within 1 %."""
+    rpm = TURBINES[turbine][3]
+    kinds, ours, theirs = prebent_frequencies(turbine, rpm)
+    assert kinds[:5] == ["flap", "edge", "flap", "edge", "flap"]
+    others = [0, 2, 3, 4]
+    assert np.max(np.abs(ours[others] / theirs[others] - 1)) < 1e-2
+    assert abs(ours[5] / theirs[5] - 1) < 2e-2
+    assert ours[1] / theirs[1] - 1 < -1e-2                                # the named cause is large
+    without_softening = np.sqrt(ours[1] ** 2 + (rpm / 60) ** 2)
+    assert abs(without_softening / theirs[1] - 1) < 1e-2
+
+
 def test_at_speed_the_deflection_and_its_moments_both_count():
     """At the IEA-15MW's rated speed the blade bends back about 1 m. On its undeformed axis bladefem keeps the parked
     effect on edge 2 (measured -3.05 % against BeamDyn's -2.54 %); on its deflected axis without the moments'
-    prestress it is too weak (-2.20 %); with both, BeamDyn's (-2.53 %)."""
+    prestress it is too weak (-2.20 %); with both, BeamDyn's (-2.53 %). Measured on the shear-condensed sections
+    (Euler-Bernoulli); the Timoshenko beam gives -2.78 % undeformed and -2.28 % with both (the straight blade's edge 2
+    then sits 0.25 % below BeamDyn's at rated, test_beamdyn_reference.py, the prebent one on it)."""
     path, hub_radius, precone, rpm = TURBINES["iea15"]
     primary = read_beamdyn_primary(path)
     sections = read_beamdyn_blade(primary.blade_path())
-    blades = [blade_from_beamdyn(primary, sections, hub_radius=hub_radius, precone=np.radians(precone), axis=axis)
-              for axis in ("curved", "straight")]
+    blades = [blade_from_beamdyn(primary, sections, hub_radius=hub_radius, precone=np.radians(precone), axis=axis,
+                                 sections="condensed") for axis in ("curved", "straight")]
     deflected = [deflected_blade(blade, rpm) for blade in blades]
     point = deflected[0][1]
     assert 0.8 < point.displacement[2, -1] < 1.4                    # toward downwind, m
@@ -159,3 +205,26 @@ def test_a_design_check_spec_can_straighten_the_axis(tmp_path):
     models = read_spec(spec).models
     curved, straight = (read_structure(models[name].input, None, models[name].geometry) for name in models)
     assert curved.curved and not straight.curved and straight.length == pytest.approx(117.0)
+
+
+def test_the_deflected_axis_of_a_shear_flexible_blade_takes_its_shear_deflection():
+    """At speed the Timoshenko blade's axis moves by the whole deflection ``w + w_s`` (and ``v + v_s``), not by the
+    bending part alone: at the axis knots (mesh nodes) the operating point's displacement is the DOF map's total
+    deflection, of which the shear part is a measurable share (over 1e-3 of the tip's out-of-plane motion)."""
+    from bladefem.assembly import assemble_blade
+    from bladefem.modal.operating_point import ELEMENTS, operating_point
+
+    path, hub_radius, precone, rpm = TURBINES["iea15"]
+    primary = read_beamdyn_primary(path)
+    blade = blade_from_beamdyn(primary, read_beamdyn_blade(primary.blade_path()), hub_radius=hub_radius,
+                               precone=np.radians(precone))
+    point = operating_point(blade, rpm)
+    dofs = assemble_blade(blade, ELEMENTS).dofs
+    at = np.searchsorted(dofs.nodes, point.nodes)
+    np.testing.assert_allclose(dofs.nodes[at], point.nodes, atol=1e-9)
+    frame = blade.axis_frame(point.nodes)
+    local = np.einsum("ji...,j...->i...", frame.rotation, point.displacement)
+    for k, name in ((1, "v"), (2, "w")):
+        np.testing.assert_allclose(local[k], dofs.displacement(point.vector[:, None], name)[at, 0], atol=1e-12)
+    shear = point.vector[dofs.value["w_s"]][-1]
+    assert abs(shear) > 1e-3 * abs(local[2, -1])

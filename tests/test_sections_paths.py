@@ -98,14 +98,15 @@ def test_iea15_frequency_differences_between_the_paths_are_explained():
     # linear, as the full model reads them) the rest is what the reduction drops (thickness-wise centre of mass
     # and tension centre, product of inertia, the twist couplings): measured at most 0.016 % (the mass terms alone
     # 0.025 % on torsion, examples/iea_blades.py), held to 0.03 %
+    # (both Euler-Bernoulli: the full sections with the shear condensed, as the reduction has it)
     six = six_by_six(BD15)
-    as_read = {model: first_six(Blade(sections=six.table(model)[0])) for model in ("full", "reduced")}
-    assert np.max(np.abs(as_read["reduced"] / as_read["full"] - 1)) < 1e-3
+    as_read = {model: first_six(Blade(sections=six.table(model)[0])) for model in ("condensed", "reduced")}
+    assert np.max(np.abs(as_read["reduced"] / as_read["condensed"] - 1)) < 1e-3
     fine = resampled(six, 4)
-    sampled = {model: first_six(Blade(sections=fine.table(model)[0])) for model in ("full", "reduced")}
+    sampled = {model: first_six(Blade(sections=fine.table(model)[0])) for model in ("condensed", "reduced")}
     # the full model reads the entries linearly: the same beam, to the mesh convergence tolerance (1e-6)
-    np.testing.assert_allclose(sampled["full"], as_read["full"], rtol=1e-6)
-    assert np.max(np.abs(sampled["reduced"] / sampled["full"] - 1)) < 3e-4
+    np.testing.assert_allclose(sampled["condensed"], as_read["condensed"], rtol=1e-6)
+    assert np.max(np.abs(sampled["reduced"] / sampled["condensed"] - 1)) < 3e-4
 
 
 def test_iea22_bending_differences_are_interpolation():
@@ -116,13 +117,13 @@ def test_iea22_bending_differences_are_interpolation():
     # (up to 39 deg) instead of staying on the chord. The full sections with their mass turned so come within 0.1 %
     # of the reduced torsion (measured 0.05 %: the thickness-wise centre of mass the reduction also drops)
     six = six_by_six(BD22)
-    as_read = {model: first_six(Blade(sections=six.table(model)[0])) for model in ("full", "reduced")}
-    assert np.max(np.abs(as_read["reduced"][:5] / as_read["full"][:5] - 1)) > 1e-3
+    as_read = {model: first_six(Blade(sections=six.table(model)[0])) for model in ("condensed", "reduced")}
+    assert np.max(np.abs(as_read["reduced"][:5] / as_read["condensed"][:5] - 1)) > 1e-3
     fine = resampled(six, 16)
-    sampled = {model: first_six(Blade(sections=fine.table(model)[0])) for model in ("full", "reduced")}
-    assert np.max(np.abs(sampled["reduced"][:5] / sampled["full"][:5] - 1)) < 1.5e-4
-    assert sampled["reduced"][5] / sampled["full"][5] - 1 > 3e-3
-    full = fine.full()
+    sampled = {model: first_six(Blade(sections=fine.table(model)[0])) for model in ("condensed", "reduced")}
+    assert np.max(np.abs(sampled["reduced"][:5] / sampled["condensed"][:5] - 1)) < 1.5e-4
+    assert sampled["reduced"][5] / sampled["condensed"][5] - 1 > 3e-3
+    full = fine.full()                       # shear condensed, as the reduction has it
     principal = fine.table("reduced")[0].twist
     turned = np.array([about_reference(m, (0.0, 0.0), d) for m, d in zip(full.mass, principal - full.twist)])
     mass_turned = first_six(Blade(sections=replace(full, mass=turned).table()))
@@ -141,9 +142,12 @@ def test_sections_option_on_the_command_line():
         return subprocess.run([sys.executable, "-m", "bladefem", "modes", str(BD15), "--n-modes", "2", *args],
                               capture_output=True, text=True)
 
-    full, reduced = run(), run("--sections", "reduced")
-    assert full.returncode == 0 and reduced.returncode == 0, full.stderr + reduced.stderr
-    assert "full six-by-six sections in the FE" in full.stdout
+    full, condensed, reduced = run(), run("--sections", "condensed"), run("--sections", "reduced")
+    assert full.returncode == condensed.returncode == reduced.returncode == 0, (full.stderr + condensed.stderr
+                                                                               + reduced.stderr)
+    assert "full six-by-six sections in the FE" in full.stdout and "transverse shear kept" in full.stdout
+    assert "full six-by-six sections in the FE" in condensed.stdout
+    assert "transverse shear condensed" in condensed.stdout
     assert "sections reduced (--sections reduced)" in reduced.stdout
     bad = run("--sections", "diagonal")
     assert bad.returncode == 2
@@ -176,11 +180,11 @@ def test_galerkin_model_follows_the_iea_full_sections():
     # matrices (tests/test_galerkin_full_sections.py checks it on uniform and tapered beams); on the IEA-15MW's full
     # sections, parked and at rated, and the IEA-22MW's at rated, its first four frequencies agree with the FE's
     # within 1e-4 (measured 2.9e-5 and 2.1e-5; its series converges more slowly on the blade's steep root-to-tip
-    # property changes than the FE mesh)
+    # property changes than the FE mesh). The Galerkin model is an Euler-Bernoulli beam: the FE's shear condensed.
     from bladefem.models.galerkin_converged import converged_galerkin_modes
 
     for path, hub, rpm in ((BD15, 3.97, 0.0), (BD15, 3.97, 7.56), (BD22, 4.2, 6.88)):
-        blade = read_model(path, hub_radius=hub, axis="straight")          # the Galerkin model is straight
+        blade = read_model(path, hub_radius=hub, sections="condensed", axis="straight")  # the Galerkin model: straight
         fe = modes(blade, rpm, 4)
         galerkin = converged_galerkin_modes(blade, rpm=rpm, n_modes=4)
         assert galerkin.kinds == fe.kinds

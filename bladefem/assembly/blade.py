@@ -13,10 +13,12 @@ from numpy.typing import NDArray
 from skfem import Basis
 
 from ..elements import (
+    FIELD_KINDS,
+    SHEAR_FIELDS,
     SectionMotion,
     beam_element,
     gyroscopic_inertia,
-    interpolated_motion,
+    interpolated_components,
     projected_inertia,
     rotation_second_order,
 )
@@ -109,14 +111,24 @@ class BladeMatrices:
         return {name: position[dofs][position[dofs] >= 0] for name, dofs in self.dofs.field_dofs.items()}
 
     @cached_property
-    def field_mass_blocks(self) -> dict[str, sp.csc_matrix]:
-        """Field -> its diagonal block of the free mass matrix (for kinetic-energy shares)."""
+    def free_kind_dofs(self) -> dict[str, NDArray[np.int64]]:
+        """Kind of motion (flap, edge, torsion, axial: :data:`~bladefem.elements.FIELD_KINDS`) -> positions of the
+        DOFs of its fields among the free DOFs (flap: the bending and the shear deflection together)."""
+        kinds: dict[str, list[NDArray[np.int64]]] = {}
+        for name, local in self.free_field_dofs.items():
+            kinds.setdefault(FIELD_KINDS[name], []).append(local)
+        return {kind: np.sort(np.concatenate(parts)) if len(parts) > 1 else parts[0] for kind, parts in kinds.items()}
+
+    @cached_property
+    def kind_mass_blocks(self) -> dict[str, sp.csc_matrix]:
+        """Kind of motion -> its diagonal block of the free mass matrix (for kinetic-energy shares)."""
         M = self.free_parts[2]
-        return {name: M[local][:, local] for name, local in self.free_field_dofs.items()}
+        return {kind: M[local][:, local] for kind, local in self.free_kind_dofs.items()}
 
 
 def model_fields(blade: Blade) -> tuple[str, ...]:
-    """Fields present in the model: bending always, twist if GJ is given, axial if EA is given."""
+    """Fields present in the model: bending always, twist if GJ is given, axial if EA is given, the shear
+    deflections for shear-flexible six-by-six sections (:attr:`~bladefem.sections.FullSections.shear_flexible`)."""
     fields = ["v", "w"]
     if blade.sections.torsion_stiffness is not None:
         fields.append("phi")
@@ -125,18 +137,27 @@ def model_fields(blade: Blade) -> tuple[str, ...]:
     elif blade.curved:
         raise InputError("a curved reference axis needs the axial stiffness (its bending stretches the axis): give "
                          "EA, or straighten the axis (--straight-axis)", field="axial_stiffness")
+    if blade.sections.full is not None and blade.sections.full.shear_flexible:
+        fields.extend(SHEAR_FIELDS)
     return tuple(fields)
 
 
 def elastic_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
-    """K0's terms: bending (with extension when the axial field is present), torsion, and the twist couplings of
-    six-by-six sections where they have any."""
+    """K0's terms: the whole six-by-six section of a shear-flexible beam; otherwise bending (with extension when the
+    axial field is present), torsion, and the twist couplings of six-by-six sections where they have any."""
+    if parameters.section is not None:
+        return [terms.section_stiffness]
     parts: list[Term] = [terms.extension_bending_stiffness if "u" in fields else terms.bending_stiffness]
     if "phi" in fields:
         parts.append(terms.torsion_stiffness)
     if parameters.twist_coupling is not None:
         parts.append(terms.twist_coupling_stiffness)
     return parts
+
+
+def centrifugal_terms(fields: tuple[str, ...]) -> tuple[Term, ...]:
+    """K2's terms, with the tension on the shear slopes for a shear-flexible beam."""
+    return CENTRIFUGAL_TERMS + ((terms.axial_force_shear_stiffness,) if SHEAR_FIELDS[0] in fields else ())
 
 
 def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -162,8 +183,9 @@ def static_deflection(K0: sp.csr_matrix, quadrature: Quadrature, blade: Blade, d
     (:func:`~bladefem.assembly.terms.moment_prestress_stiffness`, to first order in Omega^2)."""
     q = np.zeros(dofs.size)
     q[free] = spla.spsolve(K0[free][:, free].tocsc(), centrifugal_load(quadrature, blade, dofs)[free])
-    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, q[:, None])
-    return SectionMotion(**{name: getattr(motion, name)[0] for name in SectionMotion.__dataclass_fields__})
+    names = tuple(SectionMotion.__dataclass_fields__)
+    values = interpolated_components(quadrature.functions, quadrature.element_dofs, q[:, None], names)
+    return SectionMotion(**{name: values[k, 0] for k, name in enumerate(names)})
 
 
 def tip_body_gyroscopic(blade: Blade, dofs: DofMap) -> sp.csr_matrix:
@@ -217,7 +239,7 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
     K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
-    centrifugal = CENTRIFUGAL_TERMS
+    centrifugal = centrifugal_terms(fields)
     if blade.prestressed and blade.root == "cantilever":
         parameters = replace(parameters, static=static_deflection(K0, quadrature, blade, dofs, free))
         centrifugal = centrifugal + (terms.moment_prestress_stiffness,)

@@ -22,7 +22,7 @@ from ..elements import (
     SectionMotion,
     basis_functions,
     curved_motion,
-    interpolated_motion,
+    interpolated_components,
     linear_projection,
     pair_motions,
 )
@@ -91,9 +91,10 @@ def pointwise_operator(quadrature: Quadrature, parameters: object, parts: Sequen
 def gram_matrix(quadrature: Quadrature, operator: NDArray, vectors: NDArray) -> NDArray:
     """``V^T A V`` for the columns of ``vectors`` (over all DOFs) and the matrix A of a form given pointwise
     (:func:`pointwise_operator`), summed at the quadrature points from the vectors' own motions there."""
-    motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, vectors)
-    stacked = np.stack([getattr(motion, name) for name in SectionMotion.__dataclass_fields__])   # (f, m, e, q)
+    names = tuple(SectionMotion.__dataclass_fields__)
     present = np.flatnonzero(np.any(operator != 0, axis=(1, 2, 3)))
-    X = stacked[present].reshape(len(present), stacked.shape[1], -1)
+    stacked = interpolated_components(quadrature.functions, quadrature.element_dofs, vectors,
+                                      tuple(names[f] for f in present))               # (f, m, e, q)
+    X = stacked.reshape(len(present), stacked.shape[1], -1)
     A = operator[np.ix_(present, present)].reshape(len(present), len(present), -1)
     return np.einsum("fmn,fgn,gkn->mk", X, A, X, optimize=True)

@@ -14,6 +14,7 @@ from ..sections import (
     bending_stiffness,
     extension_bending_stiffness,
     mass_moments,
+    shear_flexible_stiffness,
     torsion_stiffness,
     twist_coupling_stiffness,
 )
@@ -105,7 +106,7 @@ def centrifugal_tension(blade: Blade, x: NDArray) -> NDArray:
 class SectionParameters:
     """Section matrices at quadrature points (trailing axes: elements, points)."""
 
-    bending: NDArray                 # (2, 2, ...) N m^2
+    bending: NDArray | None          # (2, 2, ...) N m^2 (None for a shear-flexible beam: ``section`` holds it)
     extension_bending: NDArray | None  # (3, 3, ...) when the axial field is present
     torsion: NDArray | None          # GJ, N m^2, when the twist field is present
     inertia: NDArray                 # (6, 6, ...) mass matrix of the slice, kg/m .. kg m
@@ -114,12 +115,13 @@ class SectionParameters:
     tension: NDArray                 # N(x) per Omega^2, N s^2
     gyroscopic: NDArray | None = None  # (6, 6, ...) skew Coriolis matrix per Omega, kg/m .. kg m (rotating beams)
     twist_coupling: NDArray | None = None  # (3, ...) phi' with (u', v'', w''), N m, N m^2 (six-by-six sections)
+    section: NDArray | None = None   # (6, 6, ...) on (u', gamma_y, gamma_z, phi', v'', w'') (shear-flexible sections)
     curvature: NDArray | None = None  # (4, ...) K2, K3 (1/m) and their rates (1/m^2) of a curved reference axis
     static: SectionMotion | None = None  # the deflection under the centrifugal load per Omega^2 (curved axis)
 
     @property
     def strain_stiffness(self) -> NDArray:
-        """The classical section stiffness on (u', v'', w'', phi'), shape (4, 4, ...)."""
+        """The classical section stiffness on (u', v'', w'', phi'), shape (4, 4, ...) (Euler-Bernoulli beams)."""
         shape = np.shape(self.bending)[2:]
         C = np.zeros((4, 4) + shape)
         if self.extension_bending is None:
@@ -131,6 +133,16 @@ class SectionParameters:
         if self.twist_coupling is not None:
             C[3, :3] = C[:3, 3] = self.twist_coupling
         return C
+
+    def stress(self, motion: SectionMotion) -> NDArray:
+        """The section's axial force, bending moments and torque conjugate to (u', v'', w'', phi') under a motion,
+        shape (4, ...): the classical stiffness on the classical strains, or the six-by-six on all six strains of a
+        shear-flexible beam (its transverse shear strains included)."""
+        if self.section is None:
+            strains = np.stack([motion.u_x, motion.v_xx, motion.w_xx, motion.phi_x])
+            return np.einsum("ij...,j...->i...", self.strain_stiffness, strains)
+        stress = np.einsum("ij...,j...->i...", self.section, motion.strains)
+        return stress[[0, 4, 5, 3]]
 
 
 def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
@@ -147,18 +159,21 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
         Q, shaft = frame.tensor_to_local(Q), frame.to_local(shaft)
         node = frame.to_local(axis_position(blade, frame))
         curvature = np.concatenate([frame.curvature, frame.curvature_rate])
+    section = shear_flexible_stiffness(sections, x, blade.pitch)
+    classical = section is None            # a shear-flexible beam's stiffness is all in ``section``
     return SectionParameters(
-        bending=bending_stiffness(sections, x, blade.pitch),
-        extension_bending=(None if sections.axial_stiffness is None
-                           else extension_bending_stiffness(sections, x, blade.pitch)),
-        torsion=torsion_stiffness(sections, x, blade.pitch),
+        bending=bending_stiffness(sections, x, blade.pitch) if classical else None,
+        extension_bending=(extension_bending_stiffness(sections, x, blade.pitch)
+                           if classical and sections.axial_stiffness is not None else None),
+        torsion=torsion_stiffness(sections, x, blade.pitch) if classical else None,
         inertia=projected_inertia(np.eye(3), moments.m, moments.S, moments.J),
         spin=projected_inertia(Q, moments.m, moments.S, moments.J),
         rotation=rotation_second_order(Q, node, moments.S, moments.J),
         tension=centrifugal_tension(blade, x),
         gyroscopic=gyroscopic_inertia(shaft, moments.m, moments.S, moments.J),
-        twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch),
+        twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch) if classical else None,
         curvature=curvature,
+        section=section,
     )
 
 

@@ -43,6 +43,13 @@ def twist_coupling_stiffness(trial: SectionMotion, test: SectionMotion, p: Secti
             + trial.phi_x * np.einsum("i...,i...->...", g, test.extension_curvatures))
 
 
+def section_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """The whole six-by-six section of a shear-flexible (Timoshenko) beam on the strains (u', gamma_y, gamma_z, phi',
+    v'', w''): extension, both transverse shears, twist and both curvatures with every coupling (replaces the
+    bending, torsion and twist-coupling terms)."""
+    return quadratic(test.strains, p.section, trial.strains)
+
+
 def inertia(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
     """Kinetic energy of the section slice: translation, centre-of-mass offset and rotary inertia."""
     return quadratic(test.kinematic, p.inertia, trial.kinematic)
@@ -52,6 +59,15 @@ def axial_force_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionP
     """Geometric stiffness N(x) v'v' + N(x) w'w' of an axial force acting on the bending slopes: for a blade the
     centrifugal tension per Omega^2 (:func:`~bladefem.assembly.parameters.centrifugal_tension`)."""
     return p.tension * (test.v_x * trial.v_x + test.w_x * trial.w_x)
+
+
+def axial_force_shear_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """What the shear deflections add to :func:`axial_force_stiffness` (shear-flexible beams): the axial force acts
+    on Reissner's second-order axial strain ``theta . r' - |theta|^2 / 2``, with the section rotation theta (the
+    bending slopes) and the axis slope ``r' = theta + gamma``; its bilinear form is ``N (v'v' + v'v_s' + v_s'v')``
+    and the same in flap, of which this is the part with the shear slopes."""
+    return p.tension * (test.v_x * trial.v_s_x + test.v_s_x * trial.v_x + test.w_x * trial.w_s_x
+                        + test.w_s_x * trial.w_x)
 
 
 def spin_softening(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
@@ -71,11 +87,6 @@ def coriolis(trial: SectionMotion, test: SectionMotion, p: SectionParameters) ->
     return quadratic(test.kinematic, p.gyroscopic, trial.kinematic)
 
 
-def strains(motion: SectionMotion) -> NDArray:
-    """The classical strains (u', v'', w'', phi'), shape (4, ...)."""
-    return np.stack([motion.u_x, motion.v_xx, motion.w_xx, motion.phi_x])
-
-
 def second_order_strains(a: SectionMotion, b: SectionMotion) -> NDArray:
     """The symmetric bilinear form h(a, b) whose half on (q, q) is the second-order part of the strains
     (u', v'', w'', phi') of a section that bends and then twists about the bent axis (rotation vector ``Theta + 1/2
@@ -91,8 +102,7 @@ def moment_prestress_stiffness(trial: SectionMotion, test: SectionMotion, p: Sec
     """Stiffness per Omega^2 of the static moments and torque under the centrifugal load (``p.static``, the
     deflection per Omega^2, through the section stiffness) on the second-order curvatures: the work that turns a
     prestressed section's bending into twist (the extension's share is :func:`axial_force_stiffness`)."""
-    stress = np.einsum("ij...,j...->i...", p.strain_stiffness, strains(p.static))
-    return np.einsum("i...,i...->...", stress[1:], second_order_strains(test, trial)[1:])
+    return np.einsum("i...,i...->...", p.stress(p.static)[1:], second_order_strains(test, trial)[1:])
 
 
 def aerodynamic_damping(trial: SectionMotion, test: SectionMotion, p: AeroParameters) -> NDArray:

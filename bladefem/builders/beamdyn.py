@@ -40,8 +40,9 @@ def blade_from_beamdyn(primary: BeamDynPrimary, blade: BeamDynBlade, hub_radius:
                        precone: float = 0.0, pitch: float = 0.0, sections: str = "full",
                        axis: str = "curved") -> Blade:
     """The blade of a BeamDyn primary and blade file; hub radius in m (BeamDyn has none), angles in rad;
-    ``sections`` ``"full"`` (the whole 6x6 in the FE) or ``"reduced"`` (:meth:`SixBySixBlade.table`); ``axis``
-    ``"curved"`` (the key points' prebend and sweep) or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
+    ``sections`` ``"full"`` (the whole 6x6 in the FE), ``"condensed"`` or ``"reduced"``
+    (:meth:`SixBySixBlade.table`); ``axis`` ``"curved"`` (the key points' prebend and sweep) or ``"straight"``
+    (:meth:`SixBySixBlade.on_axis`)."""
     six, reference, axis_note = beamdyn_sections(primary, blade).on_axis(axis)
     table, notes = six.table(sections)
     notes = [f"BeamDyn blade from {Path(primary.path).name or 'memory'} and {Path(blade.path).name or 'memory'}: "

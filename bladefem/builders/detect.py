@@ -45,7 +45,7 @@ class Geometry:
     tower_height: float | None = None
     top_mass: float | None = None
     htc: str | Path | None = None
-    #: six-by-six blades (BeamDyn, HAWC2, windIO): "full" (default, the whole 6x6 in the FE) or "reduced"
+    #: six-by-six blades (BeamDyn, HAWC2, windIO): "full" (default, the whole 6x6 in the FE), "condensed" or "reduced"
     #: (bladefem's diagonal beam, :meth:`bladefem.builders.section6x6.SixBySixBlade.table`)
     sections: str | None = None
     #: six-by-six blades: "curved" (default, the reference axis's prebend and sweep) or "straight" (straightened

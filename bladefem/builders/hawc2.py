@@ -114,8 +114,8 @@ def blade_from_hawc2(subset: StSubset, body: MainBody | None, st_path: str = "",
                      precone: float = 0.0, pitch: float = 0.0, sections: str = "full",
                      axis: str = "curved") -> Blade:
     """The blade of a HAWC2 st subset; the twist and reference axis from the main body's c2_def (None: untwisted,
-    named in the notes); ``sections`` ``"full"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`); ``axis``
-    ``"curved"`` (c2_def's prebend) or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
+    named in the notes); ``sections`` ``"full"``, ``"condensed"`` or ``"reduced"`` (:meth:`SixBySixBlade.table`);
+    ``axis`` ``"curved"`` (c2_def's prebend) or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
     six, reference, axis_note = hawc2_sections(subset, body, st_path).on_axis(axis)
     table, reduction = six.table(sections)
     layout = "fully populated (FPM)" if subset.fpm else "isotropic"

@@ -24,8 +24,9 @@ The reduction (what today's beam can hold, per station):
    ``ComputeShearCenter``).
 
 :class:`SixBySixBlade` is every format's blade in these terms (whole matrices, twist, curved reference axis). Its
-``table()`` gives the FE the whole matrices by default (:meth:`SixBySixBlade.full`, through
-:mod:`bladefem.builders.section_axes` onto :class:`~bladefem.sections.FullSections`); ``table("reduced")`` is this
+``table()`` gives the FE the whole matrices with the transverse shear by default (:meth:`SixBySixBlade.full`, through
+:mod:`bladefem.builders.section_axes` onto :class:`~bladefem.sections.FullSections`), ``table("condensed")`` with the
+shear condensed; ``table("reduced")`` is this
 reduction.
 
 Dropped, and named with their size in :func:`reduction_notes`: the extension-twist and bend-twist couplings left in
@@ -47,8 +48,9 @@ from ..sections import FullSections, ReferenceAxis, SectionTable, full_section
 from ..sections.principal import principal_axes
 from .section_axes import from_beamdyn_axes, full_sections_from_beamdyn
 
-#: How six-by-six sections reach the FE: the whole matrices (default) or bladefem's diagonal reduction
-SECTION_MODELS = ("full", "reduced")
+#: How six-by-six sections reach the FE: the whole matrices with the transverse shear (default, a Timoshenko beam),
+#: the whole matrices with the shear condensed (Euler-Bernoulli), or bladefem's diagonal reduction
+SECTION_MODELS = ("full", "condensed", "reduced")
 #: How the reference axis reaches the FE: curved as the file gives it (default), or straightened onto the pitch axis
 AXIS_MODELS = ("curved", "straight")
 #: Couplings and offsets smaller than this (fraction of sqrt(K_ii K_jj), or m) are not mentioned in the notes.
@@ -258,9 +260,10 @@ class SixBySixBlade:
 
     def table(self, model: str = "full", chord: NDArray[np.float64] | None = None) -> tuple[SectionTable, list[str]]:
         """The section table the FE takes and the notes on what it keeps and drops. ``model``: ``"full"`` (the
-        default) carries the whole six-by-six matrices (:class:`~bladefem.sections.FullSections`: every coupling,
-        the transverse shear condensed); ``"reduced"`` is bladefem's diagonal beam (:func:`section_table`), which
-        drops the couplings the notes name."""
+        default) carries the whole six-by-six matrices (:class:`~bladefem.sections.FullSections`: every coupling
+        and the transverse shear, a Timoshenko beam); ``"condensed"`` the same with the shear condensed (an
+        Euler-Bernoulli beam); ``"reduced"`` is bladefem's diagonal beam (:func:`section_table`), which drops the
+        couplings the notes name."""
         if model not in SECTION_MODELS:
             raise InputError(f"sections must be one of {', '.join(SECTION_MODELS)}, got '{model}'",
                              field="--sections")
@@ -271,11 +274,13 @@ class SixBySixBlade:
                 reduced = replace(reduced, chord=chord)
             return reduced, ["sections reduced (--sections reduced): " + dropped[0]] + dropped[1:]
         kept = [note.split("neglected: ", 1)[1] for note in dropped if "neglected: " in note]
+        shear = ("transverse shear kept (Timoshenko beam; --sections condensed condenses it)" if model == "full"
+                 else "transverse shear condensed (slender beam; --sections full keeps it)")
         notes = ["full six-by-six sections in the FE (tension and shear centres, principal axes, extension-twist "
-                 "and bend-twist couplings, the whole section mass); transverse shear condensed (slender beam)"
+                 f"and bend-twist couplings, the whole section mass); {shear}"
                  + (f"; --sections reduced (bladefem's diagonal beam) would drop {kept[0]}" if kept else "")]
         try:
-            full = self.full(chord)
+            full = self.full(chord).with_shear(model == "full")
         except InputError as error:
             station = re.search(r"\(station (\d+)\)", error.message)
             line = self.lines[int(station.group(1)) - 1] if station and self.lines else error.line

@@ -98,9 +98,9 @@ def windio_sections(turbine: WindIOTurbine) -> SixBySixBlade:
 
 def blade_from_windio(turbine: WindIOTurbine, pitch: float = 0.0, sections: str = "full",
                       axis: str = "curved") -> Blade:
-    """A :class:`Blade` from the windIO blade; ``pitch`` in rad; ``sections`` ``"full"`` (the whole 6x6 in the FE)
-    or ``"reduced"`` (:meth:`SixBySixBlade.table`); ``axis`` ``"curved"`` (the reference axis's prebend and sweep)
-    or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
+    """A :class:`Blade` from the windIO blade; ``pitch`` in rad; ``sections`` ``"full"`` (the whole 6x6 in the FE),
+    ``"condensed"`` (the shear condensed) or ``"reduced"`` (:meth:`SixBySixBlade.table`); ``axis`` ``"curved"``
+    (the reference axis's prebend and sweep) or ``"straight"`` (:meth:`SixBySixBlade.on_axis`)."""
     six, reference, axis_note = windio_sections(turbine).on_axis(axis)
     beam = turbine.blade
     chord = None if beam.chord is None else np.interp(six.span / six.span[-1], beam.chord.grid, beam.chord.values)

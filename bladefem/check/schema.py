@@ -38,8 +38,9 @@ MODEL = {
         "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180},
         "tip_mass_kg": {"type": "number", "minimum": 0},
         "elastodyn_main": {"type": "string", "description": "ElastoDyn main file for an ElastoDyn blade file"},
-        "sections": {"enum": ["full", "reduced"],
-                     "description": "six-by-six blades: the whole sections in the FE (default) or the diagonal beam"},
+        "sections": {"enum": ["full", "condensed", "reduced"],
+                     "description": "six-by-six blades: the whole sections in the FE with the transverse shear "
+                                    "(default), with the shear condensed, or the diagonal beam"},
         "axis": {"enum": ["curved", "straight"],
                  "description": "six-by-six blades: the file's curved reference axis (default) or straightened onto "
                                 "the pitch axis (--straight-axis)"},

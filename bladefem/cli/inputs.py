@@ -48,13 +48,15 @@ def add_blade_options(parser: argparse.ArgumentParser) -> None:
 
 
 #: how six-by-six blade sections reach the FE (:data:`bladefem.builders.section6x6.SECTION_MODELS`)
-SECTION_MODELS: tuple[str, ...] = ("full", "reduced")
+SECTION_MODELS: tuple[str, ...] = ("full", "condensed", "reduced")
 
 
 def add_sections_option(group: argparse._ActionsContainer) -> None:
     group.add_argument("--sections", choices=SECTION_MODELS,
                        help="six-by-six blades (BeamDyn, HAWC2, windIO): 'full' (default) puts the whole 6x6 "
-                            "stiffness and mass in the FE (every coupling; shear condensed), 'reduced' bladefem's "
+                            "stiffness and mass in the FE (every coupling and the transverse shear: a Timoshenko "
+                            "beam), 'condensed' the same with the shear condensed (Euler-Bernoulli), 'reduced' "
+                            "bladefem's "
                             "diagonal beam (tension centre, principal axes, chordwise c.m.; drops the couplings the "
                             "notes name)")
     group.add_argument("--straight-axis", action="store_const", const="straight", dest="axis",

@@ -4,10 +4,11 @@ from .beam import (
            ALL_FIELDS,
            BENDING_FIELDS,
            FIELD_KINDS,
+           SHEAR_FIELDS,
            SectionMotion,
            basis_functions,
            beam_element,
-           interpolated_motion,
+           interpolated_components,
            pair_motions,
 )
 from .curved import curved_motion, linear_projection
@@ -18,6 +19,6 @@ from .rigid_slice import (
            skew,
 )
 
-__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SectionMotion", "basis_functions", "beam_element",
-           "curved_motion", "gyroscopic_inertia", "interpolated_motion", "linear_projection", "pair_motions",
-           "projected_inertia", "rotation_second_order", "skew"]
+__all__ = ["ALL_FIELDS", "BENDING_FIELDS", "FIELD_KINDS", "SHEAR_FIELDS", "SectionMotion", "basis_functions",
+           "beam_element", "curved_motion", "gyroscopic_inertia", "interpolated_components", "linear_projection",
+           "pair_motions", "projected_inertia", "rotation_second_order", "skew"]

@@ -1,7 +1,11 @@
-"""The beam element: Hermite cubic bending in two planes, quadratic torsion and axial fields.
+"""The beam element: Hermite cubic bending in two planes, quadratic torsion and axial fields, and optionally
+quadratic transverse-shear deflections (a Timoshenko beam).
 
-Fields: ``v`` edgewise (in-plane) and ``w`` flapwise (out-of-plane) deflection, C1 Hermite cubics; ``phi`` elastic
-twist and ``u`` axial displacement, quadratic Lagrange. A model may drop ``phi`` or ``u`` (rigid torsion or axial).
+Fields: ``v`` edgewise (in-plane) and ``w`` flapwise (out-of-plane) bending deflection, C1 Hermite cubics; ``phi``
+elastic twist and ``u`` axial displacement, quadratic Lagrange. A model may drop ``phi`` or ``u`` (rigid torsion or
+axial). A shear-flexible model adds ``v_s`` and ``w_s``, quadratic Lagrange: the deflection is ``v + v_s`` (and
+``w + w_s``), the section turns with the bending part only (``Theta = (phi, -w', v')``), so the transverse shear
+strains are ``v_s'`` and ``w_s'``. Without them the beam is Euler-Bernoulli.
 """
 
 from __future__ import annotations
@@ -48,23 +52,55 @@ class ElementLineHermiteReference(Element):
 
 
 BENDING_FIELDS: tuple[str, ...] = ("v", "w")
+#: the transverse-shear deflections of a shear-flexible (Timoshenko) beam, in the order of BENDING_FIELDS
+SHEAR_FIELDS: tuple[str, ...] = ("v_s", "w_s")
 ALL_FIELDS: tuple[str, ...] = ("v", "w", "phi", "u")
 FIELD_ELEMENTS: dict[str, type[Element]] = {"v": ElementLineHermiteReference, "w": ElementLineHermiteReference,
-                                            "phi": ElementLineP2, "u": ElementLineP2}
+                                            "phi": ElementLineP2, "u": ElementLineP2, "v_s": ElementLineP2,
+                                            "w_s": ElementLineP2}
 #: what each field is called in results
-FIELD_KINDS: dict[str, str] = {"v": "edge", "w": "flap", "phi": "torsion", "u": "axial"}
+FIELD_KINDS: dict[str, str] = {"v": "edge", "w": "flap", "phi": "torsion", "u": "axial", "v_s": "edge",
+                               "w_s": "flap"}
+
+
+class ElementBeam(ElementComposite):
+    """scikit-fem's composite element (same space, same DOFs), each local function evaluated on its own field's
+    element only. scikit-fem's ``ElementComposite.gbasis`` evaluates every field's element for every local function
+    and keeps zeros of all but one, a cost that grows with the square of the number of fields; here the other
+    fields' zeros are made once per field and quadrature shape."""
+
+    def __init__(self, *elems: Element) -> None:
+        super().__init__(*elems)
+        self._owners: dict[int, tuple[int, int]] = {}
+        self._zeros: dict[tuple[int, tuple[int, ...]], DiscreteField] = {}
+
+    def gbasis(self, mapping: object, X: NDArray, i: int, tind: NDArray | None = None) -> tuple[DiscreteField, ...]:
+        if i not in self._owners:
+            self._owners[i] = self._deduce_bfun(i)
+        n, index = self._owners[i]
+        own = self.elems[n].gbasis(mapping, X, index, tind)[0]
+
+        def zero(k: int) -> DiscreteField:
+            key = (k, np.shape(own))
+            if key not in self._zeros:
+                self._zeros[key] = self.elems[k].gbasis(mapping, X, 0, tind)[0].zeros()
+            return self._zeros[key]
+
+        return tuple(own if k == n else zero(k) for k in range(len(self.elems)))
 
 
 def beam_element(fields: tuple[str, ...]) -> ElementComposite:
     """Composite element with one sub-element per field, in the order given."""
-    return ElementComposite(*(FIELD_ELEMENTS[name]() for name in fields))
+    return ElementBeam(*(FIELD_ELEMENTS[name]() for name in fields))
 
 
 @dataclass(frozen=True)
 class SectionMotion:
     """Displacements and their span derivatives of one basis function at the quadrature points.
 
-    Arrays have shape (elements, quadrature points); absent fields are zero.
+    ``v``, ``w`` are the bending deflections (their slopes turn the section), ``v_s``, ``w_s`` the shear
+    deflections (their slopes are the transverse shear strains). Arrays have shape (elements, quadrature points);
+    absent fields are zero.
     """
 
     u: NDArray
@@ -77,6 +113,10 @@ class SectionMotion:
     phi_x: NDArray
     v_xx: NDArray
     w_xx: NDArray
+    v_s: NDArray
+    w_s: NDArray
+    v_s_x: NDArray
+    w_s_x: NDArray
 
     @property
     def rotation(self) -> NDArray:
@@ -85,8 +125,9 @@ class SectionMotion:
 
     @property
     def kinematic(self) -> NDArray:
-        """Section kinematic vector d = (u, v, w, phi, -w', v'): dr1(s) = d[:3] + d[3:] x s, shape (6, ...)."""
-        return np.stack([self.u, self.v, self.w, self.phi, -self.w_x, self.v_x])
+        """Section kinematic vector d = (u, v + v_s, w + w_s, phi, -w', v'): dr1(s) = d[:3] + d[3:] x s, shape
+        (6, ...)."""
+        return np.stack([self.u, self.v + self.v_s, self.w + self.w_s, self.phi, -self.w_x, self.v_x])
 
     @property
     def curvatures(self) -> NDArray:
@@ -97,6 +138,12 @@ class SectionMotion:
     def extension_curvatures(self) -> NDArray:
         """(u', v'', w''), shape (3, ...)."""
         return np.stack([self.u_x, self.v_xx, self.w_xx])
+
+    @property
+    def strains(self) -> NDArray:
+        """Generalised strains in the blade frame (u', gamma_y, gamma_z, phi', v'', w''), shape (6, ...): the
+        transverse shear strains ``gamma = (v + v_s)' - v' = v_s'`` (and ``w_s'``)."""
+        return np.stack([self.u_x, self.v_s_x, self.w_s_x, self.phi_x, self.v_xx, self.w_xx])
 
 
 def _derivative(field: DiscreteField, order: int) -> NDArray:
@@ -119,7 +166,8 @@ def basis_functions(fields: tuple[str, ...], basis: CellBasis) -> SectionMotion:
 
     return SectionMotion(u=stacked("u", 0), v=stacked("v", 0), w=stacked("w", 0), phi=stacked("phi", 0),
                          u_x=stacked("u", 1), v_x=stacked("v", 1), w_x=stacked("w", 1), phi_x=stacked("phi", 1),
-                         v_xx=stacked("v", 2), w_xx=stacked("w", 2))
+                         v_xx=stacked("v", 2), w_xx=stacked("w", 2), v_s=stacked("v_s", 0), w_s=stacked("w_s", 0),
+                         v_s_x=stacked("v_s", 1), w_s_x=stacked("w_s", 1))
 
 
 def _map(motion: SectionMotion, function: Callable[[NDArray], NDArray]) -> SectionMotion:
@@ -133,9 +181,12 @@ def pair_motions(motion: SectionMotion) -> tuple[SectionMotion, SectionMotion]:
     return _map(motion, lambda a: a[:, None]), _map(motion, lambda a: a[None, :])
 
 
-def interpolated_motion(functions: SectionMotion, element_dofs: NDArray, vectors: NDArray) -> SectionMotion:
-    """The motion of DOF vectors (columns over all DOFs) at the quadrature points, arrays of shape (vectors,
-    elements, points), from the basis ``functions`` (:func:`basis_functions`) and each element's DOFs: curvatures
-    are formed point by point from the element's nodal values and slopes."""
+def interpolated_components(functions: SectionMotion, element_dofs: NDArray, vectors: NDArray,
+                            names: tuple[str, ...]) -> NDArray:
+    """The motion components ``names`` (fields of :class:`SectionMotion`) of DOF vectors (columns over all DOFs) at
+    the quadrature points, shape (components, vectors, elements, points), from the basis ``functions``
+    (:func:`basis_functions`) and each element's DOFs: curvatures are formed point by point from the element's
+    nodal values and slopes."""
     local = np.asarray(vectors)[element_dofs].transpose(1, 0, 2)       # (elements, local, vectors)
-    return _map(functions, lambda a: np.matmul(a.transpose(1, 2, 0), local).transpose(2, 0, 1))
+    return np.stack([np.matmul(getattr(functions, name).transpose(1, 2, 0), local).transpose(2, 0, 1)
+                     for name in names])

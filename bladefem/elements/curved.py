@@ -7,7 +7,14 @@ displacements ``(u, v, w)`` and the twist ``phi`` in the local frame, the linear
 rotation: ``Theta = (phi, -(w' - K2 u), v' + K3 u)``; then the extension is ``u' + K2 w - K3 v``, the twist rate
 ``phi' + K2 Theta_3 - K3 Theta_2`` and the bending curvatures ``Theta_2' + K3 phi`` and ``Theta_3' - K2 phi``.
 A rigid motion of the curved beam strains nothing in these measures.
+
+A shear-flexible beam (:mod:`bladefem.elements.beam`) deflects by ``v + v_s`` and ``w + w_s`` and its section
+turns with the bending part: ``Theta = (phi, -(w' - K2 u), v' + K3 u)``, the rotation the Euler-Bernoulli beam
+would have under ``v`` and ``w`` alone. Its transverse shear strains ``gamma_2 = (v + v_s)' + K3 u - Theta_3`` and
+``gamma_3 = (w + w_s)' - K2 u + Theta_2`` are then ``v_s'`` and ``w_s'`` as on a straight axis, the twist rate and
+curvatures are the ones above, and the extension takes the whole deflection: ``u' + K2 (w + w_s) - K3 (v + v_s)``.
 """
+
 
 from __future__ import annotations
 
@@ -32,8 +39,8 @@ def linear_projection(weights: NDArray, position: NDArray) -> NDArray:
 def curved_motion(motion: SectionMotion, curvature: NDArray, projection: NDArray | None = None) -> SectionMotion:
     """The motion's strain measures on a curved axis, in the straight beam's slots: ``u_x`` the extension,
     ``-w_x`` and ``v_x`` the section's rotations ``Theta_2``, ``Theta_3``, ``phi_x`` the twist rate, ``v_xx`` and
-    ``w_xx`` the curvatures ``kappa_3`` and ``-kappa_2``; so every weak-form term of the straight beam holds as it
-    is. ``curvature``: ``(K2, K3, K2', K3')`` at the quadrature points, shape (4, elements, points).
+    ``w_xx`` the curvatures ``kappa_3`` and ``-kappa_2``, ``v_s_x`` and ``w_s_x`` the transverse shear strains (unchanged);
+    so every weak-form term of the straight beam holds as it is. ``curvature``: ``(K2, K3, K2', K3')`` at the quadrature points, shape (4, elements, points).
 
     ``projection`` (:func:`linear_projection`) takes the curvature's share of the extension, ``K2 w - K3 v``, onto
     the space of ``u'`` (linear in each element), so that an element can bend without stretching: evaluated as it
@@ -43,7 +50,7 @@ def curved_motion(motion: SectionMotion, curvature: NDArray, projection: NDArray
     m = motion
     v_x = m.v_x + k3 * m.u
     w_x = m.w_x - k2 * m.u
-    stretch = k2 * m.w - k3 * m.v
+    stretch = k2 * (m.w + m.w_s) - k3 * (m.v + m.v_s)
     if projection is not None:
         stretch = np.einsum("eqp,...ep->...eq", projection, stretch)
     return replace(m, u_x=m.u_x + stretch,

@@ -37,7 +37,7 @@ def frequency_errors(matrices: BladeMatrices, values: NDArray, vectors: NDArray)
         kappa4 = np.maximum(kappa4, (omega2 * (mass / sections.at(middle, "axial_stiffness"))[:, None]) ** 2)
     full = np.zeros((dofs.size, vectors.shape[1]))
     full[matrices.free] = vectors
-    squared = sum(full[dofs.value[name]] ** 2 for name in BENDING_FIELDS if name in dofs.value)
+    squared = sum(dofs.displacement(full, name) ** 2 for name in BENDING_FIELDS if name in dofs.value)
     share = (mass * h)[:, None] * 0.5 * (squared[1:] + squared[:-1])
     share = share / np.maximum(share.sum(axis=0), 1e-300)
     return np.sum(share * kappa4 * h[:, None] ** 4, axis=0) / HERMITE_FREQUENCY_ERROR

@@ -57,6 +57,8 @@ def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> Opera
         local[0] = np.interp(at, dofs.nodes, q[dofs.value["u"]])
     for k, name in ((1, "v"), (2, "w")):
         local[k] = CubicHermiteSpline(dofs.nodes, q[dofs.value[name]], q[dofs.slope[name]])(at)
+        if f"{name}_s" in dofs.value:                 # a shear-flexible beam's axis moves by its shear part too
+            local[k] += np.interp(at, dofs.nodes, q[dofs.value[f"{name}_s"]])
     frame = blade.axis_frame(at)
     displacement = local if frame is None else np.einsum("ij...,j...->i...", frame.rotation, local)
     twist = np.interp(at, dofs.nodes, q[dofs.value["phi"]]) if "phi" in dofs.value else np.zeros(len(at))

@@ -28,7 +28,6 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ..assembly import BladeMatrices
-from ..elements import FIELD_KINDS
 from ..errors import InputError
 from .results import KINDS, ModalResult, Mode, dominant_kind
 from .solve import DENSE_LIMIT, mode_shape, rpm_to_rad_s
@@ -263,10 +262,10 @@ def normalised(problem: QuadraticProblem, vectors: NDArray) -> NDArray:
 def complex_energy_fractions(matrices: BladeMatrices, vectors: NDArray) -> list[dict[str, float]]:
     """Kinetic-energy share x_f^H M_ff x_f / sum of each field in each complex mode (diagonal field blocks)."""
     shares = {}
-    for name, local in matrices.free_field_dofs.items():
+    for kind, local in matrices.free_kind_dofs.items():
         part = vectors[local]
-        block = matrices.field_mass_blocks[name]
-        shares[FIELD_KINDS[name]] = np.real(np.einsum("ij,ij->j", part.conj(), block @ part))
+        block = matrices.kind_mass_blocks[kind]
+        shares[kind] = np.real(np.einsum("ij,ij->j", part.conj(), block @ part))
     total = sum(shares.values())
     return [{kind: float(shares[kind][j] / total[j]) if kind in shares else 0.0 for kind in KINDS}
             for j in range(vectors.shape[1])]

@@ -43,9 +43,10 @@ def hermite_interpolate(nodes: NDArray, values: NDArray, slopes: NDArray, x: NDA
 class ModeShape:
     """A mode shape at the mesh nodes (every section station is a node), blade frame.
 
-    ``flap`` is the out-of-plane deflection w (m per unit modal amplitude), ``edge`` the in-plane deflection v,
-    their slopes (rad), ``twist`` the elastic twist phi (rad) and ``axial`` the axial displacement u (m); fields
-    that are rigid in the model are zero. The shape is scaled so that its largest displacement component
+    ``flap`` is the out-of-plane deflection w (m per unit modal amplitude), ``edge`` the in-plane deflection v (a
+    shear-flexible beam: bending plus shear deflection), their slopes (rad: the section's rotation, which a
+    shear-flexible beam's deflection slope exceeds by the shear strain), ``twist`` the elastic twist phi (rad) and
+    ``axial`` the axial displacement u (m); fields that are rigid in the model are zero. The shape is scaled so that its largest displacement component
     (flap, edge or axial, or twist if torsion dominates) is 1 with positive sign.
     """
 

@@ -10,7 +10,6 @@ from numpy.typing import NDArray
 
 from ..assembly import BladeMatrices
 from ..errors import InputError
-from ..elements import FIELD_KINDS
 from .results import (
     KINDS,
     ModalResult,
@@ -176,9 +175,9 @@ def relative_residuals(K: sp.spmatrix, M: sp.spmatrix, values: NDArray, vectors:
 def energy_fractions(matrices: BladeMatrices, vectors: NDArray) -> list[dict[str, float]]:
     """Kinetic-energy share of each field (flap, edge, torsion, axial) in each mode (diagonal field blocks)."""
     shares = {}
-    for name, local in matrices.free_field_dofs.items():
+    for kind, local in matrices.free_kind_dofs.items():
         part = vectors[local]
-        shares[FIELD_KINDS[name]] = np.einsum("ij,ij->j", part, matrices.field_mass_blocks[name] @ part)
+        shares[kind] = np.einsum("ij,ij->j", part, matrices.kind_mass_blocks[kind] @ part)
     total = sum(shares.values())
     return [{kind: float(shares[kind][j] / total[j]) if kind in shares else 0.0 for kind in KINDS}
             for j in range(vectors.shape[1])]
@@ -195,7 +194,10 @@ def mode_shapes(matrices: BladeMatrices, vectors: NDArray, kinds: list[str]) -> 
     def take(table: dict[str, NDArray], name: str) -> NDArray:
         return full[table[name]] if name in table else zero
 
-    shape = {"flap": take(dofs.value, "w"), "flap_slope": take(dofs.slope, "w"), "edge": take(dofs.value, "v"),
+    def deflection(name: str) -> NDArray:
+        return dofs.displacement(full, name) if name in dofs.value else zero
+
+    shape = {"flap": deflection("w"), "flap_slope": take(dofs.slope, "w"), "edge": deflection("v"),
              "edge_slope": take(dofs.slope, "v"), "twist": take(dofs.value, "phi"), "axial": take(dofs.value, "u")}
     translations = np.concatenate([shape["flap"], shape["edge"], shape["axial"]])
     torsion = np.array([kind == "torsion" for kind in kinds])

@@ -70,6 +70,9 @@ def model_terms(blade: Blade, terms: Sequence[int]) -> tuple[Terms, tuple[str, .
     if blade.sections.torsion_stiffness is None and torsion:
         torsion = 0
         notes.append("no torsion stiffness (GJ) in the input: torsion is rigid, its terms are dropped")
+    if blade.sections.full is not None and blade.sections.full.shear_flexible:
+        notes.append("Euler-Bernoulli: the transverse shear is condensed (the finite elements keep it unless "
+                     "--sections condensed)")
     return Terms(flap, edge, torsion), tuple(notes)
 
 

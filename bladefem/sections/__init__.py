@@ -8,6 +8,7 @@ from .moments import (
            bending_stiffness,
            extension_bending_stiffness,
            mass_moments,
+           shear_flexible_stiffness,
            torsion_stiffness,
            total_angle,
            twist_coupling_stiffness,
@@ -16,5 +17,6 @@ from .table import SectionTable, uniform_sections
 
 __all__ = ["ROOTS", "AxisFrame", "Blade", "FullSections", "MassMoments", "ReferenceAxis", "Root", "SectionTable",
            "TipMass", "bending_stiffness", "extension_bending_stiffness", "full_sections_from_table", "mass_matrix",
-           "mass_moments", "stiffness_matrix", "tip_mass_at_section", "torsion_stiffness", "total_angle",
+           "mass_moments", "shear_flexible_stiffness", "stiffness_matrix", "tip_mass_at_section", "torsion_stiffness",
+           "total_angle",
            "twist_coupling_stiffness", "uniform_sections"]

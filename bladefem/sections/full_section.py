@@ -20,12 +20,13 @@ This is BeamDyn's section model (docs/source/user/beamdyn/input_files.rst, "Dist
 toward the suction side (downwind) and ``Y`` toward the trailing edge; the mapping lives in
 :mod:`bladefem.builders.section_axes`.
 
-The finite elements keep Euler-Bernoulli kinematics, so the transverse shear is condensed out: the shear forces of
-a slender beam are small against what its shear-coupling terms would produce, so they are set free (zero) and the
-shear strains follow the other strains. The classical stiffness is the Schur complement of the shear block,
+Two beams carry these sections. Shear-flexible (:attr:`FullSections.shear_flexible`, what the six-by-six readers
+give by default): the finite elements add the transverse-shear deflections (a Timoshenko beam) and take the whole
+6x6. Condensed: Euler-Bernoulli kinematics, the shear forces set free (zero) and the shear strains following the
+other strains, exact in the slender limit; the classical stiffness is the Schur complement of the shear block,
 ``C = K_cc - K_cs K_ss^-1 K_sc`` over ``(epsilon, kappa_x, kappa_eta, kappa_zeta)``: the inverse of the classical
-block of the section compliance. Every other coupling stays: tension-centre offsets (extension-bending), principal
-axes turned from the chord (bending-bending), extension-twist and bend-twist.
+block of the section compliance. Every other coupling stays in both: tension-centre offsets (extension-bending),
+principal axes turned from the chord (bending-bending), extension-twist and bend-twist.
 
 Between stations every matrix entry is linear in the span position (as in BeamDyn); two stations at one position
 mark a step (the value above it is taken there).
@@ -179,6 +180,8 @@ class FullSections:
     twist : structural twist of the section frame, rad (positive turns the leading edge upwind, like pitch to
         feather)
     chord, pitch_axis : planform geometry for drawing (see :class:`~bladefem.sections.table.SectionTable`)
+    shear_flexible : the FE keeps the transverse shear (a Timoshenko beam with the whole 6x6); False condenses it
+        (Euler-Bernoulli with every other coupling, :func:`condensed`)
     """
 
     span: NDArray[np.float64]
@@ -188,6 +191,7 @@ class FullSections:
     chord: NDArray[np.float64] | None = None
     pitch_axis: NDArray[np.float64] | None = None
     source: str = field(default="", compare=False)
+    shear_flexible: bool = False
 
     def __post_init__(self) -> None:
         span = np.asarray(self.span, dtype=float)
@@ -272,6 +276,22 @@ class FullSections:
                       [zero, zero, c, -s]])
         return np.einsum("ai...,ab...,bj...->ij...", T, self.classical(x), T)
 
+    def blade_section_stiffness(self, x: NDArray, pitch: float = 0.0) -> NDArray:
+        """The whole 6x6 (6, 6, ...) for the blade-frame strains ``(u', gamma_y, gamma_z, phi', v'', w'')`` of a
+        shear-flexible beam: the shear strains turn like the chord axes, ``gamma_eta = cos gamma_y - sin gamma_z``,
+        ``gamma_zeta = sin gamma_y + cos gamma_z``, the curvatures as in :meth:`blade_stiffness`: ``T^T K T``."""
+        theta = np.interp(x, self.span, self.twist) + pitch
+        c, s = np.cos(theta), np.sin(theta)
+        one, zero = np.ones_like(c), np.zeros_like(c)
+        T = np.array([[one, zero, zero, zero, zero, zero], [zero, c, -s, zero, zero, zero],
+                      [zero, s, c, zero, zero, zero], [zero, zero, zero, one, zero, zero],
+                      [zero, zero, zero, zero, -s, -c], [zero, zero, zero, zero, c, -s]])
+        return np.einsum("ai...,ab...,bj...->ij...", T, self.stiffness_at(x), T)
+
+    def with_shear(self, flexible: bool) -> FullSections:
+        """A copy whose FE beam is shear-flexible (``True``) or has the shear condensed (``False``)."""
+        return replace(self, shear_flexible=flexible)
+
     def mass_moments(self, x: NDArray, pitch: float = 0.0) -> MassMoments:
         """Mass per length, first and second moments about the reference axis in the blade frame at ``x``."""
         from .moments import MassMoments
@@ -327,14 +347,16 @@ class FullSections:
     def scaled(self, mass: float = 1.0, stiffness: float = 1.0) -> FullSections:
         """A copy with the mass and stiffness matrices multiplied by the given factors."""
         return FullSections(span=self.span, stiffness=self.stiffness * stiffness, mass=self.mass * mass,
-                            twist=self.twist, chord=self.chord, pitch_axis=self.pitch_axis, source=self.source)
+                            twist=self.twist, chord=self.chord, pitch_axis=self.pitch_axis, source=self.source,
+                            shear_flexible=self.shear_flexible)
 
 
 def full_sections_from_table(table: SectionTable, shear_stiffness: float | NDArray | None = None) -> FullSections:
     """The six-by-six sections of a column table (needs EA and GJ): EA and the flap and edge EI about the tension
     centre on the chord, GJ, the centre of mass on the chord, the inertias about it. A column table has no shear
-    stiffness; nothing couples to it, so the condensed section does not depend on it: ``shear_stiffness`` (N)
-    defaults to EA. Between stations the columns' own interpolation (offsets linear, inertias per
+    stiffness; nothing couples to it, so the condensed section (the beam these sections make: not shear-flexible)
+    does not depend on it: ``shear_stiffness`` (N) defaults to EA. Between stations the columns' own
+    interpolation (offsets linear, inertias per
     :attr:`~bladefem.sections.table.SectionTable.inertia_per_mass`) and the matrices' (entries linear) agree where
     the offsets are constant and the inertias are interpolated per length."""
     if table.axial_stiffness is None or table.torsion_stiffness is None:

@@ -119,3 +119,12 @@ def twist_coupling_stiffness(sections: SectionTable, x: NDArray, pitch: float = 
         return None
     D = sections.full.blade_stiffness(x, pitch)[TWIST, list(EXTENSION_BENDING)]
     return D if np.any(D != 0) else None
+
+
+def shear_flexible_stiffness(sections: SectionTable, x: NDArray, pitch: float = 0.0) -> NDArray | None:
+    """The whole six-by-six stiffness on the blade-frame strains (u', gamma_y, gamma_z, phi', v'', w''), shape
+    (6, 6, ...), for sections the FE takes shear-flexible (:attr:`~bladefem.sections.FullSections.shear_flexible`);
+    None for every other table (the beam is Euler-Bernoulli)."""
+    if sections.full is None or not sections.full.shear_flexible:
+        return None
+    return sections.full.blade_section_stiffness(x, pitch)
