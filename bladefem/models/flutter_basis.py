@@ -19,7 +19,7 @@ from skfem import Basis
 
 from ..assembly import BladeMatrices, span_mesh
 from ..assembly.blade import QUADRATURE_ORDER
-from ..elements import beam_element, interpolated_motion
+from ..elements import SectionMotion, beam_element, interpolated_components
 from ..modal.solve import eigen_pairs
 from .flutter_aero import FlutterSections, theodorsen
 
@@ -45,7 +45,9 @@ class SweepBasis:
         full = np.zeros((matrices.dofs.size, Phi.shape[1]))
         full[matrices.free] = Phi
         quadrature = matrices.quadrature
-        motion = interpolated_motion(quadrature.functions, quadrature.element_dofs, full).kinematic
+        names = tuple(SectionMotion.__dataclass_fields__)
+        values = interpolated_components(quadrature.functions, quadrature.element_dofs, full, names)
+        motion = SectionMotion(**dict(zip(names, values))).kinematic
         self.motion = np.ascontiguousarray(motion.reshape(6, Phi.shape[1], -1).transpose(2, 0, 1))  # (q, 6, n)
         self.weights = quadrature.weights.ravel()
         basis = Basis(span_mesh(matrices.dofs.nodes), beam_element(matrices.dofs.fields), intorder=QUADRATURE_ORDER)
