@@ -27,7 +27,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from make_aeroturbine import read_out  # noqa: E402  (one reader of OpenFAST's text outputs)
 
 HERE = Path(__file__).resolve().parent
 CASE = HERE.parents[2] / "cases" / "nrel5mw"
@@ -132,14 +134,6 @@ def run(executable: str, runs: Path) -> None:
             for label, value in {**COMMON.get(file, {}), **labels}.items():
                 set_value(folder / file, label, value)
         subprocess.run([executable, FST], cwd=folder, check=True, stdout=subprocess.DEVNULL)
-
-
-def read_out(path: Path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
-    lines = path.read_text().splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith("Time"))
-    names, units = lines[start].split(), lines[start + 1].split()
-    data = np.loadtxt(lines[start + 2:])
-    return {n: data[:, j] for j, n in enumerate(names)}, {n: u.strip("()") for n, u in zip(names, units)}
 
 
 def statistics(runs: Path) -> dict:
