@@ -134,8 +134,7 @@ def onset_line(onset: dict | None) -> str:
 
 
 def iea15(folder: Path) -> dict:
-    """The IEA-15MW sweep on a complete copy of the stored deck (tests/deck_copies.py: the stored polars stand in
-    for the 47 not kept)."""
+    """The IEA-15MW sweep on a complete copy of the stored deck (tests/deck_copies.py)."""
     sys.path.insert(0, str(ROOT / "tests"))
     from deck_copies import deck_copy
 
@@ -207,10 +206,9 @@ aerodynamics used and were not available to check here: the tests hold the onset
 {IEA15.format(deck="DECK")}
 ```
 
-`DECK` is a copy of the stored IEA-15-240-RWT deck (tests/data/iea15) in which the 3 stored airfoil polars stand
-in for the 47 that are not kept (tests/deck_copies.py): the aerodynamics are therefore not exactly the IEA-15MW's,
-and these figures show how its modes behave rather than its certified flutter speed. The BeamDyn sections are the
-IEA-15MW's own (six-by-six, with every coupling). AeroDyn's unsteady airfoil model (`AFAeroMod` 2) and tower
+`DECK` is a copy of the stored IEA-15-240-RWT deck (tests/data/iea15, all 50 airfoil polars; tests/deck_copies.py).
+The BeamDyn sections are the IEA-15MW's own (six-by-six, with every coupling, transverse shear kept, on the
+prebent reference axis). No published flutter speed of this blade was found to compare with. AeroDyn's unsteady airfoil model (`AFAeroMod` 2) and tower
 settings are named and replaced (Theodorsen's theory, the blade alone).
 
 First onset: {onset_line(i)}: {i['rpm'] / IEA15_RATED_RPM:.2f} times the rated {IEA15_RATED_RPM} rpm. The
