@@ -219,6 +219,13 @@ from {classical(fifteen)[0]:.1f} rpm ({classical(fifteen)[0] / IEA15_RATED_RPM:.
 
 ![IEA-15MW](flutter-iea15.png)
 
+## Stall-induced vibration at standstill
+
+A parked or idling blade is not safe from negative damping either: in stall, the polars' negative lift slopes feed
+energy into the flap and edge modes at large yaw misalignments. That analysis (`bladefem standstill`, the damping of
+each mode against yaw and azimuth, the NREL 5MW and IEA-15MW maps, the comparison with OpenFAST's linearization)
+has its own page: [standstill.md](standstill.md).
+
 ## Command line
 
 ```text
