@@ -65,3 +65,14 @@ def install() -> None:
         return
     if not any(getattr(locator, "bladefem", False) for locator in classes):
         classes[:0] = [_whole(base) for base in bases]
+
+
+def cached_njit():
+    """numba's ``njit`` with these locators installed (kernels cached, stale when any kernel source changes), or
+    None without numba: the one place the compiled modules take their compiler from."""
+    try:
+        from numba import njit
+    except ImportError:                                    # pragma: no cover - numba is a dependency
+        return None
+    install()
+    return njit

@@ -17,7 +17,7 @@ pa = pytest.importorskip("pyarrow")
 
 from bladefem.batch import ResultStore, format_summary, read_plan, run_batch, run_case, summarize  # noqa: E402
 from bladefem.batch.cases import apply_inputs  # noqa: E402
-from bladefem.batch.plan import correlated_normals  # noqa: E402
+from bladefem.batch.samples import correlated_normals  # noqa: E402
 from bladefem.batch.runner import WORKER_TRIM_THRESHOLD  # noqa: E402
 from bladefem.cli import main  # noqa: E402
 from bladefem.builders.case import read_case  # noqa: E402

@@ -11,15 +11,9 @@ from __future__ import annotations
 
 import os
 
-try:
-    from numba import njit
-except ImportError:                                    # pragma: no cover - numba is optional
-    njit = None
+from ..numba_cache import cached_njit
 
-if njit is not None:
-    from ..numba_cache import install
-
-    install()                                          # cached kernels stale when any kernel source changes
+njit = cached_njit()
 
 #: True when the kernels of :mod:`bladefem.aero` are compiled.
 COMPILED = njit is not None and not os.environ.get("BLADEFEM_NO_NUMBA")

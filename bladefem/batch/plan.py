@@ -18,13 +18,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 
 from ..errors import InputError
 from ..files import check_input
 from ..formats.yamlnodes import load_yaml
 from .bundle import Bundle, bundle_of
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
+from .samples import sample_cases
 from .standstill import PROPERTIES as STANDSTILL_PROPERTIES
 from .standstill import standstill_fields
 
@@ -315,41 +315,6 @@ def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
     return bundle_of(read, named)
 
 
-def correlated_normals(rng: np.random.Generator, stations: np.ndarray, length: float | None) -> np.ndarray:
-    """Standard normal values at the station positions (fractions of the span): one shared value when
-    ``length`` is None (fully correlated), else a Gaussian field with correlation exp(-|dx| / length)."""
-    if length is None:
-        return np.full(len(stations), rng.standard_normal())
-    covariance = np.exp(-np.abs(stations[:, None] - stations[None, :]) / length)
-    return np.linalg.cholesky(covariance + 1e-12 * np.eye(len(stations))) @ rng.standard_normal(len(stations))
-
-
-def factors(spec: dict[str, Any], z: np.ndarray) -> np.ndarray:
-    """Multiplicative factors from standard normal values ``z`` for one property's distribution."""
-    kind = spec["distribution"]
-    if kind == "normal":
-        return 1.0 + spec.get("std_percent", 5.0) / 100.0 * z
-    if kind == "lognormal":
-        return np.exp(spec.get("sigma", 0.05) * z)
-    from scipy.special import ndtr               # uniform: the normal's probability, mapped to the interval
-    return 1.0 + spec.get("half_width_percent", 5.0) / 100.0 * (2.0 * ndtr(z) - 1.0)
-
-
-def _sample_cases(samples: dict[str, Any], base: Path, stations: np.ndarray) -> list[dict[str, Any]]:
-    rng = np.random.default_rng(int(samples["seed"]))
-    cases = []
-    for _ in range(samples["count"]):
-        inputs: dict[str, Any] = {}
-        for name, spec in samples["properties"].items():
-            field_ = factors(spec, correlated_normals(rng, stations, spec.get("correlation_length")))
-            if np.any(field_ <= 0):
-                raise InputError(f"a sampled factor of '{name}' is not positive: narrow the distribution",
-                                 file=str(base), field=f"samples.properties.{name}")
-            inputs[f"{name}_scale"] = field_ if spec.get("correlation_length") else float(field_[0])
-        cases.append(inputs)
-    return cases
-
-
 def read_plan(path: str | Path) -> Plan:
     """Read, validate and expand a plan; :class:`InputError` names the file, line and field of a problem."""
     from .cases import station_fractions
@@ -384,7 +349,7 @@ def read_plan(path: str | Path) -> Plan:
             names = list(data["grid"])
             variants = [dict(zip(names, values)) for values in itertools.product(*data["grid"].values())]
         else:
-            variants = _sample_cases(data["samples"], path, station_fractions(base, main))
+            variants = sample_cases(data["samples"], path, station_fractions(base, main))
     if len(variants) > MAX_CASES:
         raise InputError(f"{len(variants)} cases: at most {MAX_CASES}", file=str(path), field="grid")
     varied = tuple(variants[0])
@@ -402,4 +367,4 @@ def read_plan(path: str | Path) -> Plan:
                 bundles={bundle.digest: bundle for bundle in bundles.values()})
 
 
-__all__ = ["ANALYSES", "TURBINE_ANALYSES", "Analysis", "PLAN_SCHEMA", "Plan", "correlated_normals", "factors", "read_plan"]
+__all__ = ["ANALYSES", "TURBINE_ANALYSES", "Analysis", "PLAN_SCHEMA", "Plan", "read_plan"]

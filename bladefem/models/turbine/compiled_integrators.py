@@ -16,15 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-try:
-    from numba import njit
-except ImportError:                                    # pragma: no cover - numba is optional
-    njit = None
+from ...numba_cache import cached_njit
 
-if njit is not None:
-    from ...numba_cache import install
-
-    install()                                          # cached kernels stale when any kernel source changes
+njit = cached_njit()
 
 if njit is not None:
     from .compiled_kernels import store_row

@@ -16,15 +16,9 @@ import math
 
 import numpy as np
 
-try:
-    from numba import njit
-except ImportError:                                    # pragma: no cover - numba is optional
-    njit = None
+from ...numba_cache import cached_njit
 
-if njit is not None:
-    from ...numba_cache import install
-
-    install()                                          # cached kernels stale when any kernel source changes
+njit = cached_njit()
 
 #: columns of the rotor summary a call leaves in the state (``state[-1]``)
 HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")

@@ -6,15 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 
-try:
-    from numba import njit
-except ImportError:                                    # pragma: no cover - numba is optional
-    njit = None
+from ...numba_cache import cached_njit
 
-if njit is not None:
-    from ...numba_cache import install
-
-    install()                                          # cached kernels stale when any kernel source changes
+njit = cached_njit()
 
 #: columns of :func:`load_outputs` (SI): blade root moments (N m), low-speed-shaft thrust (N) and torque (N m),
 #: generator torque (N m), the aerodynamic rotor summary (compiled_loads.HUB), aerodynamic and damping power (W)

@@ -6,19 +6,12 @@ from __future__ import annotations
 
 import numpy as np
 
-try:
-    from numba import njit
-except ImportError:                                    # pragma: no cover - numba is optional
-    njit = None
+from ...numba_cache import cached_njit
 
-if njit is not None:
-    from ...numba_cache import install
-
-    install()                                          # cached kernels stale when any kernel source changes
-    from .compiled_kernels import solve_spd
-
+njit = cached_njit()
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
+    from .compiled_kernels import solve_spd
 
     @njit(cache=True)
     def free_accelerations(M, f, index):
