@@ -144,7 +144,12 @@ def model_fields(blade: Blade) -> tuple[str, ...]:
 
 def elastic_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
     """K0's terms: the whole six-by-six section of a shear-flexible beam; otherwise bending (with extension when the
-    axial field is present), torsion, and the twist couplings of six-by-six sections where they have any."""
+    axial field is present), torsion, and the twist couplings of six-by-six sections where they have any; and the
+    weight's geometric stiffness when gravity is on."""
+    return _section_terms(fields, parameters) + gravity_terms(fields, parameters)
+
+
+def _section_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
     if parameters.section is not None:
         return [terms.section_stiffness]
     parts: list[Term] = [terms.extension_bending_stiffness if "u" in fields else terms.bending_stiffness]
@@ -153,6 +158,15 @@ def elastic_terms(fields: tuple[str, ...], parameters: SectionParameters) -> lis
     if parameters.twist_coupling is not None:
         parts.append(terms.twist_coupling_stiffness)
     return parts
+
+
+def gravity_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
+    """The weight's geometric stiffness (in K0, with the tension on the shear slopes of a shear-flexible beam), or
+    nothing without gravity."""
+    if parameters.gravity_tension is None:
+        return []
+    return [terms.gravity_axial_force_stiffness] + ([terms.gravity_axial_force_shear_stiffness]
+                                                    if SHEAR_FIELDS[0] in fields else [])
 
 
 def centrifugal_terms(fields: tuple[str, ...]) -> tuple[Term, ...]:

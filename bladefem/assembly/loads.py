@@ -1,5 +1,6 @@
 """The centrifugal load on the blade as a load vector, per Omega^2: what deflects a blade at its operating point
-(a prebent blade's centrifugal load bends it back toward the rotor plane; an offset centre of mass twists it)."""
+(a prebent blade's centrifugal load bends it back toward the rotor plane; an offset centre of mass twists it);
+and the blade's weight at an azimuth."""
 
 from __future__ import annotations
 
@@ -58,4 +59,29 @@ def centrifugal_load(quadrature: Quadrature, blade: Blade, dofs: DofMap) -> NDAr
         moment = np.cross(S, Q @ r) + np.einsum("abc,cd,bd->a", EPS, Q, tip.second_moment)
         T = dofs.kinematic_selector(len(dofs.nodes) - 1)
         b = b + T.T @ np.concatenate([Q @ (tip.mass * r + S), moment])
+    return b
+
+
+def gravity_load_density(blade: Blade, x: NDArray) -> NDArray:
+    """The weight per length on the section kinematic vector ``(u, v, w, phi, -w', v')`` in each section's frame,
+    N/m and N, shape (6, ...): the force ``m g`` and its moment ``S x g`` about the axis point."""
+    moments = mass_moments(blade.sections, x, blade.pitch)
+    g = np.broadcast_to(blade.gravity_vector.reshape((3,) + (1,) * np.ndim(x)), (3,) + np.shape(x))
+    frame = blade.axis_frame(np.asarray(x, dtype=float))
+    if frame is not None:
+        g = frame.to_local(g)
+    return np.concatenate([moments.m * g, np.einsum("abc,b...,c...->a...", EPS, moments.S, g)])
+
+
+def gravity_load(quadrature: Quadrature, blade: Blade, dofs: DofMap) -> NDArray:
+    """The weight's load vector over all DOFs, N (sections and tip mass; zeros without gravity)."""
+    if blade.gravity is None:
+        return np.zeros(dofs.size)
+    b = load_vector(quadrature, gravity_load_density(blade, quadrature.points))
+    tip = blade.tip_mass
+    if tip is not None and tip.mass > 0:
+        frame = blade.axis_frame(np.array(blade.length))
+        g = blade.gravity_vector if frame is None else frame.to_local(blade.gravity_vector)
+        T = dofs.kinematic_selector(len(dofs.nodes) - 1)
+        b = b + T.T @ np.concatenate([tip.mass * g, np.cross(tip.mass * tip.offset, g)])
     return b

@@ -102,6 +102,33 @@ def centrifugal_tension(blade: Blade, x: NDArray) -> NDArray:
     return force[0] if frame is None else np.einsum("i...,i...->...", frame.rotation[:, 0], force)
 
 
+def outboard_mass(blade: Blade, x: NDArray) -> NDArray:
+    """The mass outboard of arc length ``x`` (m), kg: the sections' from ``x`` to the tip, piece by piece between
+    stations, and the tip mass."""
+    x = np.asarray(x, dtype=float)
+    stations = blade.sections.span
+
+    def integral(a: NDArray, b: NDArray) -> NDArray:
+        half = 0.5 * (b - a)
+        xi = (0.5 * (a + b))[..., None] + half[..., None] * _GAUSS_X
+        return half * np.sum(mass_moments(blade.sections, xi).m * _GAUSS_W, axis=-1)
+
+    per_interval = integral(stations[:-1], stations[1:])
+    outboard = np.concatenate([np.cumsum(per_interval[::-1])[::-1], [0.0]])
+    k = np.clip(np.searchsorted(stations, x, side="right"), 1, len(stations) - 1)
+    tip = 0.0 if blade.tip_mass is None else blade.tip_mass.mass
+    return integral(x, stations[k]) + outboard[k] + tip
+
+
+def gravity_tension(blade: Blade, x: NDArray) -> NDArray:
+    """Axial force N_g(x) of the blade's weight (N) at arc lengths ``x``: the weight of everything outboard along
+    the axis's tangent, ``t . g M(x)`` (tension on a blade hanging down, compression on one standing up)."""
+    g = blade.gravity_vector
+    frame = blade.axis_frame(np.asarray(x, dtype=float))
+    along = g[0] if frame is None else np.einsum("i...,i->...", frame.rotation[:, 0], g)
+    return along * outboard_mass(blade, x)
+
+
 @dataclass(frozen=True)
 class SectionParameters:
     """Section matrices at quadrature points (trailing axes: elements, points)."""
@@ -118,6 +145,7 @@ class SectionParameters:
     section: NDArray | None = None   # (6, 6, ...) on (u', gamma_y, gamma_z, phi', v'', w'') (shear-flexible sections)
     curvature: NDArray | None = None  # (4, ...) K2, K3 (1/m) and their rates (1/m^2) of a curved reference axis
     static: SectionMotion | None = None  # the deflection under the centrifugal load per Omega^2 (curved axis)
+    gravity_tension: NDArray | None = None  # N_g(x), N: the axial force of the blade's weight (gravity on)
 
     @property
     def strain_stiffness(self) -> NDArray:
@@ -174,6 +202,7 @@ def section_parameters(blade: Blade, x: NDArray) -> SectionParameters:
         twist_coupling=twist_coupling_stiffness(sections, x, blade.pitch) if classical else None,
         curvature=curvature,
         section=section,
+        gravity_tension=None if blade.gravity is None else gravity_tension(blade, x),
     )
 
 

@@ -7,6 +7,8 @@ Stiffness terms proportional to Omega^2 are written per unit Omega^2 (they build
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -68,6 +70,18 @@ def axial_force_shear_stiffness(trial: SectionMotion, test: SectionMotion, p: Se
     and the same in flap, of which this is the part with the shear slopes."""
     return p.tension * (test.v_x * trial.v_s_x + test.v_s_x * trial.v_x + test.w_x * trial.w_s_x
                         + test.w_s_x * trial.w_x)
+
+
+def gravity_axial_force_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """The weight's geometric stiffness: :func:`axial_force_stiffness` with the axial force of gravity
+    (:func:`~bladefem.assembly.parameters.gravity_tension`, N) in place of the centrifugal tension; it is in K0
+    (it does not scale with Omega^2)."""
+    return axial_force_stiffness(trial, test, replace(p, tension=p.gravity_tension))
+
+
+def gravity_axial_force_shear_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """What the shear deflections add to :func:`gravity_axial_force_stiffness` (shear-flexible beams)."""
+    return axial_force_shear_stiffness(trial, test, replace(p, tension=p.gravity_tension))
 
 
 def spin_softening(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
-from ..errors import InputError
+from ..errors import InputError, SolveError
 from . import options
 from .damping import (
     add_aero_options,
@@ -17,6 +18,7 @@ from .damping import (
 )
 from .inputs import (
     add_blade_options,
+    add_gravity_options,
     apply_deck_settings,
     deck_settings,
     is_blade,
@@ -48,6 +50,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                        help="blades: the modes about the blade's deflection under its centrifugal load at --rpm (a "
                             "prebent blade bends back toward the rotor plane; BeamDyn linearizes so), the static "
                             "moments' stiffness included (default: about the undeflected blade)")
+    add_gravity_options(modes)
     add_coriolis_option(modes)
     add_aero_options(modes)
     modes.add_argument("--json", action="store_true", help="print JSON instead of a table")
@@ -76,6 +79,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                           help="write the mode shapes as VTK for ParaView into this folder: each family at every "
                                "speed (a .pvd collection, time = rotor speed in rpm; towers: the tower's modes) and a "
                                "JSON sidecar")
+    add_gravity_options(campbell)
     add_coriolis_option(campbell)
     campbell.add_argument("--json", action="store_true", help="print JSON instead of a table")
     campbell.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -85,6 +89,17 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
 def _check_rpm(rpm: float) -> None:
     if rpm < 0:
         raise InputError(f"must not be negative, got {rpm}", field="--rpm")
+
+
+def refuse_buckled(blade, frequencies_hz, rpm: float) -> None:
+    """A blade whose weight makes a frequency negative (K0 + Omega^2 K2 not positive definite) buckles under it:
+    its modes are no result (exit 1)."""
+    import numpy as np
+
+    if blade.gravity is not None and blade.root == "cantilever" and np.min(frequencies_hz) < 0:
+        raise SolveError(f"the blade buckles under its own weight at {math.degrees(blade.gravity.azimuth):g} deg "
+                         f"azimuth and {rpm:g} rpm (a frequency of {np.min(frequencies_hz):.4g} Hz): no modes about "
+                         "an unstable equilibrium")
 
 
 def compute_modes(blade, args: argparse.Namespace):
@@ -112,6 +127,8 @@ def run_modes(args: argparse.Namespace) -> int:
         reject_for_towers(args)
         from .tower import tower_modes_command
         return tower_modes_command(args, model)
+    if model.gravity is not None and args.method == "galerkin":
+        raise InputError("--gravity is a finite-element model (the Galerkin model has no weight)", field="--gravity")
     if args.terms is not None and args.method != "galerkin":
         raise InputError("--terms sets the Galerkin model's terms; add --method galerkin", field="--terms")
     if args.operating_point:
@@ -121,6 +138,7 @@ def run_modes(args: argparse.Namespace) -> int:
         from ..modal.operating_point import deflected_blade
         model = deflected_blade(model, args.rpm)[0]
     result = compute_modes(model, args)
+    refuse_buckled(model, result.frequencies_hz, args.rpm)
     if args.json:
         from ..outputs.results import dumps, modal_to_dict
         print(dumps({"input": args.input, "structure": "blade", **modal_to_dict(result, args.method)}))
@@ -154,6 +172,8 @@ def run_campbell(args: argparse.Namespace) -> int:
     else:
         matrices = blade_matrices(model, args.elements, args.n_modes, float(rpm.max()))
         result = campbell_sweep(matrices, rpm, args.n_modes, model.notes + matrices.notes, progress)
+    for speed, modes_at in zip(result.rpm, result.results):
+        refuse_buckled(model, modes_at.frequencies_hz, float(speed))
     operating = args.operating_rpm
     if operating is not None and operating[0] == operating[1]:
         operating = operating[0]

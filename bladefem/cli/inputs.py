@@ -65,6 +65,34 @@ def add_sections_option(group: argparse._ActionsContainer) -> None:
                             "default: the curved axis of the file)")
 
 
+def add_gravity_options(parser: argparse.ArgumentParser) -> None:
+    """``--gravity`` and ``--azimuth-deg``: the blade's weight at one rotor azimuth (``modes``, ``campbell``)."""
+    group = parser.add_argument_group("gravity (blades; default off)")
+    group.add_argument("--gravity", action="store_true",
+                       help="the blade's weight (9.80665 m/s^2) at --azimuth-deg: its axial force's geometric "
+                            "stiffness (a blade hanging down stiffens, one standing up softens), and with "
+                            "--operating-point its static deflection; the shaft taken horizontal (tilt not "
+                            "modelled), the azimuth frozen (a rotating blade as it passes that azimuth)")
+    group.add_argument("--azimuth-deg", type=options.finite, metavar="DEG",
+                       help="with --gravity: rotor azimuth of the blade, degrees: 0 pointing up (default), 180 "
+                            "pointing down, 90 horizontal with the leading edge down (the azimuth grows in the "
+                            "direction of rotation)")
+
+
+def with_gravity(args: argparse.Namespace, blade: object) -> object:
+    """``blade`` with its weight at ``--azimuth-deg`` when ``--gravity`` is given."""
+    azimuth = getattr(args, "azimuth_deg", None)
+    if not getattr(args, "gravity", False):
+        if azimuth is not None:
+            raise InputError("--azimuth-deg places the blade's weight: add --gravity", field="--azimuth-deg")
+        return blade
+    from ..sections import Gravity
+    gravity = Gravity(azimuth=math.radians(azimuth or 0.0))
+    note = (f"gravity {gravity.acceleration:g} m/s^2 at {azimuth or 0.0:g} deg azimuth: the weight's axial force "
+            "in the stiffness (and its deflection at the operating point); shaft tilt not modelled")
+    return blade.with_(gravity=gravity, notes=blade.notes + (note,))
+
+
 def add_tower_options(parser: argparse.ArgumentParser) -> None:
     """Options for towers (YAML ``kind: tower``, ElastoDyn tower files, BModes and windIO towers)."""
     group = parser.add_argument_group("towers")
@@ -165,7 +193,7 @@ def read_structure(args: argparse.Namespace) -> object:
         model = read_model(args.input, part, geometry)
     options.check_applicable(args, tower=not isinstance(model, Blade))
     if isinstance(model, Blade):
-        return model.with_(root=args.root) if args.root is not None else model
+        return with_gravity(args, model.with_(root=args.root) if args.root is not None else model)
     if part == "blade":
         raise InputError("this input describes a tower, not a blade", file=str(args.input), field="--part")
     tower = as_tower(model)

@@ -1,5 +1,6 @@
-"""The blade's operating point under its centrifugal load: the static deflection at a rotor speed, and the blade
-on its deflected reference axis (a prebent blade bends back toward the rotor plane as it spins)."""
+"""The blade's operating point under its centrifugal load (and its weight, when gravity is on): the static
+deflection at a rotor speed, and the blade on its deflected reference axis (a prebent blade bends back toward the
+rotor plane as it spins)."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
 from ..assembly import assemble_blade
-from ..assembly.loads import centrifugal_load
+from ..assembly.loads import centrifugal_load, gravity_load
 from ..errors import InputError
 from ..sections import Blade, ReferenceAxis
 from .solve import rpm_to_rad_s
@@ -22,7 +23,7 @@ ELEMENTS = 80
 
 @dataclass(frozen=True)
 class OperatingPoint:
-    """The static deflection under the centrifugal load at ``rpm``.
+    """The static deflection under the centrifugal load at ``rpm`` and the weight (gravity on).
 
     nodes : (n,) where the deflection is sampled along the axis (its knots, or the stations), m
     displacement : (3, n) the axis points' displacement in the blade frame, m
@@ -38,7 +39,8 @@ class OperatingPoint:
 
 
 def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> OperatingPoint:
-    """Solve ``(K0 + Omega^2 K2) q = Omega^2 b`` for the centrifugal load ``b`` at ``rpm`` (rpm) on a cantilever."""
+    """Solve ``(K0 + Omega^2 K2) q = Omega^2 b + b_g`` for the centrifugal load ``b`` at ``rpm`` (rpm) and the
+    weight ``b_g`` (zero without gravity; K0 then holds the weight's geometric stiffness) on a cantilever."""
     if blade.root != "cantilever":
         raise InputError(f"the operating point needs a clamped root (this blade's is {blade.root}): a static "
                          "deflection under load", field="root")
@@ -46,8 +48,9 @@ def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> Opera
     omega = rpm_to_rad_s(rpm)
     K, _ = matrices.reduced(omega)
     q = np.zeros(matrices.dofs.size)
-    load = centrifugal_load(matrices.quadrature, blade, matrices.dofs)
-    q[matrices.free] = spla.spsolve(K, omega**2 * load[matrices.free])
+    load = (omega**2 * centrifugal_load(matrices.quadrature, blade, matrices.dofs)
+            + gravity_load(matrices.quadrature, blade, matrices.dofs))
+    q[matrices.free] = spla.spsolve(K, load[matrices.free])
     dofs = matrices.dofs
     # where the deflected axis is sampled: the axis's own knots (or the stations), so that its modes are meshed
     # on the same nodes as the blade's
@@ -66,12 +69,14 @@ def operating_point(blade: Blade, rpm: float, elements: int = ELEMENTS) -> Opera
 
 
 def deflected_blade(blade: Blade, rpm: float, elements: int = ELEMENTS) -> tuple[Blade, OperatingPoint]:
-    """The blade on its reference axis deflected by the centrifugal load at ``rpm`` (rpm), and that deflection."""
+    """The blade on its reference axis deflected by the centrifugal load at ``rpm`` (rpm) and its weight (gravity
+    on), and that deflection."""
     point = operating_point(blade, rpm, elements)
     axis = blade.axis or ReferenceAxis(blade.sections.span, np.zeros(len(blade.sections.span)),
                                        np.zeros(len(blade.sections.span)))
     moved = axis.displaced(point.nodes, point.displacement, blade.pitch)
     tip = point.displacement[:, -1]
-    note = (f"reference axis deflected by the centrifugal load at {rpm:g} rpm (tip moved {tip[2]:+.3g} m "
+    loads = "the centrifugal load" + (" and the weight" if blade.gravity is not None else "")
+    note = (f"reference axis deflected by {loads} at {rpm:g} rpm (tip moved {tip[2]:+.3g} m "
             f"out of plane, {tip[1]:+.3g} m in plane)")
     return blade.with_(axis=moved, prestressed=True, notes=blade.notes + (note,)), point

@@ -22,6 +22,34 @@ Root = Literal["cantilever", "hinged", "axial-torsion", "free"]
 #: cantilever: all held; hinged: the four translations and twist held, the bending slopes free (pinned);
 #: axial-torsion: only axial displacement and twist held; free: nothing held (BModes hub_conn 1, 4, 3, 2)
 ROOTS: tuple[str, ...] = ("cantilever", "hinged", "axial-torsion", "free")
+#: standard gravity, m/s^2
+STANDARD_GRAVITY = 9.80665
+
+
+@dataclass(frozen=True)
+class Gravity:
+    """The blade's weight, frozen at one rotor azimuth (a parked blade, or a rotating blade as it passes that
+    azimuth: the load that turns with the rotor is taken as static there).
+
+    Attributes
+    ----------
+    azimuth : rad, 0 with the blade pointing up, pi pointing down, increasing in the direction of rotation (the
+        blade moves toward its leading edge, +y): at pi / 2 the blade is horizontal, its leading edge down
+    acceleration : m/s^2
+
+    The shaft is taken horizontal (its tilt is not modelled): gravity lies in the plane that holds the shaft axis
+    and the vertical, the rotor plane turned by the precone.
+    """
+
+    azimuth: float = 0.0
+    acceleration: float = STANDARD_GRAVITY
+
+    def __post_init__(self) -> None:
+        for name in ("azimuth", "acceleration"):
+            if not np.isfinite(getattr(self, name)):
+                raise InputError(f"must be a finite number, got {getattr(self, name)}", field=f"gravity.{name}")
+        if self.acceleration < 0:
+            raise InputError(f"must not be negative, got {self.acceleration}", field="gravity.acceleration")
 
 
 @dataclass(frozen=True)
@@ -78,6 +106,7 @@ class Blade:
         arc length as the sections), or None for a straight blade along the pitch axis
     prestressed : the stiffness at speed holds the bending moments and torque of the centrifugal load (for a blade
         on its deflected axis, :func:`bladefem.modal.operating_point.deflected_blade`); otherwise only the tension
+    gravity : the blade's weight at an azimuth (:class:`Gravity`), or None to leave gravity out
     """
 
     sections: SectionTable
@@ -90,6 +119,7 @@ class Blade:
     notes: tuple[str, ...] = ()
     axis: ReferenceAxis | None = None
     prestressed: bool = False
+    gravity: Gravity | None = None
 
     def __post_init__(self) -> None:
         if self.axis is not None and abs(self.axis.length - self.length) > 1e-9 * self.length:
@@ -117,6 +147,16 @@ class Blade:
     def shaft_axis(self) -> NDArray[np.float64]:
         """Unit rotation axis in the blade frame."""
         return np.array([np.sin(self.precone), 0.0, np.cos(self.precone)])
+
+    @property
+    def gravity_vector(self) -> NDArray[np.float64]:
+        """The acceleration of gravity in the blade frame, m/s^2 (zeros without gravity): ``g (-cos psi r + sin psi
+        e_y)`` with ``r = (cos beta, 0, -sin beta)`` the radial direction in the rotor plane under precone beta."""
+        if self.gravity is None:
+            return np.zeros(3)
+        psi, beta = self.gravity.azimuth, self.precone
+        radial = np.array([np.cos(beta), 0.0, -np.sin(beta)])
+        return self.gravity.acceleration * (-np.cos(psi) * radial + np.sin(psi) * np.array([0.0, 1.0, 0.0]))
 
     @property
     def curved(self) -> bool:
