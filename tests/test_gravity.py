@@ -13,11 +13,13 @@ import pytest
 import scipy.linalg as sl
 from heavy_beam_exact import frequency_parameters, greenhill_parameter
 from scipy.integrate import quad
+from scipy.optimize import brentq
+from scipy.special import jv
 
 from bladefem.assembly import assemble_blade
 from bladefem.errors import InputError
 from bladefem.modal import modes
-from bladefem.modal.operating_point import operating_point
+from bladefem.modal.operating_point import deflected_blade, operating_point
 from bladefem.sections import Blade, Gravity, ReferenceAxis, uniform_sections
 
 L, MASS, EI = 10.0, 10.0, 1.0e5              # the flap plane; the edge plane is 4 EI (frequencies twice as high)
@@ -257,3 +259,29 @@ def test_campbell_and_operating_point_with_gravity(capsys, tmp_path):
     sag = 9.80665 / (8 * 4.0)
     assert code == 0 and any(f"and the weight at 0 rpm (tip moved +0 m out of plane, {sag:+.3g} m in plane)" in note
                              for note in json.loads(out)["notes"])
+
+
+def test_horizontal_blade_buckles_laterally_under_its_weight():
+    """On its operating point (the deflected axis, the weight's static moments in the stiffness) a horizontal
+    cantilever, stiff edgewise, buckles out of its plane and twists under its weight at Timoshenko's q L^3 = 6 j
+    sqrt(EI_flap GJ) = 12.854 sqrt(EI_flap GJ) (load through the axis; j the first zero of J_-1/6: Timoshenko &
+    Gere, Theory of Elastic Stability, sec. 6.3, 12.85). The classical value leaves out the sag before buckling,
+    of relative size EI_flap / EI_edge: the FE's critical weight is above it by 5.7e-5 at EI_edge = 1e4 EI_flap and
+    by 6.2e-6 at 1e5 (measured), a tenth as much. Without the moments (the blade about its undeflected axis) the
+    weight across it changes nothing (test above)."""
+    flap, torsion = 1e5, 5e4
+    j = brentq(lambda z: jv(-1.0 / 6.0, z), 1.0, 3.0, xtol=1e-15)
+    classical = 6 * j * np.sqrt(flap * torsion) / (MASS * L**3)
+    assert 6 * j == pytest.approx(12.85, abs=5e-3)
+    excess = []
+    for ratio in (1e4, 1e5):
+        sections = uniform_sections(L, MASS, flap, ratio * flap, torsion, 1e3 * ratio * flap, flap_inertia=0.01,
+                                    edge_inertia=0.05)
+
+        def lowest(g: float, sections=sections) -> float:
+            bent = deflected_blade(Blade(sections, gravity=Gravity(HORIZONTAL, g)), 0.0)[0]
+            f = modes(bent, 0.0, 1, elements=40).frequencies_hz[0]
+            return np.sign(f) * f**2
+
+        excess.append(brentq(lowest, 0.8 * classical, 1.2 * classical, rtol=1e-10) / classical - 1)
+    assert 0 < excess[1] < 1e-5 and excess[0] / excess[1] == pytest.approx(10.0, rel=0.15)

@@ -29,7 +29,7 @@ from . import terms
 from .dofs import DofMap
 from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
-from .loads import centrifugal_load, tip_geometry
+from .loads import centrifugal_load, gravity_load, tip_geometry
 from .parameters import SectionParameters, section_parameters
 
 #: Gauss rule degree: cubic x cubic x linear property x smooth twist
@@ -161,12 +161,13 @@ def _section_terms(fields: tuple[str, ...], parameters: SectionParameters) -> li
 
 
 def gravity_terms(fields: tuple[str, ...], parameters: SectionParameters) -> list[Term]:
-    """The weight's geometric stiffness (in K0, with the tension on the shear slopes of a shear-flexible beam), or
-    nothing without gravity."""
+    """The weight's geometric stiffness (in K0): its axial force (with the tension on the shear slopes of a
+    shear-flexible beam) and, on a prestressed blade, its static moments; nothing without gravity."""
     if parameters.gravity_tension is None:
         return []
-    return [terms.gravity_axial_force_stiffness] + ([terms.gravity_axial_force_shear_stiffness]
-                                                    if SHEAR_FIELDS[0] in fields else [])
+    return ([terms.gravity_axial_force_stiffness]
+            + ([terms.gravity_axial_force_shear_stiffness] if SHEAR_FIELDS[0] in fields else [])
+            + ([terms.gravity_moment_prestress_stiffness] if parameters.gravity_static is not None else []))
 
 
 def centrifugal_terms(fields: tuple[str, ...]) -> tuple[Term, ...]:
@@ -191,12 +192,13 @@ def tip_body_matrices(blade: Blade, dofs: DofMap) -> tuple[sp.csr_matrix, sp.csr
 
 
 def static_deflection(K0: sp.csr_matrix, quadrature: Quadrature, blade: Blade, dofs: DofMap,
-                      free: NDArray[np.int64]) -> SectionMotion:
-    """The deflection under the centrifugal load per Omega^2, ``K0 q1 = b`` (m s^2), as motions at the quadrature
-    points: whose static moments a prestressed blade's stiffness at speed holds
-    (:func:`~bladefem.assembly.terms.moment_prestress_stiffness`, to first order in Omega^2)."""
+                      free: NDArray[np.int64], load: NDArray | None = None) -> SectionMotion:
+    """The deflection under the centrifugal load per Omega^2, ``K0 q1 = b`` (m s^2), or under the given ``load``
+    (the weight's, m), as motions at the quadrature points: whose static moments a prestressed blade's stiffness
+    holds (:func:`~bladefem.assembly.terms.moment_prestress_stiffness`, to first order in Omega^2)."""
     q = np.zeros(dofs.size)
-    q[free] = spla.spsolve(K0[free][:, free].tocsc(), centrifugal_load(quadrature, blade, dofs)[free])
+    b = centrifugal_load(quadrature, blade, dofs) if load is None else load
+    q[free] = spla.spsolve(K0[free][:, free].tocsc(), b[free])
     names = tuple(SectionMotion.__dataclass_fields__)
     values = interpolated_components(quadrature.functions, quadrature.element_dofs, q[:, None], names)
     return SectionMotion(**{name: values[k, 0] for k, name in enumerate(names)})
@@ -257,6 +259,10 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     if blade.prestressed and blade.root == "cantilever":
         parameters = replace(parameters, static=static_deflection(K0, quadrature, blade, dofs, free))
         centrifugal = centrifugal + (terms.moment_prestress_stiffness,)
+        if blade.gravity is not None:
+            weight = static_deflection(K0, quadrature, blade, dofs, free, gravity_load(quadrature, blade, dofs))
+            parameters = replace(parameters, gravity_static=weight)
+            K0 = K0 + assemble_terms(quadrature, parameters, (terms.gravity_moment_prestress_stiffness,))
     K2 = assemble_terms(quadrature, parameters, centrifugal) + K2_tip
     M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,

@@ -146,6 +146,7 @@ class SectionParameters:
     curvature: NDArray | None = None  # (4, ...) K2, K3 (1/m) and their rates (1/m^2) of a curved reference axis
     static: SectionMotion | None = None  # the deflection under the centrifugal load per Omega^2 (curved axis)
     gravity_tension: NDArray | None = None  # N_g(x), N: the axial force of the blade's weight (gravity on)
+    gravity_static: SectionMotion | None = None  # the deflection under the weight (a prestressed blade, gravity on)
 
     @property
     def strain_stiffness(self) -> NDArray:

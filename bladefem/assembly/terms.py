@@ -129,3 +129,10 @@ def aerodynamic_stiffness(trial: SectionMotion, test: SectionMotion, p: AeroPara
     """Quasi-steady aerodynamic stiffness of the sections, -d(load)/d(displacement): elastic twist changing the
     angle of attack, displaced points turning through other air (not symmetric)."""
     return quadratic(test.kinematic, p.stiffness, trial.kinematic)
+
+
+def gravity_moment_prestress_stiffness(trial: SectionMotion, test: SectionMotion, p: SectionParameters) -> NDArray:
+    """:func:`moment_prestress_stiffness` of the weight's static moments and torque (``p.gravity_static``, the
+    deflection under the weight), in K0: on a horizontal blade the edgewise moment turns flap into twist (lateral
+    buckling under the weight)."""
+    return moment_prestress_stiffness(trial, test, replace(p, static=p.gravity_static))

@@ -71,8 +71,9 @@ def add_gravity_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--gravity", action="store_true",
                        help="the blade's weight (9.80665 m/s^2) at --azimuth-deg: its axial force's geometric "
                             "stiffness (a blade hanging down stiffens, one standing up softens), and with "
-                            "--operating-point its static deflection; the shaft taken horizontal (tilt not "
-                            "modelled), the azimuth frozen (a rotating blade as it passes that azimuth)")
+                            "--operating-point its static deflection and its static moments' stiffness; the shaft "
+                            "taken horizontal (tilt not modelled), the azimuth frozen (a rotating blade as it "
+                            "passes that azimuth)")
     group.add_argument("--azimuth-deg", type=options.finite, metavar="DEG",
                        help="with --gravity: rotor azimuth of the blade, degrees: 0 pointing up (default), 180 "
                             "pointing down, 90 horizontal with the leading edge down (the azimuth grows in the "
