@@ -15,8 +15,8 @@ from .moments import (
 )
 from .table import SectionTable, uniform_sections
 
-__all__ = ["ROOTS", "AxisFrame", "Blade", "FullSections", "Gravity", "MassMoments", "ReferenceAxis", "Root", "SectionTable",
-           "TipMass", "bending_stiffness", "extension_bending_stiffness", "full_sections_from_table", "mass_matrix",
+__all__ = ["ROOTS", "AxisFrame", "Blade", "FullSections", "Gravity", "MassMoments", "ReferenceAxis", "Root",
+           "SectionTable", "TipMass", "bending_stiffness", "extension_bending_stiffness", "full_sections_from_table", "mass_matrix",
            "mass_moments", "shear_flexible_stiffness", "stiffness_matrix", "tip_mass_at_section", "torsion_stiffness",
            "total_angle",
            "twist_coupling_stiffness", "uniform_sections"]
