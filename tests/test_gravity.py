@@ -117,6 +117,21 @@ def test_horizontal_blade_sags_edgewise_and_keeps_its_frequencies():
     assert abs(tip[2]) < 1e-12 * tip[1]
 
 
+def test_the_weight_of_an_offset_centre_of_mass_twists_the_blade():
+    """Horizontal (no axial force), pitched 90 deg so that the chordwise centre-of-mass offset e lies across the
+    weight: each section carries the torque m g e about the axis, T(x) = m g e (L - x), and the tip twists by
+    m g e L^2 / (2 GJ) (the quadratic twist field holds it exactly) while the blade sags in the rotor plane as
+    without the offset, by m g L^4 / (8 EI) with the flapwise stiffness turned into that plane by the pitch."""
+    from dataclasses import replace
+
+    g, e, torsion = 9.80665, 0.2, 3e4
+    sections = replace(uniform_sections(L, MASS, EI, 4 * EI, torsion, 1e9, flap_inertia=0.01, edge_inertia=0.05),
+                       cm_offset=np.full(2, e))
+    point = operating_point(Blade(sections, pitch=np.pi / 2, gravity=Gravity(HORIZONTAL)), 0.0, elements=8)
+    assert point.twist[-1] == pytest.approx(MASS * g * e * L**2 / (2 * torsion), rel=1e-10)
+    assert point.displacement[1, -1] == pytest.approx(MASS * g * L**4 / (8 * EI), rel=1e-10)
+
+
 R, ALPHA, EA = 10.0, 0.5, 4.0e6              # an arc curving downwind: 5 m long, turning 29 deg
 
 
