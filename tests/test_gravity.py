@@ -132,6 +132,25 @@ def test_the_weight_of_an_offset_centre_of_mass_twists_the_blade():
     assert point.displacement[1, -1] == pytest.approx(MASS * g * L**4 / (8 * EI), rel=1e-10)
 
 
+def test_a_tip_mass_weighs_on_the_blade():
+    """A tip mass M: hanging down, the axial force is g (m (L - x) + M) (tapered sections integrated exactly); lying
+    horizontal, its weight adds M g L^3 / (3 EI_edge) to the sag."""
+    from bladefem.assembly.parameters import gravity_tension
+    from bladefem.sections import SectionTable, TipMass
+
+    g, tip = 9.80665, 25.0
+    tapered = SectionTable(span=np.array([0.0, 4.0, L]), mass=np.array([16.0, 10.0, 4.0]),
+                           flap_stiffness=np.full(3, EI), edge_stiffness=np.full(3, 4 * EI))
+    x = np.array([0.0, 2.0, 4.0, 7.0, L])
+    outboard = np.where(x < 4.0, 0.5 * (4.0 - x) * (16.0 - 1.5 * x + 10.0), 0.0) + 0.5 * (
+        L - np.maximum(x, 4.0)) * (10.0 - (np.maximum(x, 4.0) - 4.0) + 4.0)
+    hanging = Blade(tapered, tip_mass=TipMass(tip), gravity=Gravity(DOWN))
+    assert gravity_tension(hanging, x) == pytest.approx(g * (outboard + tip), rel=1e-13)
+    lying = Blade(uniform_sections(L, MASS, EI, 4 * EI), tip_mass=TipMass(tip), gravity=Gravity(HORIZONTAL))
+    sag = operating_point(lying, 0.0, elements=8).displacement[1, -1]
+    assert sag == pytest.approx(MASS * g * L**4 / (8 * 4 * EI) + tip * g * L**3 / (3 * 4 * EI), rel=1e-10)
+
+
 R, ALPHA, EA = 10.0, 0.5, 4.0e6              # an arc curving downwind: 5 m long, turning 29 deg
 
 
