@@ -74,7 +74,7 @@ def add_gravity_options(parser: argparse.ArgumentParser) -> None:
                             "--operating-point its static deflection and its static moments' stiffness; the shaft "
                             "taken horizontal (tilt not modelled), the azimuth frozen (a rotating blade as it "
                             "passes that azimuth)")
-    group.add_argument("--azimuth-deg", type=options.finite, metavar="DEG",
+    group.add_argument("--azimuth-deg", dest="gravity_azimuth_deg", type=options.finite, metavar="DEG",
                        help="with --gravity: rotor azimuth of the blade, degrees: 0 pointing up (default), 180 "
                             "pointing down, 90 horizontal with the leading edge down (the azimuth grows in the "
                             "direction of rotation)")
@@ -82,7 +82,7 @@ def add_gravity_options(parser: argparse.ArgumentParser) -> None:
 
 def with_gravity(args: argparse.Namespace, blade: object) -> object:
     """``blade`` with its weight at ``--azimuth-deg`` when ``--gravity`` is given."""
-    azimuth = getattr(args, "azimuth_deg", None)
+    azimuth = getattr(args, "gravity_azimuth_deg", None)
     if not getattr(args, "gravity", False):
         if azimuth is not None:
             raise InputError("--azimuth-deg places the blade's weight: add --gravity", field="--azimuth-deg")

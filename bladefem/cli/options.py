@@ -110,7 +110,8 @@ def check_output(path: str | None, field: str | None = None) -> None:
 
 #: Options that only blades take, and only towers (argparse dest -> option)
 BLADE_ONLY = {"tip_radius": "--tip-radius", "hub_radius": "--hub-radius", "precone_deg": "--precone-deg",
-              "pitch_deg": "--pitch-deg", "root": "--root", "gravity": "--gravity", "azimuth_deg": "--azimuth-deg"}
+              "pitch_deg": "--pitch-deg", "root": "--root", "gravity": "--gravity",
+              "gravity_azimuth_deg": "--azimuth-deg"}
 TOWER_ONLY = {"tower_height": "--tower-height", "no_gravity": "--no-gravity", "point_top_mass": "--point-top-mass",
               "elastodyn_coefficients": "--elastodyn-coefficients", "margin_percent": "--margin-percent"}
 
