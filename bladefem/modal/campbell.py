@@ -54,14 +54,16 @@ def best_assignment(mac: NDArray) -> tuple[NDArray, NDArray]:
     return linear_sum_assignment(-mac)
 
 
-def track_families(results: Sequence[ModalResult], M: sp.spmatrix, n_families: int) -> list[ModeFamily]:
+def track_families(results: Sequence[ModalResult], M: sp.spmatrix, n_families: int,
+                   weighted: Sequence[NDArray] | None = None) -> list[ModeFamily]:
     """Follow the lowest ``n_families`` modes of the first speed through all speeds by maximum total MAC between
     neighbouring speeds, so crossings and veerings keep families continuous: each family takes its best match
-    when those are all different (then that is the maximum), else the Hungarian assignment decides."""
+    when those are all different (then that is the maximum), else the Hungarian assignment decides. ``weighted``:
+    the products ``M @ vectors`` of each speed where the caller has them."""
     indices = np.zeros((len(results), n_families), dtype=np.int64)
     macs = np.ones((len(results), n_families))
     indices[0] = np.arange(n_families)
-    weighted = [M @ result.vectors for result in results]
+    weighted = [M @ result.vectors for result in results] if weighted is None else weighted
     for k in range(1, len(results)):
         mac = mac_from_products(results[k - 1].vectors[:, indices[k - 1]], weighted[k - 1][:, indices[k - 1]],
                                 results[k].vectors, weighted[k])
@@ -102,14 +104,16 @@ class RitzBasis:
         self.elastic = matrices.stiffness_gram(vectors)
         self.centrifugal = vectors.T @ self.K2V
 
-    def pairs(self, omega2: float, count: int) -> tuple[NDArray, NDArray, NDArray]:
-        """Lowest ``count`` Ritz values (omega^2), vectors and relative residuals at Omega^2 = ``omega2``."""
+    def pairs(self, omega2: float, count: int) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """Lowest ``count`` Ritz values (omega^2), vectors, relative residuals and the vectors' products with M at
+        Omega^2 = ``omega2``."""
         reduced = self.elastic + omega2 * self.centrifugal
         values, rotation = la.eigh(0.5 * (reduced + reduced.T), subset_by_index=[0, min(count, len(reduced)) - 1])
         stiffness = (self.K0V + omega2 * self.K2V) @ rotation
-        residuals = (np.linalg.norm(stiffness - (self.MV @ rotation) * values, axis=0)
+        mass = self.MV @ rotation
+        residuals = (np.linalg.norm(stiffness - mass * values, axis=0)
                      / np.maximum(np.linalg.norm(stiffness, axis=0), 1e-300))
-        return values, self.vectors @ rotation, residuals
+        return values, self.vectors @ rotation, residuals, mass
 
 
 def inverse_iterates(matrices: BladeMatrices, rpm: float, vectors: NDArray) -> list[NDArray]:
@@ -150,14 +154,17 @@ def campbell_sweep(matrices: BladeMatrices, rpm: Sequence[float], n_modes: int =
     basis = RitzBasis(matrices, ritz_basis([vectors, *inverse_iterates(matrices, rpm.min(), vectors)], M))
     floor = ROUNDOFF_MARGIN * relative_residuals(*matrices.reduced(rpm_to_rad_s(rpm.max())), values[:count],
                                                  vectors[:, :count]).max()
-    results = []
+    results, weighted = [], []
     for speed in (progress or iter)(rpm):
-        values, vectors, residuals = basis.pairs(rpm_to_rad_s(speed) ** 2, count)
+        values, vectors, residuals, mass = basis.pairs(rpm_to_rad_s(speed) ** 2, count)
         if residuals.max() > max(RITZ_RESIDUAL, floor):
             full = solve_modes(matrices, speed, count, notes)
             basis = RitzBasis(matrices, ritz_basis([basis.vectors, full.vectors], M))
             results.append(full)
+            weighted.append(M @ full.vectors)
         else:
             results.append(modal_result(matrices, speed, values, vectors, notes, residuals))
+            weighted.append(mass)
     n_families = min(n_modes, len(results[0].modes))
-    return CampbellResult(rpm=rpm, families=track_families(results, M, n_families), results=results, notes=notes)
+    return CampbellResult(rpm=rpm, families=track_families(results, M, n_families, weighted), results=results,
+                          notes=notes)
