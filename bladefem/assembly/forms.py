@@ -55,6 +55,14 @@ class Quadrature:
         return cls(functions, np.asarray(basis.dx), basis.element_dofs, basis.N, points)
 
     @cached_property
+    def point_functions(self) -> NDArray:
+        """The motion components of the local basis functions, shape (elements, points, component, local)."""
+        shape = (len(self.element_dofs),) + self.weights.shape
+        stacked = np.stack([np.broadcast_to(getattr(self.functions, name), shape)
+                            for name in SectionMotion.__dataclass_fields__])
+        return np.ascontiguousarray(stacked.transpose(2, 3, 0, 1))
+
+    @cached_property
     def components(self) -> NDArray[np.int64]:
         """Indices of the motion components (fields of :class:`~bladefem.elements.SectionMotion`) that some basis
         function has at some quadrature point: the others are zero for every motion on this mesh."""
@@ -76,20 +84,13 @@ def assemble_operator(quadrature: Quadrature, operator: NDArray) -> sp.csr_matri
     """Assemble a form given pointwise (``A[f, g, e, q]``, weights included: :func:`pointwise_operator`) into one
     sparse matrix (rows: test functions): each element's ``sum_q B_q^T A_q B_q``, ``B_q`` the motion components of
     its local basis functions at point q, as batched matrix products over the components the form uses."""
-    names = tuple(SectionMotion.__dataclass_fields__)
     rows = np.flatnonzero(np.any(operator != 0, axis=(1, 2, 3)))
     cols = np.flatnonzero(np.any(operator != 0, axis=(0, 2, 3)))
     size = quadrature.size
     if rows.size == 0:
         return sp.csr_matrix((size, size))
-
-    def components(present: NDArray) -> NDArray:                                # (elements, points, f, local)
-        shape = (len(quadrature.element_dofs),) + quadrature.weights.shape
-        return np.stack([np.broadcast_to(getattr(quadrature.functions, names[f]), shape) for f in present]
-                        ).transpose(2, 3, 0, 1)
-
-    test, trial = components(rows), components(cols)
-    A = operator[np.ix_(rows, cols)].transpose(2, 3, 0, 1)                      # (elements, points, f, g)
+    test, trial = quadrature.point_functions[:, :, rows], quadrature.point_functions[:, :, cols]
+    A = np.ascontiguousarray(operator[np.ix_(rows, cols)].transpose(2, 3, 0, 1))  # (elements, points, f, g)
     elements, points, _, n = test.shape
     weighted = np.matmul(A, trial).reshape(elements, points * len(rows), n)
     local = np.matmul(test.reshape(elements, points * len(rows), n).transpose(0, 2, 1), weighted).transpose(1, 2, 0)
@@ -106,10 +107,9 @@ def pointwise_operator(quadrature: Quadrature, parameters: object, parts: Sequen
     names = tuple(SectionMotion.__dataclass_fields__)
     shape = quadrature.weights.shape
     present = quadrature.components
-    unit = np.eye(len(present))
-    zero = np.zeros((len(present),) + shape)
-    motion = SectionMotion(**{name: zero for name in names} | {
-        names[f]: np.broadcast_to(unit[k][:, None, None], zero.shape) for k, f in enumerate(present)})
+    unit = np.eye(len(present))[:, :, None, None]              # constant along the span: the terms broadcast
+    zero = np.zeros((len(present), 1, 1))
+    motion = SectionMotion(**{name: zero for name in names} | {names[f]: unit[k] for k, f in enumerate(present)})
     test, trial = pair_motions(motion)
     operator = np.zeros((len(names), len(names)) + shape)
     operator[np.ix_(present, present)] = (_integrand(parts, test, trial, parameters, (len(present),) * 2 + shape)
