@@ -53,6 +53,7 @@ class BladeMatrices:
     notes : statements about the mesh (e.g. refinement stopped before convergence)
     eigenpairs : rotor speed (rpm) -> lowest eigenpairs (omega^2, M-normalised vectors) already solved on these
         matrices, kept for re-use
+    stiffness : rotor speed (rad/s) -> the free-DOF K(Omega) last formed by :meth:`reduced`
     G (property) : gyroscopic (Coriolis) matrix per Omega, for the quadratic eigenproblem
     """
 
@@ -67,6 +68,7 @@ class BladeMatrices:
     elastic_operator: NDArray = field(compare=False, repr=False)
     notes: tuple[str, ...] = ()
     eigenpairs: dict[float, tuple[NDArray, NDArray]] = field(default_factory=dict, compare=False, repr=False)
+    stiffness: dict[float, sp.csc_matrix] = field(default_factory=dict, compare=False, repr=False)
 
     @cached_property
     def free_parts(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
@@ -74,9 +76,13 @@ class BladeMatrices:
         return tuple(A[self.free][:, self.free].tocsc() for A in (self.K0, self.K2, self.M))  # type: ignore[return-value]
 
     def reduced(self, rotor_speed: float) -> tuple[sp.csc_matrix, sp.csc_matrix]:
-        """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s)."""
+        """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s); K of the last speed asked for is kept
+        (the solve and its round-off estimate ask for the same one)."""
         K0, K2, M = self.free_parts
-        return (K0 + rotor_speed**2 * K2).tocsc(), M
+        if rotor_speed not in self.stiffness:
+            self.stiffness.clear()
+            self.stiffness[rotor_speed] = (K0 + rotor_speed**2 * K2).tocsc()
+        return self.stiffness[rotor_speed], M
 
     def stiffness_gram(self, vectors: NDArray) -> NDArray:
         """``V^T K0 V`` of free-DOF vectors (columns), summed at the quadrature points
