@@ -27,7 +27,7 @@ from ..sections import Blade
 from ..sections.table import OPTIONAL_STIFFNESS, POSITIVE, ZERO_DEFAULT
 from . import terms
 from .dofs import DofMap
-from .forms import Quadrature, Term, assemble_terms, gram_matrix, pointwise_operator
+from .forms import Quadrature, Term, assemble_operator, assemble_terms, gram_matrix, pointwise_operator
 from .mesh import graded_nodes, mesh_stations, span_mesh, span_nodes
 from .loads import centrifugal_load, gravity_load, tip_geometry
 from .parameters import SectionParameters, section_parameters
@@ -47,11 +47,13 @@ class BladeMatrices:
     K2 : stiffness per Omega^2 (centrifugal tension, spin softening, rotation second order), kg-type units
     M : mass matrix
     free : DOFs left free by the root condition
-    quadrature, parameters : the mesh's quadrature and the section parameters there, to evaluate K0's form on
-        given vectors (:meth:`stiffness_gram`)
+    quadrature, parameters : the mesh's quadrature and the section parameters there
+    elastic_operator : K0's form at the quadrature points (:func:`~bladefem.assembly.forms.pointwise_operator`),
+        which K0 is assembled from and :meth:`stiffness_gram` evaluates on given vectors
     notes : statements about the mesh (e.g. refinement stopped before convergence)
     eigenpairs : rotor speed (rpm) -> lowest eigenpairs (omega^2, M-normalised vectors) already solved on these
         matrices, kept for re-use
+    stiffness : rotor speed (rad/s) -> the free-DOF K(Omega) last formed by :meth:`reduced`
     G (property) : gyroscopic (Coriolis) matrix per Omega, for the quadratic eigenproblem
     """
 
@@ -63,8 +65,10 @@ class BladeMatrices:
     blade: Blade
     quadrature: Quadrature
     parameters: SectionParameters
+    elastic_operator: NDArray = field(compare=False, repr=False)
     notes: tuple[str, ...] = ()
     eigenpairs: dict[float, tuple[NDArray, NDArray]] = field(default_factory=dict, compare=False, repr=False)
+    stiffness: dict[float, sp.csc_matrix] = field(default_factory=dict, compare=False, repr=False)
 
     @cached_property
     def free_parts(self) -> tuple[sp.csc_matrix, sp.csc_matrix, sp.csc_matrix]:
@@ -72,9 +76,13 @@ class BladeMatrices:
         return tuple(A[self.free][:, self.free].tocsc() for A in (self.K0, self.K2, self.M))  # type: ignore[return-value]
 
     def reduced(self, rotor_speed: float) -> tuple[sp.csc_matrix, sp.csc_matrix]:
-        """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s)."""
+        """(K, M) on the free DOFs at rotor speed ``rotor_speed`` (rad/s); K of the last speed asked for is kept
+        (the solve and its round-off estimate ask for the same one)."""
         K0, K2, M = self.free_parts
-        return (K0 + rotor_speed**2 * K2).tocsc(), M
+        if rotor_speed not in self.stiffness:
+            self.stiffness.clear()
+            self.stiffness[rotor_speed] = (K0 + rotor_speed**2 * K2).tocsc()
+        return self.stiffness[rotor_speed], M
 
     def stiffness_gram(self, vectors: NDArray) -> NDArray:
         """``V^T K0 V`` of free-DOF vectors (columns), summed at the quadrature points
@@ -83,12 +91,6 @@ class BladeMatrices:
         full = np.zeros((self.dofs.size, np.shape(vectors)[1]))
         full[self.free] = vectors
         return gram_matrix(self.quadrature, self.elastic_operator, full)
-
-    @cached_property
-    def elastic_operator(self) -> NDArray:
-        """K0's form at the quadrature points (:func:`~bladefem.assembly.forms.pointwise_operator`)."""
-        return pointwise_operator(self.quadrature, self.parameters,
-                                  elastic_terms(self.dofs.fields, self.parameters))
 
     @cached_property
     def G(self) -> sp.csr_matrix:
@@ -253,7 +255,8 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     quadrature = Quadrature.from_basis(basis, fields, parameters.curvature)
     dofs = DofMap.from_basis(basis, fields)
     M_tip, K2_tip = tip_body_matrices(blade, dofs)
-    K0 = assemble_terms(quadrature, parameters, elastic_terms(fields, parameters))
+    elastic = pointwise_operator(quadrature, parameters, elastic_terms(fields, parameters))
+    K0 = assemble_operator(quadrature, elastic)
     free = np.setdiff1d(np.arange(dofs.size), dofs.root_dofs(blade.root))
     centrifugal = centrifugal_terms(fields)
     if blade.prestressed and blade.root == "cantilever":
@@ -266,4 +269,4 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
     K2 = assemble_terms(quadrature, parameters, centrifugal) + K2_tip
     M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,
-                         quadrature=quadrature, parameters=parameters)
+                         quadrature=quadrature, parameters=parameters, elastic_operator=elastic)

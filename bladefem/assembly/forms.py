@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -53,6 +54,20 @@ class Quadrature:
             functions = curved_motion(functions, curvature, linear_projection(np.asarray(basis.dx), points))
         return cls(functions, np.asarray(basis.dx), basis.element_dofs, basis.N, points)
 
+    @cached_property
+    def point_functions(self) -> NDArray:
+        """The motion components of the local basis functions, shape (elements, points, component, local)."""
+        shape = (len(self.element_dofs),) + self.weights.shape
+        stacked = np.stack([np.broadcast_to(getattr(self.functions, name), shape)
+                            for name in SectionMotion.__dataclass_fields__])
+        return np.ascontiguousarray(stacked.transpose(2, 3, 0, 1))
+
+    @cached_property
+    def components(self) -> NDArray[np.int64]:
+        """Indices of the motion components (fields of :class:`~bladefem.elements.SectionMotion`) that some basis
+        function has at some quadrature point: the others are zero for every motion on this mesh."""
+        return np.flatnonzero([np.any(getattr(self.functions, name)) for name in SectionMotion.__dataclass_fields__])
+
 
 def _integrand(parts: Sequence[Term], test: SectionMotion, trial: SectionMotion, parameters: object,
                shape: tuple[int, ...]) -> NDArray:
@@ -60,32 +75,46 @@ def _integrand(parts: Sequence[Term], test: SectionMotion, trial: SectionMotion,
 
 
 def assemble_terms(quadrature: Quadrature, parameters: object, parts: Sequence[Term]) -> sp.csr_matrix:
-    """Assemble the sum of weak-form terms into one sparse matrix.
+    """Assemble the sum of weak-form terms into one sparse matrix: the terms read off once at each quadrature point
+    as a matrix over the motion components (:func:`pointwise_operator`), then :func:`assemble_operator`."""
+    return assemble_operator(quadrature, pointwise_operator(quadrature, parameters, parts))
 
-    Each term is evaluated once on all (test, trial) pairs of local basis functions
-    (:func:`~bladefem.elements.pair_motions`), integrated over every element and scattered to the global DOFs
-    (rows: test functions)."""
-    n = len(quadrature.element_dofs)
-    test, trial = pair_motions(quadrature.functions)
-    integrand = _integrand(parts, test, trial, parameters, (n, n) + quadrature.weights.shape)
-    local = np.einsum("ijeq,eq->ije", integrand, quadrature.weights)
-    rows = np.broadcast_to(quadrature.element_dofs[:, None, :], local.shape)
-    cols = np.broadcast_to(quadrature.element_dofs[None, :, :], local.shape)
+
+def assemble_operator(quadrature: Quadrature, operator: NDArray) -> sp.csr_matrix:
+    """Assemble a form given pointwise (``A[f, g, e, q]``, weights included: :func:`pointwise_operator`) into one
+    sparse matrix (rows: test functions): each element's ``sum_q B_q^T A_q B_q``, ``B_q`` the motion components of
+    its local basis functions at point q, as batched matrix products over the components the form uses."""
+    rows = np.flatnonzero(np.any(operator != 0, axis=(1, 2, 3)))
+    cols = np.flatnonzero(np.any(operator != 0, axis=(0, 2, 3)))
     size = quadrature.size
-    return sp.coo_matrix((local.ravel(), (rows.ravel(), cols.ravel())), shape=(size, size)).tocsr()
+    if rows.size == 0:
+        return sp.csr_matrix((size, size))
+    test, trial = quadrature.point_functions[:, :, rows], quadrature.point_functions[:, :, cols]
+    A = np.ascontiguousarray(operator[np.ix_(rows, cols)].transpose(2, 3, 0, 1))  # (elements, points, f, g)
+    elements, points, _, n = test.shape
+    weighted = np.matmul(A, trial).reshape(elements, points * len(rows), n)
+    local = np.matmul(test.reshape(elements, points * len(rows), n).transpose(0, 2, 1), weighted).transpose(1, 2, 0)
+    rows_global = np.broadcast_to(quadrature.element_dofs[:, None, :], local.shape)
+    cols_global = np.broadcast_to(quadrature.element_dofs[None, :, :], local.shape)
+    return sp.coo_matrix((local.ravel(), (rows_global.ravel(), cols_global.ravel())), shape=(size, size)).tocsr()
 
 
 def pointwise_operator(quadrature: Quadrature, parameters: object, parts: Sequence[Term]) -> NDArray:
     """The weak form at each quadrature point as a matrix over the motion components (the fields of
     :class:`~bladefem.elements.SectionMotion`): ``A[f, g, e, q]`` with integrand ``sum_fg test_f A_fg trial_g``,
-    read off the terms by evaluating them once on unit motions, times the quadrature weights."""
+    read off the terms by evaluating them once on unit motions of the components the mesh's functions have (zero
+    for the others), times the quadrature weights."""
     names = tuple(SectionMotion.__dataclass_fields__)
     shape = quadrature.weights.shape
-    unit = np.eye(len(names))
-    motion = SectionMotion(**{name: np.broadcast_to(unit[k][:, None, None], (len(names),) + shape)
-                              for k, name in enumerate(names)})
+    present = quadrature.components
+    unit = np.eye(len(present))[:, :, None, None]              # constant along the span: the terms broadcast
+    zero = np.zeros((len(present), 1, 1))
+    motion = SectionMotion(**{name: zero for name in names} | {names[f]: unit[k] for k, f in enumerate(present)})
     test, trial = pair_motions(motion)
-    return _integrand(parts, test, trial, parameters, (len(names), len(names)) + shape) * quadrature.weights
+    operator = np.zeros((len(names), len(names)) + shape)
+    operator[np.ix_(present, present)] = (_integrand(parts, test, trial, parameters, (len(present),) * 2 + shape)
+                                          * quadrature.weights)
+    return operator
 
 
 def gram_matrix(quadrature: Quadrature, operator: NDArray, vectors: NDArray) -> NDArray:

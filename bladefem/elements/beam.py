@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -89,8 +90,10 @@ class ElementBeam(ElementComposite):
         return tuple(own if k == n else zero(k) for k in range(len(self.elems)))
 
 
+@cache
 def beam_element(fields: tuple[str, ...]) -> ElementComposite:
-    """Composite element with one sub-element per field, in the order given."""
+    """Composite element with one sub-element per field, in the order given; one instance per tuple of fields, so
+    that its bookkeeping (which field owns each local function, the other fields' zeros) is done once."""
     return ElementBeam(*(FIELD_ELEMENTS[name]() for name in fields))
 
 

@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 from ..assembly import BladeMatrices, assemble_blade, blade_graded_nodes, subdivide
 from ..limits import check_elements, check_n_modes, check_rpm, check_speeds
 from ..sections import Blade
-from .campbell import TRACKING_MARGIN, campbell_sweep, mac_matrix, track_families
+from .campbell import RITZ_GUARD, TRACKING_MARGIN, campbell_sweep, mac_matrix, track_families
 from .estimate import frequency_errors
 from .refinement import MeshChoice, Solved, choose_mesh
 from .results import KINDS, CampbellResult, ModalResult, Mode, ModeFamily, ModeShape
@@ -31,7 +31,7 @@ def converged_mesh(blade: Blade, n_modes: int = 10, rtol: float = MESH_RTOL, rpm
     on ``start`` elements) whose lowest ``n_modes`` frequencies at rotor speed ``rpm`` (rpm) are estimated within
     ``rtol`` (relative) of the converged ones, by :func:`~bladefem.modal.refinement.choose_mesh`."""
     nodes = blade_graded_nodes(blade, start or START_ELEMENTS)
-    count = n_modes + TRACKING_MARGIN          # the Campbell sweep's anchor at this speed comes from this solve
+    count = n_modes + TRACKING_MARGIN + RITZ_GUARD     # the Campbell sweep's anchor at this speed is this solve
 
     def solve(matrices: BladeMatrices) -> Solved:
         values, vectors = cached_pairs(matrices, rpm, count)

@@ -185,7 +185,8 @@ def energy_fractions(matrices: BladeMatrices, vectors: NDArray) -> list[dict[str
 
 def mode_shapes(matrices: BladeMatrices, vectors: NDArray, kinds: list[str]) -> list[ModeShape]:
     """Nodal mode shapes from free-DOF eigenvectors (columns): a torsion mode scaled to a largest twist of +1 rad,
-    any other to a largest displacement (flap, edge or axial) of +1."""
+    any other to a largest displacement (flap, edge or axial) of +1; a mode without motion in these DOFs (a floating
+    platform's yaw under a torsionally rigid tower) keeps its zero shape."""
     full = np.zeros((matrices.dofs.size, vectors.shape[1]))
     full[matrices.free] = vectors
     dofs = matrices.dofs
@@ -206,6 +207,7 @@ def mode_shapes(matrices: BladeMatrices, vectors: NDArray, kinds: list[str]) -> 
         return values[np.argmax(np.abs(values), axis=0), np.arange(values.shape[1])]
 
     scale = np.where(torsion, largest(shape["twist"]), largest(translations))
+    scale = np.where(scale == 0, 1.0, scale)       # no motion in these DOFs (a floating platform's yaw): all zero
     scaled = {key: (value / scale).T for key, value in shape.items()}        # rows: modes
     return [ModeShape(x=dofs.nodes, **{key: value[j] for key, value in scaled.items()}) for j in range(len(kinds))]
 

@@ -107,19 +107,21 @@ class ReferenceAxis:
         """Whether the axis leaves the pitch axis anywhere."""
         return bool(np.any(self.sweep != 0) or np.any(self.prebend != 0))
 
-    def _derivatives(self, s: NDArray, order: int) -> NDArray:
-        """(x0, y0, z0) derivative of ``order`` 1 to 3 at ``s``, shape (3, ...)."""
+    def _derivatives(self, s: NDArray, order: int) -> list[NDArray]:
+        """(x0, y0, z0) derivatives of orders 1 to ``order`` (at most 3) at ``s``, each of shape (3, ...)."""
         y = [spline(s, 1) for spline in self._splines]
         x1 = np.sqrt(1.0 - y[0] ** 2 - y[1] ** 2)
+        derivatives = [np.stack([x1, y[0], y[1]])]
         if order == 1:
-            return np.stack([x1, y[0], y[1]])
+            return derivatives
         y2 = [spline(s, 2) for spline in self._splines]
         x2 = -(y[0] * y2[0] + y[1] * y2[1]) / x1
+        derivatives.append(np.stack([x2, y2[0], y2[1]]))
         if order == 2:
-            return np.stack([x2, y2[0], y2[1]])
+            return derivatives
         y3 = [spline(s, 3) for spline in self._splines]
         x3 = -(y2[0] ** 2 + y[0] * y3[0] + y2[1] ** 2 + y[1] * y3[1] + x2**2) / x1
-        return np.stack([x3, y3[0], y3[1]])
+        return [*derivatives, np.stack([x3, y3[0], y3[1]])]
 
     def along_pitch_axis(self, s: NDArray) -> NDArray:
         """``x0(s) = int_0^s x0' ds``, m (Gauss quadrature on each spline piece)."""
@@ -129,7 +131,7 @@ class ReferenceAxis:
         def integral(a: NDArray, b: NDArray) -> NDArray:
             half = 0.5 * (b - a)
             points = (0.5 * (a + b))[..., None] + half[..., None] * _GAUSS_X
-            return half * np.sum(self._derivatives(points, 1)[0] * _GAUSS_W, axis=-1)
+            return half * np.sum(self._derivatives(points, 1)[0][0] * _GAUSS_W, axis=-1)
 
         pieces = np.concatenate([[0.0], np.cumsum(integral(knots[:-1], knots[1:]))])
         k = np.clip(np.searchsorted(knots, s, side="right") - 1, 0, len(knots) - 2)
@@ -142,7 +144,7 @@ class ReferenceAxis:
         R = _pitch_rotation(pitch)
         turn = lambda a: np.einsum("ij,j...->i...", R, a)   # noqa: E731
         position = turn(np.stack([self.along_pitch_axis(s), self._splines[0](s), self._splines[1](s)]))
-        t, t1, t2 = (turn(self._derivatives(s, order)) for order in (1, 2, 3))
+        t, t1, t2 = (turn(derivative) for derivative in self._derivatives(s, 3))
         # least rotation taking x to t: Lambda = I + [v]x + [v]x^2 / (1 + c), v = x cross t, c = t_x
         v = np.stack([np.zeros_like(t[0]), -t[2], t[1]])
         V = np.zeros((3, 3) + s.shape)

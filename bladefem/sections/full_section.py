@@ -150,6 +150,11 @@ def condensed(K: NDArray) -> NDArray:
     return np.moveaxis(C, (-2, -1), (0, 1))
 
 
+#: the entries of a 6x6 mass that the mass and its moments are read from (:func:`first_moment`, :func:`second_moment`)
+MOMENT_ENTRIES: tuple[tuple[int, int], ...] = ((0, 0), (5, 1), (3, 2), (4, 0),
+                                               *((i, j) for i in range(3, 6) for j in range(3, 6)))
+
+
 def first_moment(M: NDArray) -> NDArray:
     """S = m c (3, ...) from a 6x6 mass: ``M[3:, :3] = [S]x``."""
     return np.stack([M[5, 1], M[3, 2], M[4, 0]])
@@ -245,10 +250,13 @@ class FullSections:
             if np.any(np.linalg.eigvalsh(0.5 * (matrix + matrix.T)) < -SYMMETRY_TOLERANCE * m[i] * (1 + radius[i]**2)):
                 raise _bad("the mass matrix is not positive semi-definite", self.source, i, "mass")
 
-    def _at(self, x: NDArray, matrices: NDArray) -> NDArray:
-        """(6, 6, *x.shape) entries linear between stations."""
+    def _at(self, x: NDArray, matrices: NDArray, entries: tuple[tuple[int, int], ...] | None = None) -> NDArray:
+        """(6, 6, *x.shape) entries linear between stations (only ``entries``, the others zero, when given)."""
         x = np.asarray(x, dtype=float)
-        return np.array([[np.interp(x, self.span, matrices[:, i, j]) for j in range(6)] for i in range(6)])
+        values = np.zeros((6, 6) + x.shape)
+        for i, j in entries or np.ndindex(6, 6):
+            values[i, j] = np.interp(x, self.span, matrices[:, i, j])
+        return values
 
     def stiffness_at(self, x: NDArray) -> NDArray:
         """6x6 stiffness (6, 6, ...) at span positions ``x`` (m), section frame."""
@@ -296,7 +304,7 @@ class FullSections:
         """Mass per length, first and second moments about the reference axis in the blade frame at ``x``."""
         from .moments import MassMoments
 
-        M = self.mass_at(x)
+        M = self._at(x, self.mass, MOMENT_ENTRIES)
         Q = frame_rotation(np.interp(x, self.span, self.twist) + pitch)
         S = np.einsum("ij...,j...->i...", Q, first_moment(M))
         J = np.einsum("ia...,ab...,jb...->ij...", Q, second_moment(M), Q)
