@@ -265,7 +265,8 @@ def assemble_blade(blade: Blade, elements: int = 60, nodes: NDArray | None = Non
         if blade.gravity is not None:
             weight = static_deflection(K0, quadrature, blade, dofs, free, gravity_load(quadrature, blade, dofs))
             parameters = replace(parameters, gravity_static=weight)
-            K0 = K0 + assemble_terms(quadrature, parameters, (terms.gravity_moment_prestress_stiffness,))
+            elastic = pointwise_operator(quadrature, parameters, elastic_terms(fields, parameters))
+            K0 = assemble_operator(quadrature, elastic)        # with the weight's moments, as stiffness_gram sees it
     K2 = assemble_terms(quadrature, parameters, centrifugal) + K2_tip
     M = assemble_terms(quadrature, parameters, INERTIA_TERMS) + M_tip
     return BladeMatrices(K0=K0, K2=K2.tocsr(), M=M.tocsr(), dofs=dofs, free=free, blade=blade,
