@@ -6,8 +6,10 @@ Every case: the deck brought to v5's layout (``make_openfast_v5.to_v5``, inputs 
 quasi-steady airfoils (UA_Mod 0), no tower influence, the rotor speed held at 12.1 rpm (ElastoDyn GenDOF False),
 pitch 0, every other ElastoDyn DOF of the deck on, 60 s from the undeflected state; uniform wind (InflowWind
 WindType 2, no shear) of 8 m/s up to t = 25 s, rising linearly to 11 m/s at t = 25.5 s and steady after. The
-cases differ only in AeroDyn's ``DBEMT_Mod`` (0: quasi-steady; 1: ``tau1_const`` the deck's 4 s; 2: tau1 from the
-disk-averaged induction and wind). Outputs every 0.05 s; the JSON keeps every second row (0.1 s).
+cases differ only in AeroDyn's ``DBEMT_Mod`` (0: quasi-steady; 1: ``tau1_const`` the deck's 4 s, finite-difference
+formulation; 2: tau1 from the disk-averaged induction and wind, finite-difference formulation; 3: ``tau1_const`` 4 s,
+continuous formulation). Outputs every 0.05 s (AeroDyn's ``DBEMTau1`` added); the JSON keeps every second row
+(0.1 s).
 
     python tests/data/openfast/dynamic_wake/make_dynamic_wake.py OPENFAST_EXECUTABLE RUN_FOLDER
 """
@@ -30,8 +32,8 @@ WIND = "wind_step.uni"
 #: the uniform wind file: time, speed (the other columns zero)
 STEP = ((0.0, 8.0), (25.0, 8.0), (25.5, 11.0), (1000.0, 11.0))
 TMAX = 60.0
-CASES = {"dbemt0": "0", "dbemt1": "1", "dbemt2": "2"}
-CHANNELS = ("RtAeroFxh", "RtAeroMxh", "OoPDefl1", "RootMOoP1", "RotThrust", "RotTorq", "TTDspFA", "RtTSR")
+CASES = {"dbemt0": "0", "dbemt1": "1", "dbemt2": "2", "dbemt3": "3"}
+CHANNELS = ("RtAeroFxh", "RtAeroMxh", "OoPDefl1", "RotThrust", "RotTorq", "DBEMTau1")
 
 
 def uniform_wind() -> str:
@@ -59,6 +61,11 @@ def write_case(folder: Path, dbemt: str) -> None:
     end = next(k for k in range(start + 1, len(lines)) if lines[k].startswith("END"))
     lines[end:end] = ['"RotThrust"', '"RootMOoP1"']
     (folder / ED).write_text("\n".join(lines) + "\n")
+    lines = (folder / AD).read_text().splitlines()
+    start = next(k for k, line in enumerate(lines) if line.split()[:1] == ["OutList"])
+    end = next(k for k in range(start + 1, len(lines)) if lines[k].startswith("END"))
+    lines[end:end] = ['"DBEMTau1"']
+    (folder / AD).write_text("\n".join(lines) + "\n")
 
 
 def run(executable: str, runs: Path) -> None:
@@ -78,13 +85,13 @@ def histories(runs: Path) -> dict:
                                          for name in CHANNELS}}
     return {"case": "wind_step_dynamic_wake",
             "description": "NREL 5MW, 12.1 rpm held, pitch 0, uniform wind 8 m/s stepping to 11 m/s over "
-                           "25-25.5 s, 60 s from the undeflected state, AeroDyn DBEMT_Mod 0, 1 (tau1_const 4 s) "
-                           "and 2.",
+                           "25-25.5 s, 60 s from the undeflected state, AeroDyn DBEMT_Mod 0, 1 (tau1_const 4 s), "
+                           "2 and 3 (tau1_const 4 s).",
             "provenance": {"openfast": OPENFAST, "deck": "cases/nrel5mw/NRELOffshrBsline5MW_Onshore.fst",
                            "changes_from_deck": ["v5 layout additions (make_openfast_v5.py)",
                                                  "ElastoDyn GenDOF False, RotSpeed 12.1, BlPitch 0",
                                                  "InflowWind WindType 2 with the wind step (STEP)",
-                                                 "AeroDyn DBEMT_Mod per case", "TMax 60 s"],
+                                                 "AeroDyn DBEMT_Mod per case, output DBEMTau1", "TMax 60 s"],
                            "script": "tests/data/openfast/dynamic_wake/make_dynamic_wake.py",
                            "extraction": "every second output row (0.1 s), 6 significant digits"},
             "wind_step": [list(row) for row in STEP], "cases": cases}
