@@ -43,8 +43,9 @@ class DivergenceError(SimulationStopped):
 
 @dataclass(frozen=True)
 class SimulationResult:
-    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each, and the load
-    columns (T, len(outputs.LOAD_COLUMNS)) in SI."""
+    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each, the load columns
+    (T, len(outputs.LOAD_COLUMNS)) in SI, and the dynamic wake's states (T, B, Na, 4), m/s (None without it:
+    :mod:`bladefem.aero.dynamic_wake`)."""
 
     time: NDArray
     q: NDArray
@@ -54,6 +55,7 @@ class SimulationResult:
     outputs: dict[str, NDArray]
     evaluations: int
     loads: NDArray | None = None
+    wake: NDArray | None = None
 
 
 def output_times(duration: float, dt_output: float) -> NDArray:
@@ -240,8 +242,12 @@ def result_of(system: FreeSystem, times: NDArray, states: NDArray, loads: NDArra
     full = [system.full(t, x) for t, x in zip(times, states)]
     q = np.array([a for a, _ in full]).reshape(len(times), system.model.n)
     u = np.array([b for _, b in full]).reshape(len(times), system.model.n)
+    wake = None
+    if system.wake_size:
+        wake = np.asarray(states)[:, 2 * system.size:].reshape(len(times), system.model.params.n_blades, -1, 4)
     return SimulationResult(time=times, q=q, u=u, dofs=system.model.dofs, free=system.free,
-                            outputs=channels(system.model, q, u, loads), evaluations=evaluations, loads=loads)
+                            outputs=channels(system.model, q, u, loads), evaluations=evaluations, loads=loads,
+                            wake=wake)
 
 
 def compiled_run(system: FreeSystem, compiled, times: NDArray, rtol: float, atol: float, order: int,
