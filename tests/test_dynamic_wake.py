@@ -166,3 +166,21 @@ def test_compiled_equals_numpy_with_the_dynamic_wake(tmp_path, monkeypatch, dbem
     numpy_run = simulate(numpy_system, 0.2, dt_output=0.1, method="RK45", rtol=1e-9, atol=1e-9)
     for name in ("RtAeroFxh", "RtAeroMxh", "OoPDefl1"):
         np.testing.assert_allclose(compiled_run.outputs[name], numpy_run.outputs[name], rtol=1e-5)
+
+
+def test_the_command_line_runs_the_dynamic_wake(tmp_path, capsys):
+    """`turbine DECK.fst --simulate` with DBEMT_Mod 2: exit 0, the header names the dynamic wake; with
+    --quasi-steady it is left out, said in the header; --linearize refuses it naming DBEMT_Mod (exit 2, one
+    line)."""
+    from bladefem.cli import main
+    deck_model(tmp_path, "2")
+    fst = str(tmp_path / "deck2_2" / FST)
+    common = ("--simulate", "0.2", "--rpm", "12.1", "--dt", "0.1", "--quiet", "-o", str(tmp_path / "out.csv"))
+    assert main(["turbine", fst, *common]) == 0
+    assert "BEM with the dynamic wake (DBEMT_Mod 2)" in capsys.readouterr().out
+    assert main(["turbine", fst, *common, "--quasi-steady"]) == 0
+    out = capsys.readouterr().out
+    assert "quasi-steady BEM" in out and "DBEMT_Mod 2" in out
+    assert main(["turbine", fst, "--linearize", "--rpm", "12.1", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "DBEMT_Mod" in err and "--quasi-steady" in err and "\n" not in err.strip()
