@@ -243,6 +243,8 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
 
     guess : (B, Na) previous inflow angles ``phi_solved`` (a warm start; None solves from scratch)
     """
+    if not aero.wake_states:                 # no dynamic wake: states, if any, are ignored (as the kernels do)
+        wake = None
     motion = model.motion(q, u)
     group = aero_nodes(model, aero, q, u, motion)
     r, v = group.r, group.velocity(u)
