@@ -184,3 +184,29 @@ def test_the_command_line_runs_the_dynamic_wake(tmp_path, capsys):
     assert main(["turbine", fst, "--linearize", "--rpm", "12.1", "--quiet"]) == 2
     err = capsys.readouterr().err
     assert "DBEMT_Mod" in err and "--quasi-steady" in err and "\n" not in err.strip()
+
+
+def test_batch_simulation_runs_the_dynamic_wake(tmp_path):
+    """A batch plan's turbine_simulate case of a DBEMT_Mod 2 deck runs with the dynamic wake: its thrust equals
+    `bladefem turbine --simulate`'s (the same model and integrator), and differs from the quasi-steady deck's."""
+    pytest.importorskip("pyarrow")
+    from bladefem.batch import read_plan, run_case
+    from bladefem.cli import main
+    deck_model(tmp_path, "2")
+    fst = tmp_path / "deck2_2" / FST
+    means = {}
+    for name, path in (("dynamic", fst), ("quasi-steady", CASE / FST)):
+        plan_file = tmp_path / f"plan_{name}.yaml"
+        plan_file.write_text(f"model: {path}\nanalysis: {{type: turbine_simulate, seconds: 2, dt: 0.05, "
+                             "statistics_from_s: 0, rpm: 12.1, pitch_deg: 0}\ngrid: {wind_speed_m_s: [11.4]}\n")
+        rows = run_case(read_plan(plan_file).cases[0])
+        assert all(row["status"] == "ok" for row in rows)
+        means[name] = {row["channel"]: row["mean"] for row in rows}["RtAeroFxh"]
+    output = tmp_path / "run.csv"
+    assert main(["turbine", str(fst), "--simulate", "2", "--dt", "0.05", "--rpm", "12.1", "--pitch-deg", "0",
+                 "--wind-speed", "11.4", "--output", str(output), "--quiet"]) == 0
+    lines = output.read_text().splitlines()
+    column = lines[0].split(",").index(next(c for c in lines[0].split(",") if c.startswith("RtAeroFxh")))
+    thrust = np.array([float(line.split(",")[column]) for line in lines[1:]])
+    assert means["dynamic"] == pytest.approx(thrust.mean(), rel=1e-8)
+    assert abs(means["dynamic"] / means["quasi-steady"] - 1) > 1e-3
