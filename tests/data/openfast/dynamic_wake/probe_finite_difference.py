@@ -14,7 +14,10 @@ induced velocity ``-AxInd_qs Vx`` and compared with OpenFAST's filtered one ``-A
   follows OpenFAST's within 0.08 m/s (-3.53 m/s at 27 s).
 
 So OpenFAST's DBEMT_Mod 1 and 2 behave as if the derivative term ``k tau1 dv_qs/dt`` saw the induction's change
-without the axial velocity's; which line of AeroDyn does that is not established here.
+without the wind's. The likely cause, read in v5.0.0's ``modules/aerodyn/src/AeroDyn.f90`` (``AD_UpdateStates``):
+the loop that sets the BEM inputs ``m%BEMT_u(1)`` (t) and ``m%BEMT_u(2)`` (t + dt) computes each level's wind into
+``m%Inflow(1)`` but passes ``SetInputs`` the ``InflowInterp`` copied before the loop, so both levels carry the same
+wind (on a rigid turbine the same ``Vx``).
 
     python tests/data/openfast/dynamic_wake/probe_finite_difference.py OPENFAST_EXECUTABLE RUN_FOLDER
 """
