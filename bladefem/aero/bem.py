@@ -222,19 +222,42 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
     phi_solved is the root of the BEM equations (keep it as the next guess), phi the inflow angle after the skew
     correction.
     """
+    phi_solved, valid, fixed, a, ap = node_induction(vx, vy, r_local, chord, theta, tip_constant, hub_constant,
+                                                     n_blades, chi0, airfoil, knots, values, coefs, start, count,
+                                                     options, guess, cant, toe, drdz)
+    a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m = induced_loads(
+        vx, vy, a, ap, phi_solved, valid, fixed, chord, theta, tip_constant, hub_constant, tip_ratio, chi0,
+        skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, cant, toe)
+    return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
+
+
+@kernel
+def node_induction(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, chi0, airfoil, knots,
+                   values, coefs, start, count, options, guess, cant, toe, drdz):
+    """The quasi-steady induction of one node before the skew redistribution and the low tip-speed-ratio blend
+    (the dynamic wake's input, AeroDyn's ``calculate_Inductions_from_BEMT``): (phi_solved, valid, fixed, a, a'),
+    a and a' within AeroDyn's limits; ``fixed``: a node at the tip or hub with loss (no flow through it, a = 1)."""
     solidity = n_blades * chord / (2.0 * math.pi * r_local)
     fixed = ((options[TIP_LOSS] != 0.0 and tip_constant == 0.0)
              or (options[HUB_LOSS] != 0.0 and hub_constant == 0.0))
-    a, ap, valid = 0.0, 0.0, True
     if options[INDUCTION] == 0.0:
-        phi_solved = math.atan2(vx * math.cos(cant), vy)
-    elif fixed:                                        # node at the tip or hub with loss: no flow through it
-        phi_solved, a = math.atan2(vx * math.cos(cant), vy), 1.0
-    else:
-        phi_solved, valid, a, ap = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0,
-                                                      airfoil, knots, values, coefs, start, count, options, guess,
-                                                      (cant, toe, drdz))
-        a, ap = min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
+        return math.atan2(vx * math.cos(cant), vy), True, False, 0.0, 0.0
+    if fixed:
+        return math.atan2(vx * math.cos(cant), vy), True, True, 1.0, 0.0
+    phi_solved, valid, a, ap = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0,
+                                                  airfoil, knots, values, coefs, start, count, options, guess,
+                                                  (cant, toe, drdz))
+    return phi_solved, valid, False, min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
+
+
+@kernel
+def induced_loads(vx, vy, a, ap, phi_solved, valid, fixed, chord, theta, tip_constant, hub_constant, tip_ratio,
+                  chi0, skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density,
+                  cant, toe):
+    """The loads of a node with the induction a, a' (quasi-steady or filtered by the dynamic wake) after the skewed-
+    wake redistribution (for a valid solution with both velocities nonzero) and the low tip-speed-ratio blend
+    (a fixed node keeps a = 1): (a, a', phi, alpha, W, cl, cd, cm, fn, ft, m) as :func:`node_loads`."""
+    if options[INDUCTION] != 0.0 and not fixed:
         if valid and abs(vx) >= ZERO_VELOCITY and abs(vy) >= ZERO_VELOCITY:
             if options[SKEW_REDISTRIBUTION] != 0.0:
                 loss = loss_factor(phi_solved, tip_constant, hub_constant, options, math.cos(cant))
@@ -242,7 +265,16 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
         a, ap = a * induction_weight, ap * induction_weight
     phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs,
                                                          start, count, options, air_density, cant, toe)
-    return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
+    return a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m
+
+
+@kernel
+def filtered_induction(vx, vy, axial, tangential):
+    """a, a' of the dynamic wake's induced velocities (m/s; ``axial`` slows vx, ``tangential`` adds to vy), zero
+    where the velocity is zero, within AeroDyn's limits (``calculate_Inductions_from_DBEMT``)."""
+    a = axial / vx if vx != 0.0 else 0.0
+    ap = tangential / vy if vy != 0.0 else 0.0
+    return min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
 
 
 @kernel

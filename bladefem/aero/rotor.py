@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from .dynamic_wake import DynamicWake
 from .options import BEMOptions
 from .polars import Polar
 from .wind import GridWind, UniformWind, velocities, wind_arrays
@@ -37,6 +38,9 @@ class Rotor:
     hub_height : height of the rotor centre above the ground (for shear), m
     air_density : kg/m^3; kinematic_viscosity : m^2/s (kept for reference: the polars do not depend on Re)
     options : the BEM switches
+    dynamic_wake : AeroDyn's dynamic wake (DBEMT_Mod 1-3, :mod:`bladefem.aero.dynamic_wake`) for time simulations,
+        None for quasi-steady induction (steady and linear analyses are quasi-steady either way: the filters' rest
+        state is the quasi-steady induction)
     notes : where the data came from
     """
 
@@ -56,6 +60,7 @@ class Rotor:
     kinematic_viscosity: float = 1.464e-5
     options: BEMOptions = field(default_factory=BEMOptions)
     notes: tuple[str, ...] = ()
+    dynamic_wake: DynamicWake | None = None
 
     def __post_init__(self) -> None:
         n = len(self.span)

@@ -301,7 +301,8 @@ def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
     if analysis.type in TURBINE_ANALYSES:
         from ..builders.turbine_deck import read_turbine_deck
         ways = set(analysis.leave_out) | {"--rpm"}         # each case refuses a controller it has no rpm for
-        return bundle_of(lambda: read_turbine_deck(model, leave_out=ways), named)
+        dynamic = analysis.type == "turbine_simulate"     # a time simulation models the dynamic wake
+        return bundle_of(lambda: read_turbine_deck(model, leave_out=ways, dynamic_wake=dynamic), named)
     from ..check.models import read_structure
 
     def read() -> None:

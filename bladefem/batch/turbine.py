@@ -35,7 +35,8 @@ def _deck(path: str, digest: str, wind_speed: float | None, pitch_deg: float | N
     from ..builders.turbine_deck import read_turbine_deck
     ways = set(leave_out) | ({"--rpm"} if rpm is not None else set())     # a fixed rotor speed stands for DISCON
     return read_turbine_deck(path, wind_speed=wind_speed, pitch=None if pitch_deg is None else math.radians(pitch_deg),
-                             blade_shapes="fe", rpm=rpm, gauss_points=2, leave_out=frozenset(ways))
+                             blade_shapes="fe", rpm=rpm, gauss_points=2, leave_out=frozenset(ways),
+                             dynamic_wake=True)                 # simulate_rows's deck: a time simulation
 
 
 def turbine_deck(case: Any) -> Any:

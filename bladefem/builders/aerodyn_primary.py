@@ -6,10 +6,12 @@ UA_Mod 0, AFAeroMod 2 -> UA_Mod = UAMod, SkewMod 0/1/2 -> Skew_Mod -1/0/1, SkewM
 FrozenWake True -> DBEMT_Mod -1; missing new entries take AeroDyn's defaults (Wake_Mod 1, BEM_Mod 1, Skew_Mod 1,
 SkewMomCorr False, SkewRedistr_Mod 1, SectAvg False).
 
-Physics bladefem does not model (unsteady airfoil aerodynamics, dynamic wake, free vortex wake, tower influence and
-drag, nacelle and tail-fin drag, buoyancy, cavitation, aero-acoustics, sector averaging, Reynolds interpolation of
-the polars, the skew momentum correction) is listed by :meth:`AeroDynPrimary.unmodelled` with the line and label
-of the switch that asks for it, so that a caller can refuse the deck with a one-line error.
+Physics bladefem does not model (unsteady airfoil aerodynamics, free vortex wake, tower influence and drag, nacelle
+and tail-fin drag, buoyancy, cavitation, aero-acoustics, sector averaging, Reynolds interpolation of the polars,
+the skew momentum correction; the dynamic wake outside time simulations) is listed by
+:meth:`AeroDynPrimary.unmodelled` with the line and label of the switch that asks for it, so that a caller can
+refuse the deck with a one-line error. The dynamic wake (DBEMT_Mod 1, 2, 3 with ``tau1_const``) is modelled in the
+turbine's time simulation (:mod:`bladefem.aero.dynamic_wake`, :meth:`AeroDynPrimary.dynamic_wake`).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..aero.dynamic_wake import DynamicWake
 from ..aero.options import PITT_PETERS_FACTOR, BEMOptions
 from ..formats._labels import Labels
 from ..files import input_problem
@@ -67,6 +70,7 @@ class AeroDynPrimary:
     glue code's value).
 
     wake_mod : 0 none, 1 BEM, 3 free vortex wake; dbemt_mod : dynamic wake (0 none, -1 frozen, 1-3 models)
+    tau1_const : DBEMT's constant time constant tau1, s (DBEMT_Mod 1 and 3; nan when absent)
     ua_mod : unsteady airfoil model (0 quasi-steady); bem_mod : 1 legacy, 2 polar-grid projection
     skew_mod : -1 orthogonal only, 0 none, 1 skew model; skew_redistribution : SkewRedistr_Mod (0, 1)
     skew_factor : SkewRedistrFactor; tip_loss ... ti_drag, tolerance, max_iterations : the BEM switches
@@ -77,6 +81,7 @@ class AeroDynPrimary:
     path: str
     wake_mod: int
     dbemt_mod: int
+    tau1_const: float
     ua_mod: int
     bem_mod: int
     skew_mod: int
@@ -109,8 +114,15 @@ class AeroDynPrimary:
             skew_factor=self.skew_factor, formulation=2 if self.bem_mod == 2 else 1, tolerance=self.tolerance,
             max_iterations=self.max_iterations)
 
-    def unmodelled(self) -> list[Unmodelled]:
-        """Every switch of this file that asks for physics bladefem does not model."""
+    def dynamic_wake(self) -> DynamicWake | None:
+        """The dynamic wake of DBEMT_Mod 1, 2, 3 (with the BEM, Wake_Mod 1), else None."""
+        if self.wake_mod != 1 or self.dbemt_mod <= 0:
+            return None
+        return DynamicWake(self.dbemt_mod, self.tau1_const if self.dbemt_mod != 2 else math.nan)
+
+    def unmodelled(self, dynamic_wake: bool = False) -> list[Unmodelled]:
+        """Every switch of this file that asks for physics bladefem does not model; ``dynamic_wake``: the caller
+        models DBEMT_Mod 1-3 (a time simulation), else they are listed too."""
         found = []
 
         def refuse(name: str, message: str, way: str = "--quasi-steady") -> None:
@@ -119,9 +131,12 @@ class AeroDynPrimary:
 
         if self.wake_mod not in (0, 1):
             refuse("wake_mod", f"Wake_Mod {self.wake_mod} (free vortex wake) is not modelled: set 1 (BEM) or 0", "")
-        if self.wake_mod == 1 and self.dbemt_mod != 0:
-            refuse("dbemt_mod", f"dynamic wake (DBEMT_Mod {self.dbemt_mod}) is not modelled: bladefem's BEM is "
-                                "quasi-steady (set DBEMT_Mod 0, or the legacy WakeMod 1)")
+        if self.wake_mod == 1 and self.dbemt_mod == -1:
+            refuse("dbemt_mod", "a frozen wake in time (DBEMT_Mod -1, for linearization) is not modelled: set "
+                                "DBEMT_Mod 0 (quasi-steady) or 1-3 (dynamic wake)")
+        elif self.wake_mod == 1 and self.dbemt_mod > 0 and not dynamic_wake:
+            refuse("dbemt_mod", f"dynamic wake (DBEMT_Mod {self.dbemt_mod}) is not modelled here: this analysis "
+                                "is quasi-steady (set DBEMT_Mod 0, or the legacy WakeMod 1)")
         if self.ua_mod != 0:
             refuse("ua_mod", f"unsteady airfoil aerodynamics (UA_Mod {self.ua_mod}) are not modelled: set UA_Mod 0 "
                              "(legacy AFAeroMod 1)")
@@ -146,6 +161,7 @@ def read_aerodyn_primary(path: str | os.PathLike) -> AeroDynPrimary:
     wake_mod, dbemt_mod = _wake(labels)
     where("wake_mod", "Wake_Mod", "WakeMod")
     where("dbemt_mod", "DBEMT_Mod", "WakeMod", "FrozenWake")
+    tau1_const = _tau1_const(labels, wake_mod, dbemt_mod)
     ua_mod = _unsteady(labels)
     where("ua_mod", "UA_Mod", "AFAeroMod", "UAMod")
     skew_mod = _skew(labels)
@@ -166,7 +182,7 @@ def read_aerodyn_primary(path: str | os.PathLike) -> AeroDynPrimary:
         raise labels.error("UseBlCm is True but InCol_Cm is 0 (no moment column)", labels.line("UseBlCm"),
                            "UseBlCm")
     return AeroDynPrimary(
-        path=labels.path, wake_mod=wake_mod, dbemt_mod=dbemt_mod, ua_mod=ua_mod,
+        path=labels.path, wake_mod=wake_mod, dbemt_mod=dbemt_mod, tau1_const=tau1_const, ua_mod=ua_mod,
         bem_mod=_bem_mod(labels), skew_mod=skew_mod,
         skew_redistribution=(labels.int("SkewRedistr_Mod", default=1, choices=(0, 1))
                              if labels.has("SkewRedistr_Mod") else 1),
@@ -199,6 +215,16 @@ def _wake(labels: Labels) -> tuple[int, int]:
     if labels.has("FrozenWake") and labels.bool("FrozenWake"):
         dbemt = -1
     return wake, dbemt
+
+
+def _tau1_const(labels: Labels, wake_mod: int, dbemt_mod: int) -> float:
+    """tau1_const, s: required (positive) with the BEM's DBEMT_Mod 1 and 3, else not read (nan)."""
+    if wake_mod != 1 or dbemt_mod not in (1, 3):
+        return math.nan
+    if not labels.has("tau1_const"):
+        raise labels.error(f"DBEMT_Mod {dbemt_mod} needs tau1_const (the time constant, s)",
+                           labels.line("DBEMT_Mod", "WakeMod"), "tau1_const")
+    return labels.float("tau1_const", positive=True)
 
 
 def _bem_mod(labels: Labels) -> int:

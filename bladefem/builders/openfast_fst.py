@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -92,18 +92,20 @@ class OpenFASTDeck:
                      twist=blade.twist, airfoil=blade.airfoil - 1, polars=self.polars, curve=blade.curve,
                      sweep=blade.sweep, precone=ed.precone[0], shaft_tilt=ed.shaft_tilt, hub_height=self.hub_height,
                      air_density=self.air_density, kinematic_viscosity=self.kinematic_viscosity,
-                     options=self.aerodyn.options(), notes=(f"rotor of {self.path}",))
+                     options=self.aerodyn.options(), notes=(f"rotor of {self.path}",),
+                     dynamic_wake=self.aerodyn.dynamic_wake())
 
 
 def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
-                       leave_out: frozenset[str] | set[str] = frozenset(), controller: bool = False
-                       ) -> OpenFASTDeck:
+                       leave_out: frozenset[str] | set[str] = frozenset(), controller: bool = False,
+                       dynamic_wake: bool = False) -> OpenFASTDeck:
     """Read a .fst and its modules. ``unmodelled``: "error" raises the first unmodelled setting as an
     :class:`InputError` naming the option of :data:`~bladefem.builders.aerodyn_primary.WAYS` that runs without it;
     "keep" returns them in the deck. ``leave_out``: the ways forward taken (options of ``WAYS``): what they cover
     is left out and listed in :attr:`OpenFASTDeck.left_out`; "--no-aero" (the caller leaves the aerodynamic loads
     out) drops AeroDyn's unmodelled settings. ``controller``: the caller runs a Bladed-style DLL of ServoDyn (a
-    simulation without --rpm)."""
+    simulation without --rpm). ``dynamic_wake``: the caller models AeroDyn's dynamic wake (a time simulation), which
+    the rotor then carries; otherwise DBEMT_Mod 1-3 is refused (or left out with --quasi-steady)."""
     if unmodelled not in ("error", "keep"):
         raise ValueError(f"unmodelled must be 'error' or 'keep', got {unmodelled!r}")
     fst = Labels.read(path)
@@ -141,7 +143,9 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
     if aero_switch == 2:
         aerodyn = read_aerodyn_primary(fst.existing_file("AeroFile"))
         if "--no-aero" not in leave_out:         # with the aerodynamic loads left out, what they lack does not matter
-            refused += aerodyn.unmodelled()
+            refused += aerodyn.unmodelled(dynamic_wake=dynamic_wake and "--quasi-steady" not in leave_out)
+        if not dynamic_wake or "--quasi-steady" in leave_out:      # refused above, or left out
+            aerodyn = replace(aerodyn, dbemt_mod=min(aerodyn.dbemt_mod, 0))
         blades = _blades(aerodyn, elastodyn.num_blades)
         polars = tuple(read_airfoil(file, aerodyn.columns)[0] for file in aerodyn.airfoil_files)
         _check_airfoil_ids(aerodyn, blades)

@@ -72,7 +72,7 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
                       shear_exponent: float | None = None, pitch: float | None = None,
                       yaw_stiffness: float | None = None, yaw_damping: float | None = None,
                       leave_out: frozenset[str] | set[str] = frozenset(), controller: bool = False,
-                      **structure) -> TurbineDeck:
+                      dynamic_wake: bool = False, **structure) -> TurbineDeck:
     """The turbine of a .fst or an ElastoDyn main file.
 
     aero : include the aerodynamic loads of a .fst (False: structure and generator only)
@@ -81,6 +81,7 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
     leave_out : the ways forward taken (options of :data:`~bladefem.builders.aerodyn_primary.WAYS`: "--foundation
     rigid", "--quasi-steady", "--rpm"); what they leave out is named in the notes
     controller : the caller runs ServoDyn's Bladed-style DLL (else a DLL deck is refused but for --rpm)
+    dynamic_wake : the caller simulates in time, with AeroDyn's dynamic wake (DBEMT_Mod 1-3; else refused)
     structure : keyword arguments of :func:`turbine_from_elastodyn` (blade_shapes, rpm, tower_shapes, ...)
     """
     if wind_speed is not None and not 0 <= wind_speed <= MAX_WIND_SPEED:
@@ -104,7 +105,7 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
                            (platform_note(path),) if rigid else ())
     from .openfast_fst import read_openfast_deck
     deck = read_openfast_deck(path, leave_out=set(leave_out) | ({"--no-aero"} if not aero else set()),
-                              controller=controller)
+                              controller=controller, dynamic_wake=dynamic_wake)
     servo = deck.servodyn
     if yaw_stiffness is None:
         yaw_stiffness = servo.yaw_spring if servo is not None else NREL5MW_YAW_STIFFNESS

@@ -79,9 +79,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="rigid: the tower clamped at its base, the deck's platform DOFs, hydrodynamics, "
                              "mooring and substructure (HydroDyn, SubDyn, MoorDyn, ...) left out, said in the header")
     parser.add_argument("--quasi-steady", action="store_true",
-                        help="run the aerodynamics quasi-steady: the deck's unsteady airfoil aerodynamics, dynamic "
-                             "wake (DBEMT), tower and nacelle aerodynamics that bladefem does not model are left "
-                             "out, listed in one note")
+                        help="run the aerodynamics quasi-steady: the deck's dynamic wake (DBEMT_Mod 1-3, modelled "
+                             "in --simulate) and the unsteady airfoil aerodynamics, tower and nacelle aerodynamics "
+                             "that bladefem does not model are left out, listed in one note")
     parser.add_argument("--elastodyn-blades", action="store_true",
                         help="for a deck with BeamDyn blades (CompElast 2): use the ElastoDyn blade files (BldFile) "
                              "the deck also carries")
@@ -242,7 +242,8 @@ def refuse_overwriting_inputs(args: argparse.Namespace) -> None:
     from .aeroelastic import leave_out
 
     taken = leave_out(args) | ({"--no-aero"} if args.no_aero else set())
-    main = (read_openfast_deck(args.main, leave_out=taken, controller=runs_controller(args)).elastodyn
+    main = (read_openfast_deck(args.main, leave_out=taken, controller=runs_controller(args),
+                               dynamic_wake=bool(args.simulate)).elastodyn
             if is_openfast_deck(args.main) else read_elastodyn_main(args.main))
     keys = [f"BldFile({i + 1})" for i in range(len(main.blade_files))] + ["TwrFile"]
     for key, file in zip(keys, (*main.blade_files, main.tower_file)):
@@ -271,7 +272,7 @@ def build_model(args: argparse.Namespace):
         yaw_damping=args.yaw_damping, blade_shapes=shapes, rpm=args.rpm, tower_shapes=args.tower_shapes,
         elastodyn_compatible=args.elastodyn_compatible, damping=args.damping,
         gauss_points=1 if args.elastodyn_compatible else 2, leave_out=leave_out(args),
-        controller=runs_controller(args))
+        controller=runs_controller(args), dynamic_wake=bool(args.simulate))
     params = deck.params
     if args.no_gravity:
         params = params.with_(gravity=0.0)
@@ -307,7 +308,9 @@ def run(args: argparse.Namespace) -> int:
         print(f"# {note}", file=notes)
     if model.aero is not None:
         inflow = model.aero.inflow
-        print(f"# aerodynamics: quasi-steady BEM at {model.aero.n_nodes} AeroDyn nodes per blade, {inflow.kind} wind "
+        wake = model.aero.rotor.dynamic_wake
+        kind = "quasi-steady BEM" if wake is None else f"BEM with the dynamic wake (DBEMT_Mod {wake.model})"
+        print(f"# aerodynamics: {kind} at {model.aero.n_nodes} AeroDyn nodes per blade, {inflow.kind} wind "
               f"{inflow.speed:g} m/s at {inflow.reference_height:g} m, shear exponent {inflow.shear_exponent:g}, "
               f"pitch {math.degrees(model.aero.pitch):g} deg", file=notes)
     for note in deck.notes:

@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...aero.bem import NODE_OUTPUTS, solve_nodes
+from ...aero.dynamic_wake import BLEND, disk_weights, solve_wake_nodes, time_constant, wake_derivative
 from ...aero.performance import COLUMNS, induction_weight
 from ...aero.polars import pack_polars
 from ...aero.rotor import Inflow, Rotor
@@ -82,6 +83,19 @@ class TurbineAero:
     def polar_arrays(self) -> tuple[NDArray, ...]:
         """The packed polars (:func:`bladefem.aero.polars.pack_polars`) the kernels read."""
         return pack_polars(self.rotor.polars).arrays
+
+    @cached_property
+    def undeflected_radius(self) -> NDArray:
+        """(Na,) the nodes' distance from the shaft axis with the blade undeflected (coned by PreCone, the
+        aerodynamic-centre offsets included), m: the r / R of the dynamic wake with DBEMT_Mod 1 and 3 and the
+        weights of its disk-averaged induction (AeroDyn takes both from its initial radii)."""
+        cone = self.rotor.precone
+        return np.hypot(self.axial * math.cos(cone) - self.offset[:, 2] * math.sin(cone), self.offset[:, 1])
+
+    @property
+    def wake_states(self) -> int:
+        """Number of dynamic-wake states per blade (4 per node), 0 when the induction is quasi-steady."""
+        return 4 * self.n_nodes if self.rotor.dynamic_wake is not None and self.rotor.options.induction else 0
 
     @cached_property
     def options(self) -> NDArray:
@@ -184,6 +198,9 @@ class AeroLoads:
     power : RtAeroPwr = rotor speed about the shaft x torque, W
     tsr, cp, ct : RtTSR, RtAeroCp, RtAeroCt; disk_velocity : disk-averaged relative wind along the shaft, m/s
     skew : chi0, rad
+    quasi_steady : (B, Na, 2) with the dynamic wake: the quasi-steady induced velocities (a vx, a' vy) before the
+        skew redistribution (the filters' input), m/s
+    wake_rate : (B, Na, 4) d/dt of the dynamic-wake states (None without them); tau1 : its time constant, s
     """
 
     generalized: NDArray
@@ -200,6 +217,9 @@ class AeroLoads:
     ct: float
     disk_velocity: float
     skew: float
+    quasi_steady: NDArray | None = None
+    wake_rate: NDArray | None = None
+    tau1: float = math.nan
 
     def column(self, name: str) -> NDArray:
         """One node quantity (B, Na) by its name in :data:`bladefem.aero.performance.COLUMNS`."""
@@ -216,11 +236,15 @@ def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) ->
 
 
 def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
-               guess: NDArray | None = None) -> AeroLoads:
-    """Quasi-steady BEM loads on the turbine ``model`` at state (q, u) in the wind at time t (s).
+               guess: NDArray | None = None, wake: NDArray | None = None) -> AeroLoads:
+    """BEM loads on the turbine ``model`` at state (q, u) in the wind at time t (s): quasi-steady, or with the
+    induced velocities of the dynamic wake's states ``wake`` (B, Na, 4; :mod:`bladefem.aero.dynamic_wake`), whose
+    rates then come with the loads.
 
     guess : (B, Na) previous inflow angles ``phi_solved`` (a warm start; None solves from scratch)
     """
+    if not aero.wake_states:                 # no dynamic wake: states, if any, are ignored (as the kernels do)
+        wake = None
     motion = model.motion(q, u)
     group = aero_nodes(model, aero, q, u, motion)
     r, v = group.r, group.velocity(u)
@@ -237,7 +261,7 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     vx, vy = frame.components(relative)
     r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
     disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)
-    solution = solve_all(aero, vx, vy, r_local, disk, guess, frame)
+    solution, quasi = solve_all(aero, vx, vy, r_local, disk, guess, frame, wake)
     fn, ft, m = (solution[..., COLUMNS.index(name)][..., None] for name in ("fn", "ft", "m"))
     forces = np.einsum("ij,bjk->bik", aero.force_lumping(), fn * normal + ft * e_t)
     moments = aero.moment_weights()[None, :, None] * m * span_axis
@@ -249,10 +273,35 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     power = disk.speed * torque
     area = math.pi * disk.max_radius**2
     dynamic = 0.5 * aero.rotor.air_density * area * disk.velocity**2
+    rate, tau1 = None, math.nan
+    if wake is not None:
+        wind_along = float(aero.inflow.velocity_at(r, t).reshape(-1, 3).mean(axis=0) @ shaft)
+        rate, tau1 = wake_rates_of(aero, wake, quasi, vx, r_local, disk.velocity, wind_along)
     return AeroLoads(generalized=generalized, forces=forces, moments=moments, positions=r, velocities=v,
                      solution=solution, thrust=thrust, torque=torque, power=power, tsr=disk.tsr,
                      cp=power / (dynamic * disk.velocity) if disk.velocity else 0.0,
-                     ct=thrust / dynamic if disk.velocity else 0.0, disk_velocity=disk.velocity, skew=disk.chi0)
+                     ct=thrust / dynamic if disk.velocity else 0.0, disk_velocity=disk.velocity, skew=disk.chi0,
+                     quasi_steady=quasi, wake_rate=rate, tau1=tau1)
+
+
+def wake_rates_of(aero: TurbineAero, wake: NDArray, quasi: NDArray, vx: NDArray, r_local: NDArray,
+                  relative_along: float, wind_along: float) -> tuple[NDArray, float]:
+    """The rates (B, Na, 4) of the dynamic-wake states and tau1 (s): the disk-averaged quasi-steady induction with
+    AeroDyn's weights, the disk wind along the shaft (the relative wind ``relative_along`` with BEM_Mod 1, the
+    undisturbed ``wind_along`` with BEM_Mod 2), R the largest node radius; r / R now (DBEMT_Mod 2) or undeflected."""
+    settings = aero.rotor.dynamic_wake
+    parameters = settings.vector()
+    a_quasi = np.divide(quasi[..., 0], vx, out=np.zeros_like(vx), where=vx != 0.0)
+    weights = disk_weights(np.broadcast_to(aero.undeflected_radius, r_local.shape))
+    disk_wind = wind_along if aero.rotor.options.formulation == 2 else relative_along
+    radius = float(r_local.max())
+    tau1 = time_constant(parameters, float((weights * a_quasi).sum()), disk_wind, radius)
+    ratio = r_local / radius if settings.model == 2 else np.broadcast_to(
+        aero.undeflected_radius / aero.undeflected_radius.max(), r_local.shape)
+    rate = np.empty(wake.shape)
+    wake_derivative(wake.reshape(-1, 4), quasi.reshape(-1, 2), tau1, np.ascontiguousarray(ratio).ravel(),
+                    parameters[BLEND], rate.reshape(-1, 4))
+    return rate, float(tau1)
 
 
 @dataclass(frozen=True)
@@ -291,8 +340,10 @@ def disk_values(relative: NDArray, shaft: NDArray, pitch_axes: NDArray, speed: f
 
 
 def solve_all(aero: TurbineAero, vx: NDArray, vy: NDArray, r_local: NDArray, disk: DiskValues,
-              guess: NDArray | None, frame: Projection) -> NDArray:
-    """The node solver at every node of every blade: (B, Na, NODE_OUTPUTS), the sections oriented by ``frame``."""
+              guess: NDArray | None, frame: Projection, wake: NDArray | None = None) -> tuple[NDArray, NDArray]:
+    """The node solver at every node of every blade: (B, Na, NODE_OUTPUTS), the sections oriented by ``frame``,
+    and, with the dynamic wake's states ``wake`` (B, Na, 4: the loads then see its induced velocities), the
+    quasi-steady induced velocities (B, Na, 2) (None without)."""
     rotor = aero.rotor
     shape = vx.shape
     tip_ratio = r_local / r_local.max(axis=1, keepdims=True)
@@ -301,11 +352,15 @@ def solve_all(aero: TurbineAero, vx: NDArray, vy: NDArray, r_local: NDArray, dis
         np.full(shape, disk.chi0), disk.skew_cos[:, None], rotor.airfoil,
         np.full(shape, np.nan) if guess is None else guess, frame.cant, frame.toe, frame.drdz)]
     vx_, vy_, r_, chord, theta, tip_c, hub_c, ratio, chi0, skew_cos, airfoil, start, cant, toe, drdz = per_node
-    out = np.empty((vx.size, NODE_OUTPUTS))
-    solve_nodes(vx_, vy_, r_, chord, theta, tip_c, hub_c, float(rotor.n_blades), ratio, chi0, skew_cos,
-                disk.weight, airfoil.astype(np.int64), *aero.polar_arrays, aero.options,
-                float(rotor.air_density), start, cant, toe, drdz, out)
-    return out.reshape(shape + (NODE_OUTPUTS,))
+    out, quasi = np.empty((vx.size, NODE_OUTPUTS)), np.empty((vx.size, 2))
+    args = (vx_, vy_, r_, chord, theta, tip_c, hub_c, float(rotor.n_blades), ratio, chi0, skew_cos, disk.weight,
+            airfoil.astype(np.int64), *aero.polar_arrays, aero.options, float(rotor.air_density), start, cant, toe,
+            drdz)
+    if wake is None:
+        solve_nodes(*args, out)
+        return out.reshape(shape + (NODE_OUTPUTS,)), None
+    solve_wake_nodes(*args, np.ascontiguousarray(wake, dtype=float).reshape(-1, 4), out, quasi)
+    return out.reshape(shape + (NODE_OUTPUTS,)), quasi.reshape(shape + (2,))
 
 
 def aero_forcing(model, aero: TurbineAero):

@@ -138,8 +138,14 @@ class CompiledEquations:
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
 
-    def __call__(self, q: NDArray, u: NDArray, t: float = 0.0) -> tuple[NDArray, NDArray]:
+    def __call__(self, q: NDArray, u: NDArray, t: float = 0.0, wake: NDArray | None = None
+                 ) -> tuple[NDArray, NDArray]:
+        """(M, f) at (q, u) and time t, with the dynamic wake's states ``wake`` (B, Na, 4), else quasi-steady."""
         from .compiled_loads import equations
+        flag = self.state[13]
+        flag[0] = 0.0 if wake is None else 1.0
+        if wake is not None:
+            self.state[10][...] = wake
         args = (np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.loaded,
                 self.all_work, float(t))
         with first_call("equations", "turbine equations", equations, args):

@@ -23,7 +23,7 @@ njit = cached_njit()
 if njit is not None:
     from .compiled_kernels import store_row
     from .compiled_state import full_state, state_rate
-    from .compiled_loads import equations
+    from .compiled_loads import equations, load_wake, store_wake_rate
     from .compiled_outputs import output_row
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -33,8 +33,10 @@ if njit is not None:                                   # module-level kernels: n
         """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
         same evaluation of the equations) if it is not empty."""
         q, u = full_state(t, x, q0, u0, index)
+        load_wake(x, index.shape[0], work[1])
         M, f = equations(q, u, data, work, t)
         out = state_rate(x, M, f, index)
+        store_wake_rate(out, index.shape[0], work[1])
         if row.shape[0]:
             output_row(q, u, M, f, index, data, work, hub_radius, 0, row)
         return out

@@ -8,6 +8,11 @@ scratch, as the numpy twin: the loads are a function of the state alone), and th
 ``Z^T sum_p [F; rho x F + M; (R D)^T F]`` to the forcing. ``aero`` is the tuple of :func:`aero_data`; ``state``
 the arrays of :func:`aero_state`. The kernels :func:`equations` and :func:`derivative` take ``data = (structure,
 aero, generator law)`` and ``work = (structural work, aero state)``.
+
+The dynamic wake's states (:mod:`bladefem.aero.dynamic_wake`) ride at the end of the integrator's state vector,
+after the free coordinates and rates: :func:`load_wake` copies them into the aero state before the equations (which
+then use their induced velocities and leave the states' rates there), :func:`store_wake_rate` copies the rates into
+dx/dt; a state vector without them (or a call of the equations alone) gives the quasi-steady loads.
 """
 
 from __future__ import annotations
@@ -20,7 +25,7 @@ from ...numba_cache import cached_njit
 
 njit = cached_njit()
 
-#: columns of the rotor summary a call leaves in the state (``state[-1]``)
+#: columns of the rotor summary a call leaves in the state (``state[9]``)
 HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")
 
 
@@ -36,7 +41,7 @@ def aero_data(model) -> tuple:
         return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0)),
                 np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
                 np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
-                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays())
+                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty)
     across = np.zeros((k, aero.n_nodes, 3))
     across[:, :, 1:] = aero.value
     inflow, rotor = aero.inflow, aero.rotor
@@ -45,21 +50,35 @@ def aero_data(model) -> tuple:
             np.ascontiguousarray(aero.slope[:, :, 1]), aero.force_lumping(), aero.moment_weights(),
             rotor.chord.copy(), np.ascontiguousarray(aero.theta, dtype=float), aero.tip_constant.copy(),
             aero.hub_constant.copy(), rotor.airfoil.astype(np.int64), knots, values, coefs, start, count,
-            aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays())
+            aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays(),
+            *wake_data(aero, model.params.n_blades))
+
+
+def wake_data(aero, blades: int) -> tuple:
+    """The dynamic wake's (model, tau1_const, k) (model 0: none), the nodes' weights in the disk-averaged induction
+    (Na,) (one blade's, over the number of blades) and their undeflected r / R (Na,)."""
+    from ...aero.dynamic_wake import disk_weights
+    radius = aero.undeflected_radius
+    weights = disk_weights(np.broadcast_to(radius, (blades, len(radius))))[0].copy()
+    settings = aero.rotor.dynamic_wake if aero.wake_states else None
+    return (np.zeros(3) if settings is None else settings.vector(), weights, radius / radius.max())
 
 
 def aero_state(blades: int, nodes: int, modes: int) -> tuple:
     """Per node: offset from the apex rho, absolute velocity (B, Na, 3), R D (B, Na, 3, k), the deflected normal
     and span axis (B, Na, 3), the relative wind (B, Na, 3), the node solutions (B, Na, 13), lumped forces and
-    moments (B, Na, 3); the rotor summary (:data:`HUB`)."""
+    moments (B, Na, 3); the rotor summary (:data:`HUB`); the dynamic wake's states and their rates (B, Na, 4), the
+    quasi-steady induced velocities (B, Na, 2) and (states given: 1 or 0, tau1 in s)."""
     shape = (blades, nodes, 3)
     return (np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 3, modes)), np.zeros(shape),
             np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 13)), np.zeros(shape), np.zeros(shape),
-            np.zeros(len(HUB)))
+            np.zeros(len(HUB)), np.zeros((blades, nodes, 4)), np.zeros((blades, nodes, 4)),
+            np.zeros((blades, nodes, 2)), np.zeros(2))
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
     from ...aero.bem import node_loads
+    from ...aero.dynamic_wake import BLEND, MODEL, time_constant, wake_node_loads, wake_rates
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
     from ...aero.wind import point_wind
@@ -176,6 +195,10 @@ if njit is not None:                                   # module-level kernels: n
             state[4], state[5], state[6], state[7], state[8], state[9]
         omega = node_kinematics(q, u, data, aero, work, state, t)
         B, k = frame_w.shape[0], RD_w.shape[3]
+        wake_parameters, disk_weight, ratio0 = aero[22], aero[23], aero[24]
+        wake, wake_rate, quasi, wake_flag = state[10], state[11], state[12], state[13]
+        lagging = wake_flag[0] != 0.0 and wake_parameters[MODEL] != 0.0
+        disk_induction = 0.0
         # disk averages (AeroDyn's DiskAvgValues): relative wind, skew angle and direction, tip-speed ratio
         mean = np.zeros(3)
         for b in range(B):
@@ -221,10 +244,20 @@ if njit is not None:                                   # module-level kernels: n
             for p in range(nodes):
                 vx, vy, cant, toe, drdz = projected_inflow(rho_w, b, p, rel_w[b, p], normal_w[b, p], span_w[b, p],
                                                            R[:, 1], shaft, options[FORMULATION] == 2.0)
-                phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
-                    vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1], r_local[b, p] / tip[b],
-                    chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start, count, options, scalars[0],
-                    math.nan, cant, toe, drdz)
+                if lagging:
+                    phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, q_axial, q_tangential = \
+                        wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1],
+                                        r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values,
+                                        coefs, start, count, options, scalars[0], math.nan, cant, toe, drdz,
+                                        wake[b, p, 2], wake[b, p, 3])
+                    quasi[b, p, 0], quasi[b, p, 1] = q_axial, q_tangential
+                    if vx != 0.0:
+                        disk_induction += disk_weight[p] * q_axial / vx
+                else:
+                    phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
+                        vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1],
+                        r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start,
+                        count, options, scalars[0], math.nan, cant, toe, drdz)
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl
                 row[7], row[8], row[9], row[10], row[11] = cd, cm, fn, ft, m
@@ -259,6 +292,58 @@ if njit is not None:                                   # module-level kernels: n
         hub[4] = power / (dynamic * along) if along != 0.0 else 0.0
         hub[5] = thrust / dynamic if along != 0.0 else 0.0
         hub[6], hub[7] = along, chi0
+        if lagging:
+            wake_flag[1] = wake_derivatives(wake, quasi, wake_rate, wake_parameters, ratio0, r_local, max_radius,
+                                            disk_induction, along, state[1], rel_w, shaft, options[FORMULATION])
+
+    @njit(cache=True)
+    def wake_derivatives(wake, quasi, rate, parameters, ratio0, r_local, max_radius, disk_induction, along, velocity,
+                         relative, shaft, formulation):
+        """The rates of the dynamic wake's states into ``rate``; returns tau1 (s). The disk wind: the relative
+        wind along the shaft ``along`` (BEM_Mod 1), the undisturbed wind's mean along it (BEM_Mod 2)."""
+        disk_wind = along
+        if formulation == 2.0:
+            disk_wind = 0.0
+            count = relative.shape[0] * relative.shape[1]
+            for b in range(relative.shape[0]):
+                for p in range(relative.shape[1]):
+                    for r in range(3):
+                        disk_wind += (relative[b, p, r] + velocity[b, p, r]) * shaft[r] / count
+        tau1 = time_constant(parameters, disk_induction, disk_wind, max_radius)
+        for b in range(wake.shape[0]):
+            for p in range(wake.shape[1]):
+                ratio = r_local[b, p] / max_radius if parameters[MODEL] == 2.0 else ratio0[p]
+                for c in range(2):
+                    rate[b, p, c], rate[b, p, 2 + c] = wake_rates(wake[b, p, c], wake[b, p, 2 + c], quasi[b, p, c],
+                                                                  tau1, ratio, parameters[BLEND])
+        return tau1
+
+    @njit(cache=True)
+    def load_wake(x, size, state):
+        """The dynamic wake's states x[2 size:] into the aero state (and the flag that they are given)."""
+        wake, flag = state[10], state[13]
+        flag[0] = 1.0 if x.shape[0] > 2 * size else 0.0
+        if flag[0] == 0.0:
+            return
+        i = 2 * size
+        for b in range(wake.shape[0]):
+            for p in range(wake.shape[1]):
+                for c in range(4):
+                    wake[b, p, c] = x[i]
+                    i += 1
+
+    @njit(cache=True)
+    def store_wake_rate(out, size, state):
+        """dx/dt of the dynamic wake's states (left in the aero state by the equations) into out[2 size:]."""
+        if out.shape[0] == 2 * size:
+            return
+        rate = state[11]
+        i = 2 * size
+        for b in range(rate.shape[0]):
+            for p in range(rate.shape[1]):
+                for c in range(4):
+                    out[i] = rate[b, p, c]
+                    i += 1
 
     law_torque = njit(cache=True)(control.law_torque)       # the torque law, compiled
 
@@ -285,7 +370,10 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def derivative(t, x, q0, u0, index, data, work):
-        """dx/dt of the free coordinates x = (q_f, u_f)."""
+        """dx/dt of the free coordinates and the dynamic wake, x = (q_f, u_f, w)."""
         q, u = full_state(t, x, q0, u0, index)
+        load_wake(x, index.shape[0], work[1])
         M, f = equations(q, u, data, work, t)
-        return state_rate(x, M, f, index)
+        out = state_rate(x, M, f, index)
+        store_wake_rate(out, index.shape[0], work[1])
+        return out

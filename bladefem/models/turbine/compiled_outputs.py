@@ -17,7 +17,7 @@ COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_tor
 
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
-    from .compiled_loads import equations, law_torque
+    from .compiled_loads import equations, law_torque, load_wake
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
@@ -27,6 +27,7 @@ if njit is not None:                                   # module-level kernels: n
         out = np.zeros((times.shape[0], len(COLUMNS)))
         for row in range(times.shape[0]):
             q, u = full_state(times[row], states[row], q0, u0, index)
+            load_wake(states[row], index.shape[0], work[1])
             M, f = equations(q, u, data, work, times[row])
             output_row(q, u, M, f, index, data, work, hub_radius, blade, out[row])
         return out

@@ -27,9 +27,10 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def state_rate(x, M, f, index):
-        """dx/dt of the free state x = (q_f, u_f): its rates, then the free accelerations from M and f."""
+        """dx/dt of the free state x = (q_f, u_f, ...): its rates, then the free accelerations from M and f (the
+        entries past 2 size, the dynamic wake's, are left for :func:`.compiled_loads.store_wake_rate`)."""
         size = index.shape[0]
-        out = np.empty(2 * size)
+        out = np.zeros(x.shape[0])
         du = free_accelerations(M, f, index)
         for i in range(size):
             out[i] = x[size + i]

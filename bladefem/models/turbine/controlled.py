@@ -77,7 +77,7 @@ class Controlled:
         if rate is None:
             rate = compiled.derivative(t, x, system.q0, system.u0, system.index)
         du = np.zeros(model.n)
-        du[system.index] = rate[system.size:]
+        du[system.index] = rate[system.size:2 * system.size]
         top = du[model.tower_columns] @ model.params.tower.tip_value
         turn = du[model.tower_columns] @ model.params.tower.tip_slope       # about y (fore-aft), x (side-side)
         rotor_speed = u[5] + u[6]
@@ -177,7 +177,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             pitch.extend([run.pitcher.pitch] * len(taken))
             if len(taken):
                 u = np.tile(system.u0, (len(taken), 1))
-                u[:, system.index] = np.asarray(taken)[:, system.size:]
+                u[:, system.index] = np.asarray(taken)[:, system.size:2 * system.size]
                 reason = monitor.rows(times[row:last], u, np.asarray(loads[-len(taken):]))
                 if reason:
                     raise stop(SimulationStopped(*reason))

@@ -188,12 +188,12 @@ class TurbineModel:
 
     # -- Kane's equations ---------------------------------------------------------------------------------------
 
-    def equations(self, q: NDArray, u: NDArray, blade_forces: NDArray | None = None, t: float = 0.0
-                  ) -> tuple[NDArray, NDArray]:
+    def equations(self, q: NDArray, u: NDArray, blade_forces: NDArray | None = None, t: float = 0.0,
+                  wake: NDArray | None = None) -> tuple[NDArray, NDArray]:
         """Mass matrix M(q) (n, n) and forcing f(q, u) (n,) with ``M du/dt = f``; ``blade_forces`` (B, P + 1, 3),
         N in earth components, are external forces on the blade nodes (tip last), added to the forcing as
-        ``sum_p J_p^T F_p``; the model's aerodynamic loads (in the wind at time t, s) and generator torque, if any,
-        are included."""
+        ``sum_p J_p^T F_p``; the model's aerodynamic loads (in the wind at time t, s; with the dynamic wake's
+        states ``wake``, else quasi-steady) and generator torque, if any, are included."""
         motion = self.motion(q, u)
         M, f = np.zeros((self.n, self.n)), np.zeros(self.n)
         for group, masses, external in ((motion.tower, self.tower_masses, None),
@@ -213,14 +213,15 @@ class TurbineModel:
             f -= inertia * ((axis @ frame.alpha) * partial
                             + (axis @ frame.omega) * (frame.W.T @ (skew(frame.omega) @ axis)))
         f -= self.K @ q + self.C @ u
-        return M, f + self.applied_forces(q, u, t)
+        return M, f + self.applied_forces(q, u, t, wake)
 
-    def applied_forces(self, q: NDArray, u: NDArray, t: float = 0.0) -> NDArray:
-        """Generalized forces (n,) of the aerodynamic loads (wind at time t) and the generator torque at (q, u)."""
+    def applied_forces(self, q: NDArray, u: NDArray, t: float = 0.0, wake: NDArray | None = None) -> NDArray:
+        """Generalized forces (n,) of the aerodynamic loads (wind at time t; the dynamic wake's states ``wake``)
+        and the generator torque at (q, u)."""
         f = np.zeros(self.n)
         if self.aero is not None:
             from .aero import aero_loads
-            f += aero_loads(self, self.aero, q, u, t).generalized
+            f += aero_loads(self, self.aero, q, u, t, wake=wake).generalized
         if self.generator is not None:
             g = self.dofs.index("generator_azimuth")
             ratio = self.params.gearbox_ratio

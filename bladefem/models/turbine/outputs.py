@@ -57,22 +57,24 @@ LOAD_COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generato
                 "damping_power")
 
 
-def load_row(model, q: NDArray, u: NDArray, du: NDArray, blade: int = 0, t: float = 0.0) -> NDArray:
+def load_row(model, q: NDArray, u: NDArray, du: NDArray, blade: int = 0, t: float = 0.0,
+             wake: NDArray | None = None) -> NDArray:
     """The :data:`LOAD_COLUMNS` at one state with accelerations ``du`` (numpy reference of the compiled kernel):
     root moments of ``blade`` from gravity, d'Alembert and aerodynamic loads; the rotor's (hub and blades) loads
     along and about the shaft; the generator torque of the law plus the generalized force holding a locked
-    generator; the aerodynamic summary; the power of the aerodynamic loads and of the damping (wind at time t)."""
+    generator; the aerodynamic summary; the power of the aerodynamic loads and of the damping (wind at time t; the
+    dynamic wake's states ``wake``)."""
     from .aero import aero_loads
     p = model.params
     motion = model.motion(q, u)
-    M, f = model.equations(q, u, t=t)
+    M, f = model.equations(q, u, t=t, wake=wake)
     nodes = motion.blades
     a = np.einsum("bpkm,bm->bpk", nodes.G, np.einsum("bmn,n->bm", nodes.Z, du)) + nodes.a
     loads = model.blade_masses[..., None] * (model.gravity - a)
     positions, forces, moments = nodes.r, loads, np.zeros_like(loads)
     summary, aero_work = np.zeros(8), 0.0
     if model.aero is not None:
-        aero = aero_loads(model, model.aero, q, u, t)
+        aero = aero_loads(model, model.aero, q, u, t, wake=wake)
         positions = np.concatenate([positions, aero.positions], axis=1)
         forces = np.concatenate([forces, aero.forces], axis=1)
         moments = np.concatenate([moments, aero.moments], axis=1)

@@ -43,8 +43,9 @@ class DivergenceError(SimulationStopped):
 
 @dataclass(frozen=True)
 class SimulationResult:
-    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each, and the load
-    columns (T, len(outputs.LOAD_COLUMNS)) in SI."""
+    """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each, the load columns
+    (T, len(outputs.LOAD_COLUMNS)) in SI, and the dynamic wake's states (T, B, Na, 4), m/s (None without it:
+    :mod:`bladefem.aero.dynamic_wake`)."""
 
     time: NDArray
     q: NDArray
@@ -54,6 +55,7 @@ class SimulationResult:
     outputs: dict[str, NDArray]
     evaluations: int
     loads: NDArray | None = None
+    wake: NDArray | None = None
 
 
 def output_times(duration: float, dt_output: float) -> NDArray:
@@ -76,7 +78,7 @@ def divergence_limits(system: FreeSystem) -> NDArray:
     blade = np.linalg.norm(p.blade.tip_value, axis=1)
     limit[model.blade_columns] = p.blade.length / np.maximum(blade, 1e-12)
     limit[model.dofs.index("drivetrain")] = 1.0
-    return np.concatenate([limit[system.index], np.full(system.size, np.inf)])
+    return np.concatenate([limit[system.index], np.full(system.size + system.wake_size, np.inf)])
 
 
 def diverged(system: FreeSystem, state: int, time: float, status: int, method: str) -> DivergenceError:
@@ -205,14 +207,11 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     except KeyboardInterrupt:
         rows = len(done)
         partial = np.array(done)
-        loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui, t), t=t)
-                          for t, (qi, ui) in ((t, system.full(t, x)) for t, x in zip(times[:rows], partial))])
+        loads = row_loads(system, times[:rows], partial)
         raise Interrupted(f"interrupted (Ctrl-C) at t = {times[rows - 1]:.4g} s", float(times[rows - 1]),
                           result_of(system, times[:rows], partial, loads, count[0])) from None
     states = np.array(done)
-    full = [system.full(t, x) for t, x in zip(times, states)]
-    loads = np.array([load_row(system.model, qi, ui, system.accelerations(qi, ui, t), t=t)
-                      for t, (qi, ui) in zip(times, full)])
+    loads = row_loads(system, times, states)
     result = result_of(system, times, states, loads, count[0])
     reason = Monitor(system.model, LOAD_COLUMNS, generator_free(system)).rows(times, result.u, loads)
     if reason:
@@ -220,6 +219,16 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
         raise SimulationStopped(reason[0], reason[1], result_of(system, times[:rows], states[:rows], loads[:rows],
                                                                 count[0]))
     return result
+
+
+def row_loads(system: FreeSystem, times: NDArray, states: NDArray) -> NDArray:
+    """The load columns (numpy) at every output row of the free states."""
+    rows = []
+    for t, x in zip(times, states):
+        q, u = system.full(t, x)
+        wake = system.wake(x)
+        rows.append(load_row(system.model, q, u, system.accelerations(q, u, t, wake), t=t, wake=wake))
+    return np.array(rows)
 
 
 def generator_free(system: FreeSystem) -> bool:
@@ -233,8 +242,12 @@ def result_of(system: FreeSystem, times: NDArray, states: NDArray, loads: NDArra
     full = [system.full(t, x) for t, x in zip(times, states)]
     q = np.array([a for a, _ in full]).reshape(len(times), system.model.n)
     u = np.array([b for _, b in full]).reshape(len(times), system.model.n)
+    wake = None
+    if system.wake_size:
+        wake = np.asarray(states)[:, 2 * system.size:].reshape(len(times), system.model.params.n_blades, -1, 4)
     return SimulationResult(time=times, q=q, u=u, dofs=system.model.dofs, free=system.free,
-                            outputs=channels(system.model, q, u, loads), evaluations=evaluations, loads=loads)
+                            outputs=channels(system.model, q, u, loads), evaluations=evaluations, loads=loads,
+                            wake=wake)
 
 
 def compiled_run(system: FreeSystem, compiled, times: NDArray, rtol: float, atol: float, order: int,
@@ -247,7 +260,7 @@ def compiled_run(system: FreeSystem, compiled, times: NDArray, rtol: float, atol
         if progress is not None:
             progress(end)
         u = np.tile(system.u0, (len(row_times), 1))
-        u[:, system.index] = states[:, system.size:]
+        u[:, system.index] = states[:, system.size:2 * system.size]
         return monitor.rows(row_times, u, loads) or monitor.steps(count, start, end)
 
     run = compiled.integrate(times, system.initial_state(), rtol, atol, system.q0, system.u0, system.index,

@@ -69,7 +69,9 @@ def select_dofs(dofs: tuple[str, ...], names: Iterable[str], base: NDArray[np.bo
 
 @dataclass
 class FreeSystem:
-    """First-order equations ``dx/dt = F(t, x)`` of the free coordinates, ``x = (q_f, u_f)``.
+    """First-order equations ``dx/dt = F(t, x)`` of the free coordinates and the dynamic wake,
+    ``x = (q_f, u_f, w)``: ``w`` the dynamic wake's states (B, Na, 4) flattened (:mod:`bladefem.aero.dynamic_wake`;
+    empty with quasi-steady induction).
 
     model : the full turbine model; free : (n,) mask; q0, u0 : (n,) initial coordinates and rates (locked ones
     move on at their initial rate)
@@ -91,20 +93,43 @@ class FreeSystem:
     def size(self) -> int:
         return len(self.index)
 
+    @property
+    def wake_size(self) -> int:
+        """Number of dynamic-wake states (0 with quasi-steady induction)."""
+        aero = self.model.aero
+        return 0 if aero is None else self.model.params.n_blades * aero.wake_states
+
     def initial_state(self) -> NDArray:
-        return np.concatenate([self.q0[self.index], self.u0[self.index]])
+        """x at t = 0: the initial coordinates and rates, the dynamic wake at rest on the quasi-steady induction
+        there (AeroDyn's ``DBEMT_InitStates``)."""
+        x = np.concatenate([self.q0[self.index], self.u0[self.index]])
+        if not self.wake_size:
+            return x
+        from ...aero.dynamic_wake import initial_wake
+        from .aero import aero_loads
+        aero = self.model.aero
+        rest = np.zeros((self.model.params.n_blades, aero.n_nodes, 4))
+        quasi = aero_loads(self.model, aero, self.q0, self.u0, 0.0, wake=rest).quasi_steady
+        return np.concatenate([x, initial_wake(quasi).ravel()])
 
     def full(self, t: float, x: NDArray) -> tuple[NDArray, NDArray]:
         """All coordinates and rates at time t for the free state x."""
         q = self.q0 + self.u0 * t
         u = self.u0.copy()
         q[self.index] = x[:self.size]
-        u[self.index] = x[self.size:]
+        u[self.index] = x[self.size:2 * self.size]
         return q, u
 
-    def accelerations(self, q: NDArray, u: NDArray, t: float = 0.0) -> NDArray:
-        """du/dt of all coordinates (zero for the locked ones) at time t."""
-        M, f = self.model.fast_equations()(q, u, t=t)
+    def wake(self, x: NDArray) -> NDArray | None:
+        """The dynamic wake's states (B, Na, 4) of the free state x (None with quasi-steady induction)."""
+        if not self.wake_size:
+            return None
+        return np.asarray(x[2 * self.size:], dtype=float).reshape(self.model.params.n_blades, -1, 4)
+
+    def accelerations(self, q: NDArray, u: NDArray, t: float = 0.0, wake: NDArray | None = None) -> NDArray:
+        """du/dt of all coordinates (zero for the locked ones) at time t (with the dynamic wake's states
+        ``wake``)."""
+        M, f = self.model.fast_equations()(q, u, t=t, wake=wake)
         du = np.zeros(self.model.n)
         ix = self.index
         du[ix] = np.linalg.solve(M[self.block], f[ix])
@@ -115,5 +140,10 @@ class FreeSystem:
         if hasattr(equations, "derivative"):
             return equations.derivative(t, x, self.q0, self.u0, self.index)
         q, u = self.full(t, x)
-        M, f = equations(q, u, t=t)
-        return np.concatenate([x[self.size:], np.linalg.solve(M[self.block], f[self.index])])
+        wake = self.wake(x)
+        M, f = equations(q, u, t=t, wake=wake)
+        rates = [x[self.size:2 * self.size], np.linalg.solve(M[self.block], f[self.index])]
+        if wake is not None:                 # the reference path solves the nodes once more for the wake's rates
+            from .aero import aero_loads
+            rates.append(aero_loads(self.model, self.model.aero, q, u, t, wake=wake).wake_rate.ravel())
+        return np.concatenate(rates)
