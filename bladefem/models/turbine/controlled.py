@@ -209,7 +209,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     kernel) for a library loaded in this process and collective pitch; its first call made here (a library or
     input file that fails there is an :class:`InputError`). Between kernel calls (about ``BUDGET`` right-hand
     sides) the new rows are watched, progress told and Ctrl-C looked for."""
-    from .compiled import _dp54_tableau
+    from .compiled import _dp54_tableau, first_call
     from .compiled_control import FAILED, OVERRIDE, controlled_chunk
     from .watch import BUDGET, interruptible
     system, compiled, model = run.system, run.compiled, run.model
@@ -248,10 +248,11 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     with interruptible() as interrupted:
         while k < len(boundaries) - 1:
             start, before = t, rows
-            k, t, rows, count, status, bad = controlled_chunk(
-                k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
-                float(rtol), float(atol), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
-                float(compiled.hub_radius), pitching, function, controller.records, buffers, turbine, constants)
+            args = (k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
+                    float(rtol), float(atol), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
+                    float(compiled.hub_radius), pitching, function, controller.records, buffers, turbine, constants)
+            with first_call("controlled loop", "controlled simulation kernels", controlled_chunk, args):
+                k, t, rows, count, status, bad = controlled_chunk(*args)
             call_first, evaluations = True, evaluations + count
             pitcher.pitch = float(held_commands[0])
             controller.pitch_command[:] = held_commands[0]
