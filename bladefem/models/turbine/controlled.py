@@ -270,7 +270,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
                         f"the controller returned a non-finite demand at t = {t:.4g} s")
                 raise SimulationStopped(text, float(t), result(rows))
             u = np.tile(system.u0, (rows - before, 1))
-            u[:, system.index] = states[before:rows, system.size:]
+            u[:, system.index] = states[before:rows, system.size:2 * system.size]
             reason = monitor.rows(times[before:rows], u, loads[before:rows]) or monitor.steps(count, start, t)
             if reason:
                 raise SimulationStopped(reason[0], reason[1], result(int(np.searchsorted(times[:rows], reason[1],
