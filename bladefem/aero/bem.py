@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .induction import induction, loss_factor, plane_coefficients
+from .induction import critical_induction, framed_induction, framed_loss, loss_factor, plane_coefficients
 from .options import (
     FORMULATION,
     HUB_LOSS,
@@ -45,7 +45,7 @@ from .options import (
     TOLERANCE,
     USE_CM,
 )
-from .polar import polar_coefficients, section_angle
+from .polar import framed_angle, framed_coefficients, section_angle
 from .polars import polar_lookup
 
 #: A velocity component below this counts as zero (AeroDyn's VelocityIsZero), m/s.
@@ -64,27 +64,45 @@ def residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, air
     """(residual, a, a', valid) at phi with the polar looked up at alpha = phi - theta; in the polar formulation
     at the section's own angle (:mod:`bladefem.aero.polar`) with the momentum balance on vx cos(cant) and the
     normal coefficient times dr/dz. ``geometry`` = (cant, toe, dr/dz) of the node (0, 0, 1: a plane section)."""
+    return framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
+                           coefs, start, count, options, section_frame(theta, chi0, geometry))
+
+
+@kernel
+def section_frame(theta, chi0, geometry):
+    """What the residual of one node takes at every angle, computed once a solve: (cant, toe, dr/dz, cos and sin
+    of the cant, the toe and theta, a_c of the polar formulation's thrust curve)."""
+    cant, toe, drdz = geometry
+    return (cant, toe, drdz, math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe), math.cos(theta),
+            math.sin(theta), critical_induction(chi0))
+
+
+@kernel
+def framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs,
+                    start, count, options, frame):
+    """:func:`residual` with the node's :func:`section_frame`."""
+    s, c = math.sin(phi), math.cos(phi)
     if options[FORMULATION] != 2.0:
         cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
         cn, ct = plane_coefficients(phi, cl, cd, options)
-        loss = loss_factor(phi, tip_constant, hub_constant, options, 1.0)
-        return induction(phi, vx, vy, solidity, cn, ct, loss, chi0, options)
-    cant, toe, drdz = geometry
-    alpha = section_angle(phi, cant, toe) - theta
+        loss = framed_loss(phi, s, c, tip_constant, hub_constant, options, 1.0)
+        return framed_induction(phi, s, c, vx, vy, solidity, cn, ct, loss, frame[9], options)
+    cant, toe, drdz, cb, sb, ct_, st, cw, sw, critical = frame
+    alpha = framed_angle(phi, s, c, cant, toe, cb, sb, ct_, st) - theta
     cl, cd, _ = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
-    cn, ct = polar_coefficients(alpha, theta, cant, toe, cl, cd, options)
-    loss = loss_factor(phi, tip_constant, hub_constant, options, math.cos(cant))
-    return induction(phi, vx * math.cos(cant), vy, solidity, cn * drdz, ct, loss, chi0, options)
+    cn, ct = framed_coefficients(alpha, cl, cd, options, cw, sw, cb, sb, ct_, st)
+    loss = framed_loss(phi, s, c, tip_constant, hub_constant, options, cb)
+    return framed_induction(phi, s, c, vx * cb, vy, solidity, cn * drdz, ct, loss, critical, options)
 
 
 @kernel
 def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
-          coefs, start, count, options, geometry):
+          coefs, start, count, options, frame):
     """Root of the residual in [lo, hi] (f_lo, f_hi of opposite signs) by Brent's method (inverse quadratic
     interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad.
-    Returns (phi, a, a', valid) at the root."""
+    ``frame``: the node's :func:`section_frame`. Returns (phi, a, a', valid) at the root."""
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
-            options, geometry)
+            options, frame)
     tolerance = options[TOLERANCE]
     a, b, fa, fb = lo, hi, f_lo, f_hi
     c, fc = b, fb
@@ -121,10 +139,10 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
             d = e = half
         a, fa = b, fb
         b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
-        fb, induced_a, induced_ap, valid = residual(b, *args)
+        fb, induced_a, induced_ap, valid = framed_residual(b, *args)
         at_b = True
     if not at_b:
-        _, induced_a, induced_ap, valid = residual(b, *args)
+        _, induced_a, induced_ap, valid = framed_residual(b, *args)
     return b, induced_a, induced_ap, valid
 
 
@@ -162,10 +180,10 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     if abs(vy) < ZERO_VELOCITY:
         return math.copysign(math.pi / 2.0, vx), True, 0.0, 0.0
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
-            options, geometry)
+            options, section_frame(theta, chi0, geometry))
     tolerance = options[TOLERANCE]
     if math.isfinite(guess) and abs(guess) > EDGE and abs(abs(guess) - math.pi / 2.0) > EDGE:
-        f_guess, a, ap, valid = residual(guess, *args)
+        f_guess, a, ap, valid = framed_residual(guess, *args)
         if abs(f_guess) < tolerance and valid:
             return guess, True, a, ap
     else:
@@ -173,8 +191,8 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     lows, highs = search_intervals(vx, guess)
     for i in range(3):
         lo, hi = lows[i], highs[i]
-        f_lo, a_lo, ap_lo, valid_lo = residual(lo, *args)
-        f_hi, a_hi, ap_hi, valid_hi = residual(hi, *args)
+        f_lo, a_lo, ap_lo, valid_lo = framed_residual(lo, *args)
+        f_hi, a_hi, ap_hi, valid_hi = framed_residual(hi, *args)
         if abs(f_lo) < tolerance:                      # an end of the interval is already a root
             if abs(f_hi) < abs(f_lo) and valid_hi:
                 return hi, True, a_hi, ap_hi

@@ -35,9 +35,15 @@ def loss_factor(phi, tip_constant, hub_constant, options, cos_cant):
     B (z - z_hub) / (2 z_hub). Kept above 1e-4 like AeroDyn; the polar formulation applies it only for phi > 0,
     with sin phi_N of the inflow angle in the plane normal to a blade canted by the angle whose cosine is
     ``cos_cant`` (AeroDyn's getNewPhi: tan phi_N = tan phi / cos(cant); 1 for an uncanted section)."""
-    s = abs(math.sin(phi))
+    return framed_loss(phi, math.sin(phi), math.cos(phi), tip_constant, hub_constant, options, cos_cant)
+
+
+@kernel
+def framed_loss(phi, sin_phi, cos_phi, tip_constant, hub_constant, options, cos_cant):
+    """:func:`loss_factor` with sin and cos of phi given."""
+    s = abs(sin_phi)
     if cos_cant != 1.0:
-        s = s / math.hypot(math.sin(phi), math.cos(phi) * cos_cant)
+        s = s / math.hypot(sin_phi, cos_phi * cos_cant)
     f = 1.0
     if s > 1e-12 and (options[FORMULATION] != 2.0 or phi > 0.0):
         if options[TIP_LOSS] != 0.0:
@@ -79,10 +85,21 @@ def buhl_induction(k, loss, momentum, high_induction):
 @kernel
 def empirical_thrust(chi0, loss):
     """(a_c, c0, c1, c2) of the polar formulation's high-thrust curve C_T = c0 + c1 a + c2 a^2."""
+    return thrust_curve(critical_induction(chi0), loss)
+
+
+@kernel
+def critical_induction(chi0):
+    """a_c of the polar formulation's high-thrust curve in a wake skewed by chi0 (rad)."""
     yaw = abs(chi0)
     if abs(math.cos(yaw)) < 1e-12:
         yaw += 1.5e-8
-    ac = min(0.35 / abs(math.cos(yaw)), 0.5)      # a wake skewed past 90 deg keeps the clipped 0.5
+    return min(0.35 / abs(math.cos(yaw)), 0.5)      # a wake skewed past 90 deg keeps the clipped 0.5
+
+
+@kernel
+def thrust_curve(ac, loss):
+    """(a_c, c0, c1, c2) of :func:`empirical_thrust` for a_c given."""
     thrust_c = 4.0 * loss * ac * (1.0 - ac)
     slope_c = 4.0 * loss * (1.0 - 2.0 * ac)
     denom = ac * ac - 2.0 * ac + 1.0
@@ -93,9 +110,10 @@ def empirical_thrust(chi0, loss):
 
 
 @kernel
-def polar_axial_induction(phi, vx, k, loss, chi0, high_induction):
-    """(a, H) of the polar formulation: momentum theory up to a_c, the empirical quadratic thrust above."""
-    ac, c0, c1, c2 = empirical_thrust(chi0, loss)
+def polar_axial_induction(phi, vx, k, loss, critical, high_induction):
+    """(a, H) of the polar formulation: momentum theory up to a_c (``critical``, :func:`critical_induction`), the
+    empirical quadratic thrust above."""
+    ac, c0, c1, c2 = thrust_curve(critical, loss)
     if k <= ac / (1.0 - ac) or not high_induction:
         if vx > 0.0:
             return (-INDUCTION_LIMIT if k == -1.0 else k / (k + 1.0)), 1.0
@@ -130,12 +148,19 @@ def plane_coefficients(phi, cl, cd, options):
 def induction(phi, vx, vy, solidity, cn, ct, loss, chi0, options):
     """(residual, a, a', valid) of the BEM equations at inflow angle phi for the force coefficients cn (normal to
     the rotor plane, times dr/dz in the polar formulation) and ct (in the plane)."""
-    s, c = math.sin(phi), math.cos(phi)
+    return framed_induction(phi, math.sin(phi), math.cos(phi), vx, vy, solidity, cn, ct, loss,
+                            critical_induction(chi0), options)
+
+
+@kernel
+def framed_induction(phi, s, c, vx, vy, solidity, cn, ct, loss, critical, options):
+    """:func:`induction` with sin and cos of phi (s, c) and the polar formulation's a_c (``critical``,
+    :func:`critical_induction` of the skew angle) given."""
     k = solidity * cn / (4.0 * loss * s * s)
     polar = options[FORMULATION] == 2.0
     momentum = polar or (phi > 0.0 and vx >= 0.0) or (phi < 0.0 and vx < 0.0)
     if polar:
-        a, scale = polar_axial_induction(phi, vx, k, loss, chi0, options[HIGH_INDUCTION] != 0.0)
+        a, scale = polar_axial_induction(phi, vx, k, loss, critical, options[HIGH_INDUCTION] != 0.0)
         valid = True
     else:
         a, valid = buhl_induction(k, loss, momentum, options[HIGH_INDUCTION] != 0.0)

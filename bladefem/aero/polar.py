@@ -56,8 +56,17 @@ def section_angle(phi, cant, toe):
     arccosine's loss of precision near zero)."""
     if cant == 0.0 and toe == 0.0:
         return phi
-    cb, sb, ct, st = math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe)
-    s, c = math.sin(phi), math.cos(phi) * cb                  # (sin phi_N, cos phi_N) times a positive factor
+    return framed_angle(phi, math.sin(phi), math.cos(phi), cant, toe, math.cos(cant), math.sin(cant), math.cos(toe),
+                        math.sin(toe))
+
+
+@kernel
+def framed_angle(phi, sin_phi, cos_phi, cant, toe, cb, sb, ct, st):
+    """:func:`section_angle` with sin and cos of phi, the cant b and the toe t given (a root solve computes those of
+    the section once)."""
+    if cant == 0.0 and toe == 0.0:
+        return phi
+    s, c = sin_phi, cos_phi * cb                              # (sin phi_N, cos phi_N) times a positive factor
     return math.atan2(cb * s + sb * st * c, ct * c)
 
 
@@ -66,10 +75,15 @@ def polar_coefficients(alpha, theta, cant, toe, cl, cd, options):
     """(Cx, Cy): the section's force coefficients along x_l (normal to the rotor plane) and along -y_l (in the
     plane, towards the leading edge) for cl, cd at the angle of attack alpha, the chord turned by theta, drag only
     with AIDrag (normal to the chord) / TIDrag (along it), as AeroDyn's momentum balance takes them."""
+    return framed_coefficients(alpha, cl, cd, options, math.cos(theta), math.sin(theta), math.cos(cant),
+                               math.sin(cant), math.cos(toe), math.sin(toe))
+
+
+@kernel
+def framed_coefficients(alpha, cl, cd, options, cw, sw, cb, sb, ct, st):
+    """:func:`polar_coefficients` with cos and sin of theta (w), the cant (b) and the toe (t) given."""
     cn = cl * math.cos(alpha) + (cd * math.sin(alpha) if options[AI_DRAG] != 0.0 else 0.0)
     ca = -cl * math.sin(alpha) + (cd * math.cos(alpha) if options[TI_DRAG] != 0.0 else 0.0)
-    cw, sw = math.cos(theta), math.sin(theta)
-    cb, sb, ct, st = math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe)
     # chord normal x_s = cos(theta) x' - sin(theta) y', chord y_s = sin(theta) x' + cos(theta) y'
     cx = cb * (cn * cw + ca * sw)
     cy = -(cn * (cw * sb * st - sw * ct) + ca * (sw * sb * st + cw * ct))

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
@@ -53,6 +54,7 @@ class Controlled:
         self.hub_wind, self.efficiency = hub_wind, efficiency
         self.generator = self.model.dofs.index("generator_azimuth")
         self.ratio = self.model.params.gearbox_ratio
+        self.last_call = 0.0
 
     @property
     def torque(self) -> float:
@@ -127,6 +129,11 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     calls = int(math.floor(duration / step + 1e-9))
     boundaries = np.append(np.arange(calls + 1) * step, duration) if calls * step < duration * (1 - 1e-12) else (
         np.arange(calls + 1) * step)
+    if method != "RK4" and controller.library is not None and not controller.setup.individual:
+        try:
+            return compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress)
+        finally:
+            controller.close(run.last_call)
     x = system.initial_state()
     states, loads, pitch = [x], [], []
     end_loads = end_rate = None
@@ -193,6 +200,86 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     finally:
         controller.close(t)
     return finish(run, system, times, states, loads, pitch, evaluations)
+
+
+def compiled_loop(run: Controlled, controller: DisconController, times: NDArray, boundaries: NDArray, rtol: float,
+                  atol: float, limit: NDArray, monitor: Monitor, progress: Callable[[float], None] | None
+                  ) -> SimulationResult:
+    """The loop of :func:`simulate_controlled` compiled (:mod:`.compiled_control`: the library called from the
+    kernel) for a library loaded in this process and collective pitch; its first call made here (a library or
+    input file that fails there is an :class:`InputError`). Between kernel calls (about ``BUDGET`` right-hand
+    sides) the new rows are watched, progress told and Ctrl-C looked for."""
+    from .compiled import _dp54_tableau, first_call
+    from .compiled_control import FAILED, OVERRIDE, controlled_chunk
+    from .watch import BUDGET, interruptible
+    system, compiled, model = run.system, run.compiled, run.model
+    x = system.initial_state().astype(float)
+    try:
+        commands = controller.call(0.0, run.measure(0.0, x))
+        run.apply(0.0, commands.pitch, commands.torque)
+    except ControllerError as error:
+        raise InputError(str(error), file=controller.setup.infile, field="DLL_InFile") from None
+    run.last_call = 0.0
+    states = np.full((len(times), len(x)), np.nan)
+    states[0] = x
+    first = compiled.outputs(times[:1], x[None], system.q0, system.u0, system.index)
+    loads = np.full((len(times), first.shape[1]), np.nan)
+    loads[0] = first[0]
+    held = np.full(len(times), run.pitcher.pitch)
+    rate, row, held_commands = np.zeros(len(x)), np.zeros(loads.shape[1]), np.array([run.pitcher.pitch, run.torque])
+    function, buffers = controller.library.raw()
+    constant = controller.constant_records()
+    p = model.params
+    constants = (np.array(list(constant), dtype=np.int64), np.array(list(constant.values()), dtype=np.float32),
+                 np.ascontiguousarray(p.tower.tip_value, dtype=float), np.ascontiguousarray(p.tower.tip_slope,
+                                                                                            dtype=float),
+                 np.asarray(model.tower_columns, dtype=np.int64))
+    turbine = np.array([run.generator, run.ratio, run.efficiency, run.hub_wind, p.n_blades], dtype=float)
+    pitcher = run.pitcher
+    pitching = (float(pitcher.base), tuple(np.ascontiguousarray(a, dtype=float) for a in (
+        pitcher.blade, pitcher.aero_value, pitcher.aero_slope, pitcher.theta)))
+    K, tableau = np.zeros((7, len(x))), _dp54_tableau()
+    index, q0, u0 = (np.ascontiguousarray(a) for a in (system.index, system.q0, system.u0))
+    k, t, rows, evaluations, call_first = 0, 0.0, 1, 0, False
+
+    def result(count: int) -> SimulationResult:
+        return finish(run, system, times[:count], states[:count], loads[:count], held[:count], evaluations)
+
+    with interruptible() as interrupted:
+        while k < len(boundaries) - 1:
+            start, before = t, rows
+            args = (k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
+                    float(rtol), float(atol), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
+                    float(compiled.hub_radius), pitching, function, controller.records, buffers, turbine, constants)
+            with first_call("controlled loop", "controlled simulation kernels", controlled_chunk, args):
+                k, t, rows, count, status, bad = controlled_chunk(*args)
+            call_first, evaluations = True, evaluations + count
+            pitcher.pitch = float(held_commands[0])
+            controller.pitch_command[:] = held_commands[0]
+            run.last_call = float(boundaries[max(k - 1, 0)]) if not status else float(t)
+            if status in (1, 2, 3):
+                error = diverged(system, int(bad), t, status, "DP54")
+                error.result = result(rows)
+                raise error
+            if status:
+                name = f"{Path(controller.setup.library).name} with {controller.setup.infile}"
+                text = (f"the controller ({name}) failed at t = {t:.4g} s: "
+                        f"{buffers[3].tobytes().split(bytes(1), 1)[0].decode(errors='replace').strip() or 'no message'}"
+                        if status == FAILED else "the controller asks for a built-in pitch or torque override "
+                        "(records 55, 56), which ServoDyn refuses too" if status == OVERRIDE else
+                        f"the controller returned a non-finite demand at t = {t:.4g} s")
+                raise SimulationStopped(text, float(t), result(rows))
+            u = np.tile(system.u0, (rows - before, 1))
+            u[:, system.index] = states[before:rows, system.size:2 * system.size]
+            reason = monitor.rows(times[before:rows], u, loads[before:rows]) or monitor.steps(count, start, t)
+            if reason:
+                raise SimulationStopped(reason[0], reason[1], result(int(np.searchsorted(times[:rows], reason[1],
+                                                                                          "right"))))
+            if progress is not None:
+                progress(float(t))
+            if interrupted():
+                raise Interrupted(f"interrupted (Ctrl-C) at t = {t:.4g} s", float(t), result(rows))
+    return result(rows)
 
 
 def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,

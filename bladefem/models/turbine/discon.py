@@ -165,18 +165,25 @@ class DisconController:
     def __exit__(self, *exc) -> None:
         self.close()
 
+    def constant_records(self) -> dict[int, float]:
+        """The records ServoDyn's ``Fill_avrSWAP`` sets to the same value at every call (1-based numbers)."""
+        s = self.setup
+        return {3: s.time_step, 6: s.pitch_limits[0], 7: s.pitch_limits[1], 8: s.rate_limits[0],
+                9: s.rate_limits[1], 10: 0.0, 24: 0.0, 25: 0.0, 26: 0.0, 28: float(s.individual), 29: 0.0,
+                49: MESSAGE, 50: self.lengths[0], 51: self.lengths[1], 61: s.blades, 62: LOGGING_CHANNELS,
+                63: TABLE_START, 64: OUTNAME, 66: 1001, 84: 0.0, 95: s.air_density, 98: 0.0, 117: 0.0,
+                129: RECORDS, 1000: 1.0}
+
     def fill(self, time: float, m: Measurements) -> None:
-        """The records ServoDyn's ``Fill_avrSWAP`` sets (1-based numbers in the comments)."""
+        """The records ServoDyn's ``Fill_avrSWAP`` sets (1-based numbers in the comments): the constant ones and
+        those of the turbine's state (:func:`.compiled_control.fill` is the compiled twin)."""
         s, r = self.setup, self.records
-        values = {
-            1: self.status, 2: time, 3: s.time_step, 4: m.pitch[0], 6: s.pitch_limits[0], 7: s.pitch_limits[1],
-            8: s.rate_limits[0], 9: s.rate_limits[1], 10: 0.0, 11: self.pitch_command[0], 14: m.shaft_power,
-            15: m.electrical_power, 20: m.generator_speed, 21: m.rotor_speed, 23: m.generator_torque, 24: 0.0,
-            25: 0.0, 26: 0.0, 27: m.wind_speed, 28: float(s.individual), 29: 0.0, 35: r[34] if self.status else 1.0,
-            37: m.yaw, 49: MESSAGE, 50: self.lengths[0], 51: self.lengths[1], 53: m.tower_top_fa,
-            54: m.tower_top_ss, 60: m.azimuth, 61: s.blades, 62: LOGGING_CHANNELS, 63: TABLE_START,
-            64: OUTNAME, 66: 1001, 82: m.nacelle_roll, 83: m.nacelle_nod, 84: 0.0, 95: s.air_density, 98: 0.0,
-            117: 0.0, 129: RECORDS, 1000: 1.0}
+        values = self.constant_records()
+        values.update({
+            1: self.status, 2: time, 4: m.pitch[0], 11: self.pitch_command[0], 14: m.shaft_power,
+            15: m.electrical_power, 20: m.generator_speed, 21: m.rotor_speed, 23: m.generator_torque,
+            27: m.wind_speed, 35: r[34] if self.status else 1.0, 37: m.yaw, 53: m.tower_top_fa,
+            54: m.tower_top_ss, 60: m.azimuth, 82: m.nacelle_roll, 83: m.nacelle_nod})
         for blade in range(min(s.blades, 3)):
             values[30 + blade] = m.root_oop[blade]
             values[69 + blade] = m.root_ip[blade]

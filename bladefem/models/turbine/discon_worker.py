@@ -59,6 +59,14 @@ class Library:
         self.fail = ctypes.c_int32(0)
         self.message = ctypes.create_string_buffer(MESSAGE)
 
+    def raw(self) -> tuple:
+        """What a compiled kernel calls the library with: ``DISCON`` taking five addresses, and the buffers of
+        aviFAIL, accINFILE, avcOUTNAME and avcMSG as numpy arrays over the same memory."""
+        address = ctypes.cast(self.function, ctypes.c_void_p).value
+        function = ctypes.CFUNCTYPE(None, *[ctypes.c_void_p] * 5)(address)
+        return function, tuple(np.frombuffer(buffer, dtype=dtype) for buffer, dtype in (
+            (self.fail, np.int32), (self.infile, np.uint8), (self.outname, np.uint8), (self.message, np.uint8)))
+
     def __call__(self) -> tuple[int, bytes]:
         """One call on :attr:`records` (changed in place): aviFAIL and the raw message buffer."""
         self.fail.value = 0

@@ -1,0 +1,210 @@
+"""The controlled run's loop compiled: the controller library called from the kernel (through its ``DISCON``
+function pointer), the integrator stepping on between its calls without a return to Python.
+
+The twin of the Python loop of :mod:`.controlled` (which runs a controller in a process of its own, individual pitch
+and RK4): per controller interval ``[t_k, t_k + DLL_DT]``, the records ServoDyn's ``Fill_avrSWAP`` sets that change
+from call to call are written (those that do not are the Python loop's first call's,
+:meth:`.discon.DisconController.constant_records`, written again before each call), the library called, its
+collective pitch (record 45) and torque (47) held over the interval, the pitch set on the kernels' arrays as
+:class:`.pitching.CompiledPitch` sets it, and the equations integrated with Dormand-Prince 5(4) (the steps and the
+error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval). The load channels and
+the derivative at an interval's end, which the next call measures, come from the last stage of the step that ends
+there (evaluated with its output row), not from one more right-hand side. The kernel returns after ``budget``
+right-hand sides (the caller watches the rows, polls Ctrl-C) or with a status.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...numba_cache import cached_njit
+
+njit = cached_njit()
+
+#: statuses beyond the integrator's (1 not finite, 2 beyond the limit, 3 step size underflow): the library's aviFAIL
+#: < 0, a pitch or torque override asked for (records 55, 56), a demand that is not finite
+FAILED, OVERRIDE, NOT_FINITE = 6, 7, 8
+
+if njit is not None:
+    from .compiled_integrators import check_state, combination, rate
+    from .compiled_kernels import store_row
+    from .compiled_state import full_state
+
+if njit is not None:                                   # module-level kernels: numba caches them on disk
+
+    @njit(cache=True)
+    def set_pitch(pitch, base, references, data, aero):
+        """Every blade pitched to ``pitch`` (rad) on the kernels' arrays: the shapes' across components and the
+        aerodynamic sections turned by ``pitch - base`` from the ``references`` built at ``base``."""
+        blade, value, slope, theta = references
+        delta = pitch - base
+        c, s = math.cos(delta), math.sin(delta)
+        shapes, sections = data[5], aero[0]
+        for i in range(blade.shape[0]):
+            for p in range(blade.shape[1]):
+                y, z = blade[i, p, 1], blade[i, p, 2]
+                shapes[i, p, 1], shapes[i, p, 2] = y * c + z * s, -y * s + z * c
+            for p in range(value.shape[1]):
+                y, z = value[i, p, 1], value[i, p, 2]
+                sections[i, p, 1], sections[i, p, 2] = y * c + z * s, -y * s + z * c
+            for p in range(slope.shape[1]):
+                aero[4][i, p] = -slope[i, p, 0] * s + slope[i, p, 1] * c
+        for p in range(theta.shape[0]):
+            aero[8][p] = theta[p] + delta
+
+    @njit(cache=True)
+    def fill(records, t, x, rate_x, row, pitch, torque, q0, u0, index, turbine, constants):
+        """The records of one call that change (1-based numbers in the comments) from the state x, its derivative
+        and load channels with the commands held, and the constant ones."""
+        rows, values, tip_value, tip_slope, tower = constants
+        for i in range(rows.shape[0]):
+            records[rows[i] - 1] = values[i]
+        generator, ratio, efficiency, wind, blades = int(turbine[0]), turbine[1], turbine[2], turbine[3], \
+            int(turbine[4])
+        q, u = full_state(t, x, q0, u0, index)
+        size = index.shape[0]
+        du = np.zeros(q.shape[0])
+        for i in range(size):
+            du[index[i]] = rate_x[size + i]
+        fa, ss, nod, roll = 0.0, 0.0, 0.0, 0.0
+        for i in range(tower.shape[0]):
+            fa += du[tower[i]] * tip_value[i, 0]
+            ss += du[tower[i]] * tip_value[i, 1]
+            nod += du[tower[i]] * tip_slope[i, 0]
+            roll -= du[tower[i]] * tip_slope[i, 1]
+        rotor_speed, generator_speed = u[5] + u[6], ratio * u[generator]
+        records[0], records[1], records[3], records[10] = 1.0, t, pitch, pitch                  # 1, 2, 4, 11
+        records[13], records[14] = row[3] * rotor_speed, torque * generator_speed * efficiency   # 14, 15
+        records[19], records[20], records[22], records[26] = generator_speed, rotor_speed, torque, wind  # 20-27
+        for b in range(min(blades, 3)):
+            records[29 + b], records[68 + b] = row[0], row[1]                                # 30-32, 69-71
+        for b in range(1, min(blades, 3)):
+            records[31 + b] = pitch                                                          # 33, 34
+        records[36], records[52], records[53] = q[4], fa, ss                                 # 37, 53, 54
+        records[59] = (q[5] + q[6]) % (2.0 * math.pi)                                        # 60
+        records[81], records[82] = roll, nod                                                 # 82, 83
+
+    @njit(cache=True)
+    def call_library(function, records, buffers):
+        """One ``DISCON`` call on the records: aviFAIL (the message is left in its buffer)."""
+        fail, infile, outname, message = buffers
+        fail[0] = 0
+        message[:] = 0
+        function(records.ctypes.data, fail.ctypes.data, infile.ctypes.data, outname.ctypes.data,
+                 message.ctypes.data)
+        return fail[0]
+
+    @njit(cache=True)
+    def dp54_interval(t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, K, rtol, atol, limit,
+                      tableau, q0, u0, index, data, work, hub_radius):
+        """Dormand-Prince 5(4) from t to t_end (first step the whole interval, the error control of
+        :func:`.compiled_integrators.dp54_chunk`): the output rows ``times[next_out:]`` up to t_end (those within
+        1e-9 ``spacing`` of t_end take the end state) from the dense output; the end's load channels in
+        ``end_row``. Returns (x, derivative at the end, next_out, right-hand sides, status, offending index)."""
+        A, B, C, E, P = tableau
+        size = x.shape[0]
+        store_row(K, 0, f0)
+        count = 0
+        h = t_end - t
+        near = 1e-9 * spacing
+        while t < t_end:
+            h = min(h, t_end - t)
+            if h <= 1e-14 * max(1.0, abs(t)):
+                return x, K[0], next_out, count, 3, -1
+            for s in range(1, 6):
+                stage = combination(x, h, A[s], K, s)
+                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+            new = combination(x, h, B, K, 6)
+            last = t + h >= t_end
+            store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, end_row if last else
+                                 end_row[:0]))
+            count += 6
+            total = 0.0
+            for i in range(size):
+                error = 0.0
+                for j in range(7):
+                    error += E[j] * K[j, i]
+                total += (h * error / (atol + rtol * max(abs(x[i]), abs(new[i])))) ** 2
+            norm = np.sqrt(total / size)
+            if norm <= 1.0:
+                bad = check_state(new, limit)
+                if bad >= 0:
+                    return new, K[6], next_out, count, 1 if not np.isfinite(new[bad]) else 2, bad
+                t_new = t_end if last else t + h
+                while next_out < times.shape[0] and (times[next_out] < t_end - near if last else
+                                                     times[next_out] <= t_new):
+                    theta = (times[next_out] - t) / h
+                    y = x.copy()
+                    for i in range(size):
+                        power = 1.0
+                        for r in range(4):
+                            power *= theta
+                            value = 0.0
+                            for j in range(7):
+                                value += K[j, i] * P[j, r]
+                            y[i] += h * value * power
+                    store_row(out, next_out, y)
+                    rate(times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
+                    next_out += 1
+                if last:
+                    while next_out < times.shape[0] and times[next_out] <= t_end + near:
+                        store_row(out, next_out, new)
+                        store_row(loads, next_out, end_row)
+                        next_out += 1
+                t = t_new
+                x = new
+                store_row(K, 0, K[6])
+                factor = 5.0 if norm == 0.0 else min(5.0, 0.9 * norm ** -0.2)
+            else:
+                factor = max(0.2, 0.9 * norm ** -0.2)
+            h *= factor
+        return x, K[0], next_out, count, 0, -1
+
+    @njit(cache=True)
+    def controlled_chunk(k, boundaries, x, rate_x, row, commands, call_first, times, out, loads, held, next_out,
+                         budget, rtol, atol, limit, tableau, K, q0, u0, index, data, work, hub_radius, pitching,
+                         function, records, buffers, turbine, constants):
+        """Controller intervals from ``k`` on until ``budget`` right-hand sides are spent or the run ends: at each,
+        the controller called (but for the first interval of a call without ``call_first``: its commands set
+        already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place to
+        the interval's end), its demands held (``commands`` = pitch, torque, updated), the interval integrated
+        (:func:`dp54_interval`), the pitch of each output row in ``held``. ``pitching`` = (base pitch, reference
+        arrays) of :func:`set_pitch`. Returns (next interval, its start time, next output row, right-hand sides,
+        status, offending index)."""
+        structure, aero, law = data
+        count = 0
+        t = boundaries[k]
+        while k < boundaries.shape[0] - 1 and count < budget:
+            t, end = boundaries[k], boundaries[k + 1]
+            if call_first:
+                fill(records, t, x, rate_x, row, commands[0], commands[1], q0, u0, index, turbine, constants)
+                if call_library(function, records, buffers) < 0:
+                    return k, t, next_out, count, FAILED, -1
+                if records[54] != 0.0 or records[55] != 0.0:
+                    return k, t, next_out, count, OVERRIDE, -1
+                pitch, torque = np.float64(records[44]), np.float64(records[46])
+                if not (np.isfinite(pitch) and np.isfinite(torque)):
+                    return k, t, next_out, count, NOT_FINITE, -1
+                if pitch != commands[0]:
+                    set_pitch(pitch, pitching[0], pitching[1], structure, aero)
+                commands[0], commands[1] = pitch, torque
+                law[2] = torque
+            call_first = True
+            f0 = rate(t, x, q0, u0, index, data, work, hub_radius, row[:0])
+            first = next_out
+            new, f_end, next_out, used, status, bad = dp54_interval(
+                t, x, f0, end, boundaries[1] - boundaries[0], times, out, loads, next_out, row, K, rtol, atol,
+                limit, tableau, q0, u0, index, data, work, hub_radius)
+            count += used + 1
+            for j in range(first, next_out):
+                held[j] = commands[0]
+            if status:
+                return k, t, next_out, count, status, bad
+            for i in range(x.shape[0]):                # x, rate_x <- the end of the interval
+                x[i] = new[i]
+                rate_x[i] = f_end[i]
+            k += 1
+            t = end
+        return k, t, next_out, count, 0, -1
