@@ -12,7 +12,7 @@ import pytest
 pytest.importorskip("dask.distributed")
 pa = pytest.importorskip("pyarrow")
 
-from bladefem.batch import read_plan, run_case  # noqa: E402
+from bladefem.batch import ResultStore, read_plan, run_case  # noqa: E402
 from bladefem.batch.summary import summarize  # noqa: E402
 from bladefem.cli import main  # noqa: E402
 from bladefem.errors import InputError  # noqa: E402
@@ -31,11 +31,14 @@ def plan_text(analysis: str, grid: str = f"{{torsion_stiffness_scale: [1.0, {TOR
     return f"model: {GOLAND}\nanalysis: {{type: flutter, aerodyn: {AERODYN}, {analysis}}}\ngrid: {grid}\n"
 
 
+GOLAND_SWEEP = "wind_speed_m_s: [120, 170, 51], rpm: 0, blades: 1, n_modes: 4"
+
+
 @pytest.fixture(scope="module")
 def goland_rows(tmp_path_factory):
     folder = tmp_path_factory.mktemp("flutter_batch")
     path = folder / "plan.yaml"
-    path.write_text(plan_text("wind_speed_m_s: [120, 170, 51], rpm: 0, blades: 1, n_modes: 4"))
+    path.write_text(plan_text(GOLAND_SWEEP))
     plan = read_plan(path)
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("BLADEFEM_BATCH_INPUTS", str(folder / "worker"))
@@ -74,6 +77,22 @@ def test_batch_summary_reports_the_onsets(goland_rows):
     speed = quantities["flutter onset wind speed"]
     assert speed.unit == "m/s" and list(speed.values) == [r[0]["onset_wind_speed_m_s"] for r in rows]
     assert summary.inputs == ("torsion_stiffness_scale",) and summary.cases == 2 and summary.failed == 0
+
+
+def test_a_tiny_flutter_batch_on_dask(goland_rows, tmp_path, capsys):
+    """`bladefem batch` runs the two cases on a local Dask cluster: the stored rows are the cases' rows, and
+    `batch-summary` prints the onsets' statistics and draws them."""
+    path = tmp_path / "plan.yaml"
+    path.write_text(plan_text(GOLAND_SWEEP))
+    assert main(["batch", str(path), "-o", str(tmp_path / "out"), "--workers", "1", "--quiet"]) == 0
+    assert "2 run (0 failed)" in capsys.readouterr().out
+    stored = sorted(ResultStore(tmp_path / "out").table().to_pylist(), key=lambda row: row["case_index"])
+    _, rows = goland_rows
+    assert [r["onset_wind_speed_m_s"] for r in stored] == [r[0]["onset_wind_speed_m_s"] for r in rows]
+    assert main(["batch-summary", str(tmp_path / "out"), "--plot", str(tmp_path / "plots")]) == 0
+    out = capsys.readouterr().out
+    assert "flutter onset wind speed" in out and "m/s" in out and "torsion_stiffness_scale" in out
+    assert (tmp_path / "plots" / "histograms.png").stat().st_size > 0
 
 
 @pytest.mark.parametrize("analysis, grid, field", [
