@@ -60,13 +60,21 @@ def sector_table(data: dict) -> str:
     return "\n".join(lines)
 
 
-def document(folder: Path) -> str:
-    """The page; its figures are written into ``folder`` (beside it)."""
+def maps(folder: Path) -> tuple[dict, dict]:
+    """The NREL 5MW and IEA-15MW yaw sweeps (``--json``); their figures are written into ``folder``."""
     nrel = run(*NREL5MW, *SWEEP, "--plot", str(folder / "standstill-nrel5mw.png"))
     iea = run(*IEA15, *SWEEP, "--azimuth-deg", "0,120,240", "--plot", str(folder / "standstill-iea15mw.png"))
+    return nrel, iea
+
+
+def document(folder: Path, sweeps: tuple[dict, dict] | None = None) -> str:
+    """The page; its figures are written into ``folder`` (beside it) unless ``sweeps`` (from :func:`maps`) are
+    given."""
+    nrel, iea = sweeps or maps(folder)
     return f"""# Stall-induced vibration at standstill
 
-This page is written by `python examples/standstill.py` (do not edit by hand).
+This page is written by `python examples/flutter.py` (beside docs/flutter.md) or `python examples/standstill.py`
+(do not edit by hand).
 
 A parked or idling rotor in a storm meets the wind from any direction when the yaw system has failed or lost its
 grid. A blade section then sees the wind at any angle of attack, often in deep stall, where the lift falls as the

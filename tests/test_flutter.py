@@ -188,8 +188,9 @@ def test_tower_input_is_refused():
 
 
 def test_the_flutter_document_is_what_its_script_writes(tmp_path):
-    """docs/flutter.md is the current output of examples/flutter.py (its numbers to the printed last digit:
-    rounding may move it)."""
+    """docs/flutter.md and docs/standstill.md are the current output of one run of examples/flutter.py (their
+    numbers to the printed last digit: rounding may move it; the yaw sectors' whole degrees exactly), and the
+    flutter diagrams and the yaw maps are written beside them."""
     import re
     import subprocess
     import sys
@@ -197,10 +198,37 @@ def test_the_flutter_document_is_what_its_script_writes(tmp_path):
     written = tmp_path / "flutter.md"
     subprocess.run([sys.executable, str(ROOT / "examples" / "flutter.py"), "--output", str(written)], check=True,
                    cwd=ROOT, capture_output=True)
-    numbers = [re.findall(r"-?\d+\.\d+", text) for text in (written.read_text(),
-                                                              (ROOT / "docs" / "flutter.md").read_text())]
-    assert len(numbers[0]) == len(numbers[1]) > 150
-    assert max(abs(float(a) - float(b)) for a, b in zip(*numbers)) <= 0.011
+    for name, count in (("flutter.md", 300), ("standstill.md", 20)):
+        texts = [(folder / name).read_text() for folder in (tmp_path, ROOT / "docs")]
+        numbers = [re.findall(r"-?\d+\.\d+", text) for text in texts]
+        assert len(numbers[0]) == len(numbers[1]) > count, name
+        assert max(abs(float(a) - float(b)) for a, b in zip(*numbers)) <= 0.011, name
+        sectors = [re.findall(r"-?\d+ to -?\d+", text) for text in texts]
+        assert sectors[0] == sectors[1], name
+    for name in ("flutter-goland.png", "flutter-nrel5mw.png", "flutter-iea15.png", "standstill-nrel5mw.png",
+                 "standstill-iea15mw.png"):
+        assert (tmp_path / name).stat().st_size > 10_000, name
+    assert "## Stall-induced vibration at standstill: the yaw maps" in written.read_text()
+
+
+def test_the_blades_sections_are_as_the_flutter_page_says():
+    """docs/flutter.md names the sections as a cause of differences: OpenFAST's BeamDyn example of the 5MW blade has
+    diagonal six-by-six matrices (centre of mass and shear centre on the reference axis, no coupling), the IEA-15MW's
+    have off-diagonal stiffness and mass terms (offsets and couplings); neither gives the reference axis's chordwise
+    place (the aerodynamic centre then sits on AeroDyn's reference line)."""
+    import numpy as np
+
+    from bladefem.builders.detect import Geometry, read_model
+
+    def off_diagonal(matrices):
+        return max(float(np.abs(m - np.diag(np.diag(m))).max() / np.abs(np.diag(m)).max()) for m in matrices)
+
+    five = read_model(ROOT / "tests/data/nrel5mw_beamdyn/bd_primary_nrel_5mw.inp", None, Geometry(hub_radius=1.5))
+    fifteen = read_model(ROOT / "tests/data/iea15/beamdyn/IEA-15-240-RWT_BeamDyn.dat", None,
+                         Geometry(hub_radius=3.97))
+    assert off_diagonal(five.sections.full.stiffness) == 0 and off_diagonal(five.sections.full.mass) == 0
+    assert off_diagonal(fifteen.sections.full.stiffness) > 0.01 and off_diagonal(fifteen.sections.full.mass) > 0.01
+    assert five.sections.pitch_axis is None and fifteen.sections.pitch_axis is None
 
 
 def test_quasi_steady_limit_of_the_reduction_equals_the_full_quadratic_problem():

@@ -24,11 +24,13 @@ from ..files import check_input
 from ..formats.yamlnodes import load_yaml
 from .bundle import Bundle, bundle_of
 from .cases import COLUMNS, SCALES, Case, case_hash, file_digest
+from .flutter import PROPERTIES as FLUTTER_PROPERTIES
+from .flutter import check_grid, flutter_fields
 from .samples import sample_cases
 from .standstill import PROPERTIES as STANDSTILL_PROPERTIES
 from .standstill import standstill_fields
 
-ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize", "standstill")
+ANALYSES = ("modes", "campbell", "check", "turbine_simulate", "turbine_linearize", "standstill", "flutter")
 #: analyses of the whole turbine (an OpenFAST deck), not of a blade or tower
 TURBINE_ANALYSES = ("turbine_simulate", "turbine_linearize")
 DISTRIBUTIONS = ("normal", "uniform", "lognormal")
@@ -67,7 +69,9 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "n_modes": {"type": "integer", "minimum": 1, "maximum": 30},
                 "elements": {"type": "integer", "minimum": 1, "maximum": 5000},
                 "spec": {"type": "string"}, "spec_model": {"type": "string"},
-                "wind_speed_m_s": {"type": "number", "minimum": 0, "maximum": 100},
+                "wind_speed_m_s": {"anyOf": [{"type": "number", "minimum": 0, "maximum": 100},
+                                             {"type": "array", "minItems": 3, "maxItems": 3,
+                                              "items": {"type": "number", "minimum": 0, "maximum": 1000}}]},
                 "pitch_deg": {"type": "number", "minimum": -180, "maximum": 180},
                 "seconds": {"type": "number", "exclusiveMinimum": 0, "maximum": 3600},
                 "dt": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
@@ -77,6 +81,7 @@ PLAN_SCHEMA: dict[str, Any] = {
                 "quasi_steady": {"type": "boolean"},
                 "elastodyn_blades": {"type": "boolean"},
                 **STANDSTILL_PROPERTIES,
+                **FLUTTER_PROPERTIES,
                 **TURBULENCE_KEYS,
             },
         },
@@ -120,7 +125,9 @@ class Analysis:
     from ``statistics_from`` (s) to the end, or 'turbine_linearize' there with the BEM ``induction`` frozen or
     quasi-steady; or 'standstill': the parked blade's damping against yaw (:mod:`bladefem.batch.standstill`) with
     the AeroDyn file ``aerodyn``, yaw ``yaw_sweep`` (start, stop, count deg), ``azimuths`` (deg), ``tilt_deg``,
-    ``structural`` damping (flap, edge, torsion %) and ``damping_only``."""
+    ``structural`` damping (flap, edge, torsion %) and ``damping_only``; or 'flutter': the blade's flutter onset
+    (:mod:`bladefem.batch.flutter`) along the rotor-speed ``sweep`` at ``wind_speed`` or the ``wind_sweep`` at
+    ``rpm``, with ``aerodyn`` and ``blades``."""
 
     type: str
     rpm: float = 0.0
@@ -149,6 +156,9 @@ class Analysis:
     tilt_deg: float = 0.0
     structural: tuple[float, ...] = ()
     damping_only: bool = False
+    #: a flutter analysis's wind-speed sweep (start, stop, count m/s; its rotor-speed sweep is ``sweep``) and blades
+    wind_sweep: tuple[float, float, int] | None = None
+    blades: int = 3
 
     def key(self) -> dict[str, Any]:
         key = {"type": self.type, "rpm": self.rpm, "sweep": self.sweep, "n_modes": self.n_modes,
@@ -167,6 +177,10 @@ class Analysis:
                        wind_speed=self.wind_speed, pitch_deg=self.pitch_deg, yaw_sweep=self.yaw_sweep,
                        azimuths=list(self.azimuths), tilt_deg=self.tilt_deg, structural=list(self.structural),
                        damping_only=self.damping_only, leave_out=list(self.leave_out))
+        if self.type == "flutter":
+            key.update(aerodyn=None if self.aerodyn is None else file_digest(self.aerodyn),
+                       wind_speed=self.wind_speed, wind_sweep=self.wind_sweep, pitch_deg=self.pitch_deg,
+                       blades=self.blades)
         return key
 
 
@@ -247,13 +261,17 @@ def _turbine_analysis(entry: dict[str, Any], path: Path, lines: dict) -> Analysi
 
 def _analysis(entry: dict[str, Any], folder: Path, path: Path, lines: dict) -> Analysis:
     kind = entry["type"]
+
+    def refuse(message: str, key: str) -> InputError:
+        return InputError(message, file=str(path), line=_line(lines, ("analysis", key)), field=f"analysis.{key}")
+    if isinstance(entry.get("wind_speed_m_s"), list) and kind != "flutter":
+        raise refuse(f"a {kind} analysis takes one wind speed", "wind_speed_m_s")
     if kind in TURBINE_ANALYSES:
         return _turbine_analysis(entry, path, lines)
-    if kind == "standstill":
-        return Analysis(kind, **standstill_fields(
-            entry, lambda message, key: InputError(message, file=str(path), line=_line(lines, ("analysis", key)),
-                                                   field=f"analysis.{key}"),
-            lambda name, where: _input_file(name, folder, path, lines, where)))
+    if kind in ("standstill", "flutter"):
+        fields = standstill_fields if kind == "standstill" else flutter_fields
+        return Analysis(kind, **fields(entry, refuse, lambda name, where: _input_file(name, folder, path, lines,
+                                                                                        where)))
     for key in ("wind_speed_m_s", "seconds", "dt", "statistics_from_s", "pitch_deg", "induction", *TURBULENCE_KEYS):
         if key in entry:
             raise InputError(f"an input of the turbine analyses, not of {kind}", file=str(path),
@@ -311,8 +329,8 @@ def _bundle(analysis: Analysis, model: Path, main: Path | None) -> Bundle:
             read_spec(analysis.spec)
         structure = read_structure(model, main)
         if analysis.aerodyn is not None:
-            from .standstill import rotor_of
-            rotor_of(analysis, structure)
+            from . import flutter, standstill
+            (flutter if analysis.type == "flutter" else standstill).rotor_of(analysis, structure)
     return bundle_of(read, named)
 
 
@@ -339,13 +357,18 @@ def read_plan(path: str | Path) -> Plan:
             raise InputError("samples scatter blade section properties: a turbine analysis varies wind_speed_m_s, "
                              "rpm and pitch_deg in a grid, or decks in files", file=str(path),
                              line=_line(lines, ("samples",)), field="samples")
-        if analysis.type not in (*TURBINE_ANALYSES, "standstill") and "wind_speed_m_s" in data.get("grid", {}):
+        windy = (*TURBINE_ANALYSES, "standstill", "flutter")
+        if analysis.type not in windy and "wind_speed_m_s" in data.get("grid", {}):
             raise InputError(f"a turbine input: a {analysis.type} analysis has no wind", file=str(path),
                              line=_line(lines, ("grid", "wind_speed_m_s")), field="grid.wind_speed_m_s")
         if "turbulence_seed" in data.get("grid", {}) and analysis.turbulence is None:
             raise InputError("turbulence boxes need analysis.turbulence_class or turbulence_intensity_percent",
                              file=str(path), line=_line(lines, ("grid", "turbulence_seed")),
                              field="grid.turbulence_seed")
+        if analysis.type == "flutter":
+            check_grid(analysis, data.get("grid", {}), lambda key: InputError(
+                f"{key} is the flutter analysis's sweep: a grid varies the other speed", file=str(path),
+                line=_line(lines, ("grid", key)), field=f"grid.{key}"))
         if "grid" in data:
             names = list(data["grid"])
             variants = [dict(zip(names, values)) for values in itertools.product(*data["grid"].values())]

@@ -13,7 +13,13 @@ from numpy.typing import NDArray
 
 RESULT_COLUMNS = {"case_index", "case_hash", "status", "error", "mode", "name", "kind", "frequency_hz",
                   "residual", "damping_ratio", "requirement", "check", "passed", "measured", "margin", "rpm",
-                  "channel", "unit", "mean", "std", "min", "max", "del", "wohler_m"}
+                  "channel", "unit", "mean", "std", "min", "max", "del", "wohler_m", "swept", "onset", "onset_rpm",
+                  "onset_wind_speed_m_s", "onset_frequency_hz", "onset_mode", "flap_share", "edge_share",
+                  "torsion_share", "least_damping_ratio", "unconverged_roots"}
+#: a flutter batch's summarised quantities: result column -> label, unit
+FLUTTER = {"onset_rpm": ("flutter onset rotor speed", "rpm"),
+           "onset_wind_speed_m_s": ("flutter onset wind speed", "m/s"),
+           "onset_frequency_hz": ("flutter onset frequency", "Hz")}
 
 
 @dataclass(frozen=True)
@@ -74,6 +80,8 @@ def summarize(table: Any) -> BatchSummary:
     ok = status == "ok"
     hashes = np.array(data.get("case_hash", []))
     failed = len(set(hashes[~ok]))
+    if "onset_rpm" in data:
+        return _flutter_summary(data, ok, failed, len(set(hashes)))
     checks = "measured" in data and "frequency_hz" not in data
     channels = "channel" in data
     value_name = "mean" if channels else "measured" if checks else "frequency_hz"
@@ -105,6 +113,24 @@ def summarize(table: Any) -> BatchSummary:
         unit = units.get(label, "") if channels or checks else "Hz"
         quantities.append(Quantity(label, unit, y, correlation, swing, meaning))
     return BatchSummary(len(set(hashes)), failed, tuple(inputs), quantities)
+
+
+def _flutter_summary(data: dict[str, list], ok: NDArray[np.bool_], failed: int, cases: int) -> BatchSummary:
+    """The flutter onset's swept speed (rotor or wind) and frequency over the cases that have one (a case without
+    onset in its sweep is left out of the statistics: ``n`` counts those with one)."""
+    inputs = _varied_inputs(data, ok)
+    onset = ok & np.array([bool(v) for v in data["onset"]])
+    swept = {f"onset_{s}" for s, good in zip(data["swept"], ok) if good}
+    quantities = []
+    for column, (label, unit) in FLUTTER.items():
+        if column != "onset_frequency_hz" and column not in swept:
+            continue
+        y = np.array(data[column], dtype=float)[onset] if onset.any() else np.zeros(0)
+        correlation, swing = {}, {}
+        for name in inputs:
+            correlation[name], swing[name] = _sensitivity(np.array(data[name], dtype=float)[onset], y)
+        quantities.append(Quantity(label, unit, y, correlation, swing, "flutter onset"))
+    return BatchSummary(cases, failed, tuple(inputs), [q for q in quantities if len(q.values)])
 
 
 def _rpm_is_sweep(data: dict[str, list], ok: NDArray[np.bool_]) -> bool:

@@ -115,7 +115,13 @@ def _standstill_rows(case: Case, structure: Any) -> list[dict[str, Any]]:
     return standstill_rows(case, structure)
 
 
-ANALYSES = {"modes": _modes_rows, "campbell": _campbell_rows, "check": _check_rows, "standstill": _standstill_rows}
+def _flutter_rows(case: Case, structure: Any) -> list[dict[str, Any]]:
+    from .flutter import flutter_rows
+    return flutter_rows(case, structure)
+
+
+ANALYSES = {"modes": _modes_rows, "campbell": _campbell_rows, "check": _check_rows, "standstill": _standstill_rows,
+            "flutter": _flutter_rows}
 
 
 def input_columns(case: Case) -> dict[str, Any]:

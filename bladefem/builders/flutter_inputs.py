@@ -3,6 +3,7 @@ with its own model, and the aerodynamic centre's chordwise place on the blade (t
 
 from __future__ import annotations
 
+import os
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -10,6 +11,7 @@ from numpy.typing import NDArray
 
 if TYPE_CHECKING:
     from ..aero.rotor import Rotor
+    from ..assembly import BladeMatrices
     from ..sections import Blade
 
 #: AeroDyn settings that the flutter analysis accepts, and what it does instead
@@ -34,3 +36,34 @@ def chordwise_centre(blade: Blade, rotor: Rotor, notes: list[str]) -> NDArray | 
     notes.append("aerodynamic centre at the quarter chord, ahead of the reference axis by (pitch_axis - 0.25) "
                  "chord")
     return (axis - AC_FRACTION) * rotor.chord
+
+
+def flutter_rotor(aerodyn: str | os.PathLike, blade: Blade, n_blades: int, still_air: bool
+                  ) -> tuple[Rotor, NDArray | float, list[str]]:
+    """The rotor a flutter sweep of ``blade`` runs on: the AeroDyn primary file's blade and polars with the
+    settings of :data:`REPLACED` named, without induction when every operating point is in ``still_air`` (the
+    relative velocity is the rotation alone); the aerodynamic centre ahead of AeroDyn's reference line
+    (:func:`chordwise_centre`, m) and the notes of both, as ``bladefem flutter`` and a batch case run it."""
+    from dataclasses import replace
+
+    from .aerodyn_rotor import aerodyn_rotor, require_root_off_axis
+
+    rotor = aerodyn_rotor(aerodyn, blade, n_blades, replaced=REPLACED)
+    require_root_off_axis(rotor)
+    notes = list(rotor.notes) + list(blade.notes)
+    if still_air and rotor.options.induction:
+        rotor = replace(rotor, options=replace(rotor.options, induction=False))
+        notes.append("still air: no induction (the relative velocity is the blade's rotation)")
+    centre = chordwise_centre(blade, rotor, notes)
+    return rotor, centre, notes
+
+
+def structure_notes(matrices: BladeMatrices) -> list[str]:
+    """What the flutter sweep says of the blade's matrices: their own notes, a torsion-rigid input, no structural
+    damping."""
+    notes = list(matrices.notes)
+    if "phi" not in matrices.dofs.fields:
+        notes.append("torsion is rigid in this input (no torsion stiffness): no flap-torsion flutter can appear; a "
+                     "BeamDyn, HAWC2 or windIO input, or a case file with torsion_stiffness_N_m2, has it")
+    notes.append("no structural damping: a mode whose damping ratio turns negative is unstable (flutter)")
+    return notes

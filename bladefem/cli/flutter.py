@@ -88,10 +88,7 @@ def conditions(args: argparse.Namespace, pitch: float):
 
 
 def run_flutter(args: argparse.Namespace) -> int:
-    from dataclasses import replace
-
-    from ..builders.aerodyn_rotor import aerodyn_rotor, require_root_off_axis
-    from ..builders.flutter_inputs import REPLACED, chordwise_centre
+    from ..builders.flutter_inputs import flutter_rotor, structure_notes
     from ..modal import blade_matrices
     from ..models.flutter import flutter_sweep
     from ..report import progress_bar
@@ -104,19 +101,9 @@ def run_flutter(args: argparse.Namespace) -> int:
     if not is_blade(blade):
         raise InputError("flutter is a blade analysis: give a blade input", file=str(args.input), field="INPUT")
     sweep = conditions(args, blade.pitch)
-    rotor = aerodyn_rotor(args.aero, blade, args.blades, replaced=REPLACED)
-    require_root_off_axis(rotor)
-    notes = list(rotor.notes) + list(blade.notes)
-    if all(c.wind_speed == 0.0 for c in sweep) and rotor.options.induction:
-        rotor = replace(rotor, options=replace(rotor.options, induction=False))
-        notes.append("still air: no induction (the relative velocity is the blade's rotation)")
-    centre = chordwise_centre(blade, rotor, notes)
+    rotor, centre, notes = flutter_rotor(args.aero, blade, args.blades, all(c.wind_speed == 0.0 for c in sweep))
     matrices = blade_matrices(blade, args.elements, args.n_modes, max(c.rpm for c in sweep))
-    notes += list(matrices.notes)
-    if "phi" not in matrices.dofs.fields:
-        notes.append("torsion is rigid in this input (no torsion stiffness): no flap-torsion flutter can appear; a "
-                     "BeamDyn, HAWC2 or windIO input, or a case file with torsion_stiffness_N_m2, has it")
-    notes.append("no structural damping: a mode whose damping ratio turns negative is unstable (flutter)")
+    notes += structure_notes(matrices)
     progress = progress_bar("Flutter sweep", args.quiet)
     result = flutter_sweep(matrices, rotor, sweep, args.n_modes, centre, tuple(notes), progress)
     if args.plot:
