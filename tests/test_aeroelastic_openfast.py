@@ -116,8 +116,8 @@ def bem1_cases() -> list:
 def test_aeroelastic_mode_against_openfast_with_the_same_projection(variant, wind_speed, name, reference):
     """Every mode against OpenFAST run with the projection bladefem models (BEM_Mod 1, 12 azimuths at every point;
     tests/data/openfast/aero_linearization_bem1.json): natural frequency within 1.2 % (measured at most 0.86 %, the
-    1st flap backward whirl at 11.4 m/s with a frozen wake), damping ratio within 20 % relative or 0.005 absolute (the 1st families'
-    within 5 %); no exception."""
+    1st flap backward whirl at 11.4 m/s with a frozen wake), damping ratio within 20 % relative or 0.005 absolute
+    (the 1st families' within 5 %); no exception."""
     ours = bladefem_modes(variant, wind_speed, projection=1)[bladefem_name(name)]
     assert ours.frequency_hz == pytest.approx(reference["natural_frequency_hz"], rel=0.012)
     assert ours.damping_ratio == pytest.approx(reference["damping_ratio"], rel=0.2, abs=0.005)

@@ -18,9 +18,9 @@ section's cant, toe, twist and the annulus dr/dz handed to the solver, whose loa
 
 with the disk-averaged relative wind giving the skew angle ``chi0``, the skewed-wake azimuth and the tip-speed ratio
 (AeroDyn's ``DiskAvgValues``). The loads per unit length, ``fn`` and ``ft`` along the projection's normal and
-tangent and the pitching moment along its span axis, vary linearly between nodes along the undeflected arc length; they are lumped
-at the nodes by virtual work (force: ``L/3, L/6`` per element, whose moment about any point is the exact one of
-the line load; moment: ``L/2``), and enter Kane's equations as ``sum_p J_p^T F_p + W^T sum_p M_p`` (W the rotor's
+tangent and the pitching moment along its span axis, vary linearly between nodes along the undeflected arc length;
+they are lumped at the nodes by virtual work (force: ``L/3, L/6`` per element, whose moment about any point is the
+exact one of the line load; moment: ``L/2``), and enter Kane's equations as ``sum_p J_p^T F_p + W^T sum_p M_p`` (W the rotor's
 partial angular velocities). See docs/turbine.md.
 """
 
