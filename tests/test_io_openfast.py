@@ -55,9 +55,21 @@ def expect_error(call, path: Path, line: int, label: str) -> InputError:
     return error
 
 
+def test_gravity_of_the_fst_reaches_the_turbine(deck_copy):
+    """The .fst's Gravity is the turbine model's (a deck without gravity is run without it)."""
+    from bladefem.builders.turbine_deck import read_turbine_deck
+    edit(deck_copy / FST, Gravity="0")
+    assert read_openfast_deck(deck_copy / FST).gravity == 0.0
+    assert read_turbine_deck(deck_copy / FST, blade_shapes="polynomial").params.gravity == 0.0
+    edit(deck_copy / FST, Gravity="-9.8")
+    expect_error(lambda: read_openfast_deck(deck_copy / FST), deck_copy / FST, line_of(deck_copy / FST, "Gravity"),
+                 "Gravity")
+
+
 def test_shipped_deck():
     deck = read_openfast_deck(DECK / FST)
     assert (deck.t_max, deck.dt, deck.air_density, deck.unmodelled) == (100.0, 0.00625, 1.225, ())
+    assert deck.gravity == 9.80665
     assert deck.hub_height == pytest.approx(90.0, abs=1e-5)
     assert deck.pitch == (0.0, 0.0, 0.0) and deck.yaw == 0.0
     options = deck.aerodyn.options()

@@ -19,21 +19,24 @@ alpha = section_angle - theta. The momentum equations take the chord-frame coeff
 plane formulas (section_angle = phi, cn = cl cos phi + cd sin phi, ct = cl sin phi - cd cos phi).
 
 The frame of each node (:func:`projection`): AeroDyn's two projections (``AeroProjMod``), chosen by ``BEM_Mod``
-(``BEMOptions.formulation``).
+(``BEMOptions.formulation``), of a section turned by both slopes of the bent blade (:func:`bent_axes`: the least
+rotation of the span axis onto the deflected one, a section without torsion, ElastoDyn's orientation of its blade
+nodes) and AeroDyn's Euler angles of that orientation (:func:`euler_angles`, ``EulerExtract``).
 
-Legacy (BEM_Mod 1, ``NoSweepPitchTwist``): vx along the section's downwind normal n (the coned blade's i1 turned
-by the out-of-plane slope), vy against the rotation e_t; the section is plane in that frame (cant 0, toe 0,
-dr/dz 1).
+Legacy (BEM_Mod 1, ``NoSweepPitchTwist``, AeroDyn.f90 ``Calculate_MeshOrientation_NoSweepPitchTwist``): the angles
+against the unturned blade (x i1, y -e_t, z i3); vx along the blade's normal turned by the cant alone
+(cos(cant) i1 - sin(cant) i3), vy against the rotation e_t; the section is plane in that frame (cant 0, toe 0,
+dr/dz 1) and its twist (the bent section's, added to the aerodynamic twist and pitch) is the angles' third.
 
 Polar (BEM_Mod 2, ``APM_BEM_Polar``; AeroDyn.f90 ``SetInputsForBEMT``, ``Calculate_MeshOrientation_Rel2Hub``,
 ``TwistToeCant_FromLocalPolar``): the node's local polar frame x_l = the shaft axis, z_l = the node's position
 from the apex projected onto the rotor plane and normalised, y_l = z_l x x_l; vx = V . x_l, vy = V . y_l. The
-untwisted section axes (n, -e_t, s; s the deflected span axis) in that frame give AeroDyn's Euler angles
-R = R_y(cant) R_x(toe) (above): sin(cant) = s . x_l over the chord-normal's part
-(cant = atan2(s . x_l, n . x_l)), toe = atan2(-e_t . z_l, -e_t . y_l) (the node's position off the blade's
-radial line: in-plane deflection and the aerodynamic-centre sweep). There is no twist part: e_t is normal to the
-shaft, so the section's twist stays ``theta``. The annulus factor dr/dz = |dr_proj| / |dr| of the segment from the
-previous node (the first node takes the second's).
+bent section's untwisted axes (n, -e_t, s) in that frame give AeroDyn's Euler angles R = R_z(-twist) R_y(cant)
+R_x(toe) (above, with the twist 0): the cant (precone and the out-of-plane slope), the toe (the in-plane slope and
+the node's position off the blade's radial line: in-plane deflection and the aerodynamic-centre sweep) and the
+twist the bent section carries (of the order of the product of its two slopes), which adds to ``theta``; the
+section's loads act along its untwisted axes turned back by that twist. The annulus factor dr/dz = |dr_proj| /
+|dr| of the segment from the previous node (the first node takes the second's).
 """
 
 from __future__ import annotations
@@ -90,16 +93,53 @@ def framed_coefficients(alpha, cl, cd, options, cw, sw, cb, sb, ct, st):
     return cx, cy
 
 
+@kernel
+def bent_axes(v_slope, w_slope):
+    """The axes of a section turned by its in-plane and out-of-plane slopes v', w' (toward the leading edge and
+    downwind): the least rotation taking the span axis i3 onto the deflected axis (i3 + v' e_t + w' i1) / L,
+    L = sqrt(1 + v'^2 + w'^2) (Rodrigues, the rotation axis normal to i3: a section without torsion, as ElastoDyn's
+    ``SmllRotTrans`` of its two slopes). Returns the components of the turned normal n, tangent e_t (direction of
+    rotation) and span axis s along the unturned (i3, e_t, i1): (n3, nt, n1, t3, tt, t1, s3, st, s1). With v' = 0
+    the normal is (i1 - w' i3) / L and e_t is unturned."""
+    size = math.sqrt(1.0 + v_slope * v_slope + w_slope * w_slope)
+    h = 1.0 / (size * (size + 1.0))
+    vw = v_slope * w_slope * h
+    return (-w_slope / size, -vw, 1.0 / size + v_slope * v_slope * h,
+            -v_slope / size, 1.0 / size + w_slope * w_slope * h, -vw,
+            1.0 / size, v_slope / size, w_slope / size)
+
+
+@kernel
+def euler_angles(m11, m12, m13, m21, m22, m23, m31):
+    """(toe, cant, twist), rad: AeroDyn's Euler angles of a section (``TwistToeCant_FromLocalPolar``: NWTC
+    ``EulerExtract`` of M = R(theta_z) R(theta_y) R(theta_x), toe = theta_x, cant = theta_y, twist = -theta_z) from
+    the entries M_ij = (section axis i) . (reference axis j), the section axes (chord normal x', towards the trailing
+    edge y', span z') untwisted by the aerodynamic twist."""
+    cy = math.sqrt(m11 * m11 + m21 * m21)
+    if cy < 1e-14:                                       # gimbal lock: the span along the reference x axis
+        return math.atan2(m23, m22), math.atan2(m31, cy), 0.0
+    tz = math.atan2(-m21, m11)
+    cz, sz = math.cos(tz), math.sin(tz)
+    cy = math.copysign(cy, -m21 / sz) if abs(cz) < 1e-14 else math.copysign(cy, m11 / cz)
+    return math.atan2(sz * m13 + cz * m23, sz * m12 + cz * m22), math.atan2(m31, cy), -tz
+
+
 @dataclass(frozen=True)
 class Projection:
-    """x_axis, y_axis : (B, Na, 3) the unit vectors vx and vy are taken along; cant, toe : (B, Na) rad;
-    drdz : (B, Na) the annulus factor."""
+    """x_axis, y_axis : (B, Na, 3) the unit vectors vx and vy are taken along; cant, toe : (B, Na) rad; twist :
+    (B, Na) the section's twist from its orientation, rad (added to the aerodynamic twist and pitch); drdz :
+    (B, Na) the annulus factor; normal, tangent, span : (B, Na, 3) the axes the node loads fn, ft and the pitching
+    moment act along."""
 
     x_axis: NDArray
     y_axis: NDArray
     cant: NDArray
     toe: NDArray
+    twist: NDArray
     drdz: NDArray
+    normal: NDArray
+    tangent: NDArray
+    span: NDArray
 
     def components(self, relative: NDArray) -> tuple[NDArray, NDArray]:
         """(vx, vy) of relative winds (..., B, Na, 3)."""
@@ -107,25 +147,41 @@ class Projection:
                 np.einsum("...k,...k->...", relative, self.y_axis))
 
 
-def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tangent: NDArray,
-               span: NDArray) -> Projection:
+def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tangent: NDArray, span: NDArray,
+               in_plane_slope: NDArray | float = 0.0, out_of_plane_slope: NDArray | float = 0.0) -> Projection:
     """The projection of every node: ``arm`` (B, Na, 3) the nodes from the apex, ``shaft`` (3,) the shaft axis,
-    ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the section's untwisted axes."""
+    ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the undeflected blade's axes i1, e_t, i3,
+    the sections turned by the slopes (B, Na) of the deflected blade (:func:`bent_axes`)."""
     shape = arm.shape[:-1]
+    normal, tangent, span = (np.broadcast_to(axis, arm.shape) for axis in (normal, tangent, span))
+    basis = np.stack([span, tangent, normal], axis=-2)                           # (B, Na, 3 axes, 3)
+    slopes = (np.broadcast_to(np.asarray(slope, dtype=float), shape) for slope in (in_plane_slope, out_of_plane_slope))
+    c = np.stack(np.vectorize(bent_axes, otypes=[float] * 9)(*slopes), axis=-1)           # (B, Na, 9)
+    n_b, t_b, s_b = (np.einsum("...i,...ik->...k", c[..., 3 * j:3 * j + 3], basis) for j in range(3))
     if not polar:
-        return Projection(x_axis=normal, y_axis=-np.broadcast_to(tangent, arm.shape), cant=np.zeros(shape),
-                          toe=np.zeros(shape), drdz=np.ones(shape))
+        # AeroDyn's NoSweepPitchTwist: the Euler angles against the unturned blade (x i1, y -e_t, z i3); vx along
+        # the blade's normal turned by the cant alone, vy against the rotation, the loads along those axes
+        m = [c[..., 2], -c[..., 1], c[..., 0], -c[..., 5], c[..., 4], -c[..., 3], c[..., 8]]
+        _, cant, twist = (np.asarray(a) for a in np.vectorize(euler_angles, otypes=[float] * 3)(*m))
+        x_a = np.cos(cant)[..., None] * normal - np.sin(cant)[..., None] * span
+        z_a = np.sin(cant)[..., None] * normal + np.cos(cant)[..., None] * span
+        return Projection(x_axis=x_a, y_axis=-tangent, cant=np.zeros(shape), toe=np.zeros(shape), twist=twist,
+                          drdz=np.ones(shape), normal=x_a, tangent=tangent, span=z_a)
     radial = arm - (arm @ shaft)[..., None] * shaft
     on_axis = np.linalg.norm(radial, axis=-1, keepdims=True) == 0.0   # a node on the shaft (hub radius 0): the
-    outward = np.where(on_axis, span - (span @ shaft)[..., None] * shaft, radial)   # section's span axis points out
+    outward = np.where(on_axis, s_b - (s_b @ shaft)[..., None] * shaft, radial)   # section's span axis points out
     z_l = outward / np.linalg.norm(outward, axis=-1, keepdims=True)
     x_l = np.broadcast_to(shaft, arm.shape)
     y_l = np.cross(z_l, x_l)
-    tangent = np.broadcast_to(tangent, arm.shape)
-    cant = np.arctan2(np.einsum("...k,...k", span, x_l), np.einsum("...k,...k", normal, x_l))
-    toe = np.arctan2(-np.einsum("...k,...k", tangent, z_l), -np.einsum("...k,...k", tangent, y_l))
+    dot = lambda a, b: np.einsum("...k,...k", a, b)                           # noqa: E731
+    m = [dot(n_b, x_l), dot(n_b, y_l), dot(n_b, z_l), -dot(t_b, x_l), -dot(t_b, y_l), -dot(t_b, z_l), dot(s_b, x_l)]
+    toe, cant, twist = (np.asarray(a) for a in np.vectorize(euler_angles, otypes=[float] * 3)(*m))
+    # the loads' axes: the section's untwisted axes (x', -y') turned back by the twist its orientation carries
+    cz, sz = np.cos(twist)[..., None], np.sin(twist)[..., None]
+    load_normal, load_tangent = cz * n_b - sz * t_b, sz * n_b + cz * t_b
     step = np.linalg.norm(np.diff(arm, axis=-2), axis=-1)
     step_projected = np.linalg.norm(np.diff(radial, axis=-2), axis=-1)
     drdz = np.divide(step_projected, step, out=np.zeros_like(step), where=step > 0)
     drdz = np.concatenate([drdz[..., :1], drdz], axis=-1)
-    return Projection(x_axis=x_l, y_axis=y_l, cant=cant, toe=toe, drdz=drdz)
+    return Projection(x_axis=x_l, y_axis=y_l, cant=cant, toe=toe, twist=twist, drdz=drdz, normal=load_normal,
+                      tangent=load_tangent, span=s_b)

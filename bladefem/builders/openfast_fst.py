@@ -1,11 +1,11 @@
 """OpenFAST main input file (.fst) and the deck it names: ElastoDyn, AeroDyn (primary, blade and airfoil files),
 InflowWind and ServoDyn, gathered in one :class:`OpenFASTDeck`.
 
-Read from the .fst: ``TMax``, ``DT``, the module switches (``CompElast`` 1 ElastoDyn; ``CompInflow`` 0 still air or
-1 InflowWind; ``CompAero`` 0 or 2 AeroDyn; ``CompServo`` 0 or 1; every other module off), the environment (``AirDens``,
-``KinVisc``, ``SpdSound`` when the .fst has them, OpenFAST 3.2 and later) and the module file names, resolved
-against the .fst's folder. A switch or setting asking for something bladefem does not model is an
-:class:`Unmodelled` entry (file, line, label, what to change); by default the first one is raised as an
+Read from the .fst: ``TMax``, ``DT``, ``Gravity``, the module switches (``CompElast`` 1 ElastoDyn; ``CompInflow`` 0
+still air or 1 InflowWind; ``CompAero`` 0 or 2 AeroDyn; ``CompServo`` 0 or 1; every other module off), the
+environment (``AirDens``, ``KinVisc``, ``SpdSound`` when the .fst has them, OpenFAST 3.2 and later) and the module
+file names, resolved against the .fst's folder. A switch or setting asking for something bladefem does not model
+is an :class:`Unmodelled` entry (file, line, label, what to change); by default the first one is raised as an
 :class:`InputError`, with ``unmodelled="keep"`` they are returned in :attr:`OpenFASTDeck.unmodelled`.
 """
 
@@ -28,6 +28,7 @@ from .aerodyn import AeroDynBlade, read_aerodyn_blade
 from .aerodyn_primary import AeroDynPrimary, Unmodelled, default_air_density, read_aerodyn_primary
 from .airfoil_polars import read_airfoil
 from ..formats.elastodyn_main import ElastoDynMain, read_elastodyn_main
+from ..models.turbine.parameters import STANDARD_GRAVITY
 from .inflowwind import read_inflowwind
 from .servodyn import ServoDyn, read_servodyn
 
@@ -42,7 +43,7 @@ OFF_SWITCHES = {"CompSeaSt": ("sea state", "--foundation rigid"), "CompHydro": (
 class OpenFASTDeck:
     """Everything bladefem reads from an OpenFAST deck (SI, rad).
 
-    path : the .fst; t_max : TMax, s; dt : DT, s
+    path : the .fst; t_max : TMax, s; dt : DT, s; gravity : Gravity, m/s^2 (standard gravity where the .fst has none)
     elastodyn : the ElastoDyn main file; pitch : BlPitch(i), rad; yaw : NacYaw, rad
     aerodyn : the AeroDyn primary file (None with CompAero 0); blades : its blade files (one per blade);
     polars : the first table of each airfoil file (AFTabMod 1), in AFNames order
@@ -69,6 +70,7 @@ class OpenFASTDeck:
     speed_of_sound: float
     unmodelled: tuple[Unmodelled, ...] = ()
     left_out: tuple[str, ...] = ()
+    gravity: float = STANDARD_GRAVITY
 
     @property
     def hub_height(self) -> float:
@@ -164,7 +166,8 @@ def read_openfast_deck(path: str | os.PathLike, unmodelled: str = "error",
         air_density=default_air_density(_environment(aerodyn, fst, "air_density", "AirDens")),
         kinematic_viscosity=_environment(aerodyn, fst, "kinematic_viscosity", "KinVisc") or 1.464e-5,
         speed_of_sound=_environment(aerodyn, fst, "speed_of_sound", "SpdSound") or 335.0,
-        unmodelled=tuple(refused), left_out=left_out)
+        unmodelled=tuple(refused), left_out=left_out,
+        gravity=fst.float("Gravity", non_negative=True) if fst.has("Gravity") else STANDARD_GRAVITY)
     inflow = read_inflowwind(fst.existing_file("InflowFile")) if inflow_switch == 1 else Inflow(0.0,
                                                                                                   deck.hub_height)
     return OpenFASTDeck(**{**deck.__dict__, "inflow": inflow})

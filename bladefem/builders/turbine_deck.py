@@ -113,7 +113,7 @@ def read_turbine_deck(path: str | Path, *, aero: bool = True, wind_speed: float 
         yaw_damping = servo.yaw_damper if servo is not None else NREL5MW_YAW_DAMPING
     main = deck.elastodyn.path
     params = turbine_from_elastodyn(main, pitch=pitch, yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping,
-                                    **structure)
+                                    **structure).with_(gravity=deck.gravity)
     loads = None
     if deck.aerodyn is None:
         for name, value in (("--wind-speed", wind_speed), ("--shear-exp", shear_exponent)):

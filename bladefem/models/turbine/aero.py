@@ -5,21 +5,22 @@ are linear interpolations of the structural beam's (root, span nodes, tip), as O
 motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
 rotation) ride rigidly in the blade frame. At every state the node's absolute velocity (tower, nacelle, rotor and
 blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
-the node solver (:func:`bladefem.aero.bem.node_loads`) are, with BEM_Mod 1, AeroDyn's legacy projection
+the node solver (:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and
+out-of-plane slopes v', w' (:func:`bladefem.aero.polar.bent_axes`), with BEM_Mod 1 in AeroDyn's legacy projection
 (``NoSweepPitchTwist``):
 
-    n = (i1 - w' i3) / sqrt(1 + w'^2)     the coned blade's downwind normal turned by the out-of-plane slope w'
+    n = cos(cant) i1 - sin(cant) i3       the coned blade's downwind normal turned by the bent section's cant
     vx = (V_wind - v) . n,   vy = -(V_wind - v) . e_t      e_t the direction of rotation (toward the leading edge)
-    r_local = distance from the shaft axis,  theta = BlTwist + pitch
+    r_local = distance from the shaft axis,  theta = BlTwist + pitch + the bent section's twist
 
 and with BEM_Mod 2 its polar projection (:mod:`bladefem.aero.polar`: vx along the shaft, vy in the rotor plane, the
-section's cant, toe and the annulus dr/dz handed to the solver, which resolves its loads along n and e_t again).
+section's cant, toe, twist and the annulus dr/dz handed to the solver, whose loads act along the section's axes).
 
 with the disk-averaged relative wind giving the skew angle ``chi0``, the skewed-wake azimuth and the tip-speed ratio
-(AeroDyn's ``DiskAvgValues``). The loads per unit length, ``fn`` along ``n``, ``ft`` along ``e_t`` and the pitching
-moment along the deflected span axis, vary linearly between nodes along the undeflected arc length; they are lumped
-at the nodes by virtual work (force: ``L/3, L/6`` per element, whose moment about any point is the exact one of
-the line load; moment: ``L/2``), and enter Kane's equations as ``sum_p J_p^T F_p + W^T sum_p M_p`` (W the rotor's
+(AeroDyn's ``DiskAvgValues``). The loads per unit length, ``fn`` and ``ft`` along the projection's normal and
+tangent and the pitching moment along its span axis, vary linearly between nodes along the undeflected arc length;
+they are lumped at the nodes by virtual work (force: ``L/3, L/6`` per element, whose moment about any point is the
+exact one of the line load; moment: ``L/2``), and enter Kane's equations as ``sum_p J_p^T F_p + W^T sum_p M_p`` (W the rotor's
 partial angular velocities). See docs/turbine.md.
 """
 
@@ -250,21 +251,18 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     r, v = group.r, group.velocity(u)
     R = motion.blade_frames.R
     i3, e_t, i1 = R[:, None, :, 0], R[:, None, :, 1], R[:, None, :, 2]
-    w_slope = np.einsum("bk,kp->bp", q[model.blade_columns], aero.slope[:, :, 1])[..., None]
-    stretch = np.sqrt(1.0 + w_slope**2)
-    normal = (i1 - w_slope * i3) / stretch
-    span_axis = (i3 + w_slope * i1) / stretch
+    v_slope, w_slope = np.einsum("bk,kpa->abp", q[model.blade_columns], aero.slope)
     relative = aero.inflow.velocity_at(r, t) - v
     apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
     arm = r - apex
-    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, normal, e_t, span_axis)
+    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, i1, e_t, i3, v_slope, w_slope)
     vx, vy = frame.components(relative)
     r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
     disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)
     solution, quasi = solve_all(aero, vx, vy, r_local, disk, guess, frame, wake)
     fn, ft, m = (solution[..., COLUMNS.index(name)][..., None] for name in ("fn", "ft", "m"))
-    forces = np.einsum("ij,bjk->bik", aero.force_lumping(), fn * normal + ft * e_t)
-    moments = aero.moment_weights()[None, :, None] * m * span_axis
+    forces = np.einsum("ij,bjk->bik", aero.force_lumping(), fn * frame.normal + ft * frame.tangent)
+    moments = aero.moment_weights()[None, :, None] * m * frame.span
     _, generalized = group.generalized(np.zeros(forces.shape[:2]), forces)
     generalized = generalized + motion.rotor.W.T @ moments.sum(axis=(0, 1))
     total_force = forces.sum(axis=(0, 1))
@@ -348,7 +346,7 @@ def solve_all(aero: TurbineAero, vx: NDArray, vy: NDArray, r_local: NDArray, dis
     shape = vx.shape
     tip_ratio = r_local / r_local.max(axis=1, keepdims=True)
     per_node = [np.ascontiguousarray(np.broadcast_to(x, shape).ravel()) for x in (
-        vx, vy, r_local, rotor.chord, aero.theta, aero.tip_constant, aero.hub_constant, tip_ratio,
+        vx, vy, r_local, rotor.chord, aero.theta + frame.twist, aero.tip_constant, aero.hub_constant, tip_ratio,
         np.full(shape, disk.chi0), disk.skew_cos[:, None], rotor.airfoil,
         np.full(shape, np.nan) if guess is None else guess, frame.cant, frame.toe, frame.drdz)]
     vx_, vy_, r_, chord, theta, tip_c, hub_c, ratio, chi0, skew_cos, airfoil, start, cant, toe, drdz = per_node

@@ -38,7 +38,7 @@ def aero_data(model) -> tuple:
     k = model.params.blade.n_modes
     if aero is None:
         empty = np.zeros(0)
-        return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0)),
+        return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0, 2)),
                 np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
                 np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
                 np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty)
@@ -47,7 +47,7 @@ def aero_data(model) -> tuple:
     inflow, rotor = aero.inflow, aero.rotor
     knots, values, coefs, start, count = aero.polar_arrays
     return (across, aero.shortening.copy(), aero.axial.copy(), aero.offset.copy(),
-            np.ascontiguousarray(aero.slope[:, :, 1]), aero.force_lumping(), aero.moment_weights(),
+            np.ascontiguousarray(aero.slope, dtype=float), aero.force_lumping(), aero.moment_weights(),
             rotor.chord.copy(), np.ascontiguousarray(aero.theta, dtype=float), aero.tip_constant.copy(),
             aero.hub_constant.copy(), rotor.airfoil.astype(np.int64), knots, values, coefs, start, count,
             aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays(),
@@ -65,15 +65,17 @@ def wake_data(aero, blades: int) -> tuple:
 
 
 def aero_state(blades: int, nodes: int, modes: int) -> tuple:
-    """Per node: offset from the apex rho, absolute velocity (B, Na, 3), R D (B, Na, 3, k), the deflected normal
-    and span axis (B, Na, 3), the relative wind (B, Na, 3), the node solutions (B, Na, 13), lumped forces and
-    moments (B, Na, 3); the rotor summary (:data:`HUB`); the dynamic wake's states and their rates (B, Na, 4), the
-    quasi-steady induced velocities (B, Na, 2) and (states given: 1 or 0, tau1 in s)."""
+    """Per node: offset from the apex rho, absolute velocity (B, Na, 3), R D (B, Na, 3, k), the bent section's
+    normal and span axis (B, Na, 3; after the node solve the axes its loads act along), the relative wind
+    (B, Na, 3), the node solutions (B, Na, 13), lumped forces and moments (B, Na, 3); the rotor summary
+    (:data:`HUB`); the dynamic wake's states and their rates (B, Na, 4), the quasi-steady induced velocities
+    (B, Na, 2) and (states given: 1 or 0, tau1 in s); the bent section's direction of rotation (B, Na, 3; after
+    the solve the tangential load's axis)."""
     shape = (blades, nodes, 3)
     return (np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 3, modes)), np.zeros(shape),
             np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 13)), np.zeros(shape), np.zeros(shape),
             np.zeros(len(HUB)), np.zeros((blades, nodes, 4)), np.zeros((blades, nodes, 4)),
-            np.zeros((blades, nodes, 2)), np.zeros(2))
+            np.zeros((blades, nodes, 2)), np.zeros(2), np.zeros(shape))
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -81,6 +83,7 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.dynamic_wake import BLEND, MODEL, time_constant, wake_node_loads, wake_rates
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
+    from ...aero.polar import bent_axes, euler_angles
     from ...aero.wind import point_wind
     from .compiled_kernels import beam_node
     from .compiled_state import full_state, state_rate
@@ -103,6 +106,7 @@ if njit is not None:                                   # module-level kernels: n
         wind = np.zeros(3)
         Z_w, frame_w, apex_w = work[4], work[5], work[6]
         rho_w, vel_w, RD_w, normal_w, span_w, rel_w = state[0], state[1], state[2], state[3], state[4], state[5]
+        tangent_w = state[14]
         n, k = q.shape[0], across.shape[0]
         apex_v, omega = np.zeros(3), np.zeros(3)
         for r in range(3):
@@ -119,18 +123,20 @@ if njit is not None:                                   # module-level kernels: n
                 ub[i] = u[b_columns[b, i]]
             for p in range(axial.shape[0]):
                 beam_node(across, short, axial, p, qb, ub, 0, D, d, rate, bias)
-                w = 0.0
+                v, w = 0.0, 0.0
                 for i in range(k):
-                    w += slope[i, p] * qb[i]
-                stretch = math.sqrt(1.0 + w * w)
+                    v += slope[i, p, 0] * qb[i]
+                    w += slope[i, p, 1] * qb[i]
+                n3, nt, n1, t3, tt, t1, s3, st, s1 = bent_axes(v, w)
                 for r in range(3):
                     rho_w[b, p, r] = (R[r, 0] * (d[0] + offset[p, 0]) + R[r, 1] * (d[1] + offset[p, 1])
                                       + R[r, 2] * (d[2] + offset[p, 2]))
                     moving[r] = R[r, 0] * rate[0] + R[r, 1] * rate[1] + R[r, 2] * rate[2]
                     for i in range(k):
                         RD_w[b, p, r, i] = R[r, 0] * D[0, i] + R[r, 1] * D[1, i] + R[r, 2] * D[2, i]
-                    normal_w[b, p, r] = (R[r, 2] - w * R[r, 0]) / stretch
-                    span_w[b, p, r] = (R[r, 0] + w * R[r, 2]) / stretch
+                    normal_w[b, p, r] = n3 * R[r, 0] + nt * R[r, 1] + n1 * R[r, 2]
+                    tangent_w[b, p, r] = t3 * R[r, 0] + tt * R[r, 1] + t1 * R[r, 2]
+                    span_w[b, p, r] = s3 * R[r, 0] + st * R[r, 1] + s1 * R[r, 2]
                 cross(omega, rho_w[b, p], wr)
                 point_wind(apex_w[0] + rho_w[b, p, 0], apex_w[1] + rho_w[b, p, 1], apex_w[2] + rho_w[b, p, 2], t,
                            params, table, grid, wind)
@@ -140,13 +146,31 @@ if njit is not None:                                   # module-level kernels: n
         return omega
 
     @njit(cache=True)
-    def projected_inflow(rho_w, b, p, rel, normal, span, tangent, shaft, polar):
-        """(vx, vy, cant, toe, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`):
-        the legacy projection on the normal and against the rotation, or (``polar``) AeroDyn's local polar frame."""
+    def projected_inflow(rho_w, b, p, rel, normal, tangent, span, R, shaft, polar):
+        """(vx, vy, cant, toe, twist, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`)
+        for its bent section's axes ``normal``, ``tangent``, ``span``, which are turned in place into the axes its
+        loads act along: the legacy projection against the unturned blade (frame ``R``), or (``polar``) AeroDyn's
+        local polar frame."""
         if not polar:
-            vx = rel[0] * normal[0] + rel[1] * normal[1] + rel[2] * normal[2]
-            vy = -(rel[0] * tangent[0] + rel[1] * tangent[1] + rel[2] * tangent[2])
-            return vx, vy, 0.0, 0.0, 1.0
+            m11, m12, m13, m21, m22, m23, m31 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            for r in range(3):
+                m11 += normal[r] * R[r, 2]
+                m12 -= normal[r] * R[r, 1]
+                m13 += normal[r] * R[r, 0]
+                m21 -= tangent[r] * R[r, 2]
+                m22 += tangent[r] * R[r, 1]
+                m23 -= tangent[r] * R[r, 0]
+                m31 += span[r] * R[r, 2]
+            _, cant, twist = euler_angles(m11, m12, m13, m21, m22, m23, m31)
+            c, s = math.cos(cant), math.sin(cant)
+            vx, vy = 0.0, 0.0
+            for r in range(3):
+                normal[r] = c * R[r, 2] - s * R[r, 0]
+                span[r] = s * R[r, 2] + c * R[r, 0]
+                tangent[r] = R[r, 1]
+                vx += rel[r] * normal[r]
+                vy -= rel[r] * tangent[r]
+            return vx, vy, 0.0, 0.0, twist, 1.0
         z_l, y_l = np.zeros(3), np.zeros(3)
         j = max(p, 1)
         rho, prev = rho_w[b, j], rho_w[b, j - 1]
@@ -169,16 +193,26 @@ if njit is not None:                                   # module-level kernels: n
         for r in range(3):
             z_l[r] /= size
         cross(z_l, shaft, y_l)
-        vx, vy, s_x, n_x, t_z, t_y = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        vx, vy = 0.0, 0.0
+        m11, m12, m13, m21, m22, m23, m31 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         for r in range(3):
             vx += rel[r] * shaft[r]
             vy += rel[r] * y_l[r]
-            s_x += span[r] * shaft[r]
-            n_x += normal[r] * shaft[r]
-            t_z += tangent[r] * z_l[r]
-            t_y += tangent[r] * y_l[r]
+            m11 += normal[r] * shaft[r]
+            m12 += normal[r] * y_l[r]
+            m13 += normal[r] * z_l[r]
+            m21 -= tangent[r] * shaft[r]
+            m22 -= tangent[r] * y_l[r]
+            m23 -= tangent[r] * z_l[r]
+            m31 += span[r] * shaft[r]
+        toe, cant, twist = euler_angles(m11, m12, m13, m21, m22, m23, m31)
+        c, s = math.cos(twist), math.sin(twist)
+        for r in range(3):
+            n, t = normal[r], tangent[r]
+            normal[r] = c * n - s * t
+            tangent[r] = s * n + c * t
         drdz = math.sqrt(step_projected) / math.sqrt(step) if step > 0.0 else 0.0
-        return vx, vy, math.atan2(s_x, n_x), math.atan2(-t_z, -t_y), drdz
+        return vx, vy, cant, toe, twist, drdz
 
     @njit(cache=True)
     def add_aero(f, q, u, data, aero, work, state, t):
@@ -193,6 +227,7 @@ if njit is not None:                                   # module-level kernels: n
         Z_w, frame_w, shaft = work[4], work[5], work[8][3]
         rho_w, RD_w, normal_w, span_w, rel_w, out_w, force_w, moment_w, hub = state[0], state[2], state[3], \
             state[4], state[5], state[6], state[7], state[8], state[9]
+        tangent_w = state[14]
         omega = node_kinematics(q, u, data, aero, work, state, t)
         B, k = frame_w.shape[0], RD_w.shape[3]
         wake_parameters, disk_weight, ratio0 = aero[22], aero[23], aero[24]
@@ -242,20 +277,21 @@ if njit is not None:                                   # module-level kernels: n
             skew_cos = (radial[0] * in_plane[0] + radial[1] * in_plane[1] + radial[2] * in_plane[2]) / math.sqrt(
                 length)
             for p in range(nodes):
-                vx, vy, cant, toe, drdz = projected_inflow(rho_w, b, p, rel_w[b, p], normal_w[b, p], span_w[b, p],
-                                                           R[:, 1], shaft, options[FORMULATION] == 2.0)
+                vx, vy, cant, toe, twist, drdz = projected_inflow(rho_w, b, p, rel_w[b, p], normal_w[b, p],
+                                                                  tangent_w[b, p], span_w[b, p], R, shaft,
+                                                                  options[FORMULATION] == 2.0)
                 if lagging:
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, q_axial, q_tangential = \
-                        wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1],
-                                        r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values,
-                                        coefs, start, count, options, scalars[0], math.nan, cant, toe, drdz,
-                                        wake[b, p, 2], wake[b, p, 3])
+                        wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p],
+                                        scalars[1], r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p],
+                                        knots, values, coefs, start, count, options, scalars[0], math.nan, cant,
+                                        toe, drdz, wake[b, p, 2], wake[b, p, 3])
                     quasi[b, p, 0], quasi[b, p, 1] = q_axial, q_tangential
                     if vx != 0.0:
                         disk_induction += disk_weight[p] * q_axial / vx
                 else:
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
-                        vx, vy, r_local[b, p], chord[p], theta[p], tip_c[p], hub_c[p], scalars[1],
+                        vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p], scalars[1],
                         r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start,
                         count, options, scalars[0], math.nan, cant, toe, drdz)
                 row = out_w[b, p]
@@ -268,7 +304,8 @@ if njit is not None:                                   # module-level kernels: n
                 for r in range(3):
                     value = 0.0
                     for j in range(max(p - 1, 0), min(p + 2, nodes)):
-                        value += lumping[p, j] * (out_w[b, j, 9] * normal_w[b, j, r] + out_w[b, j, 10] * R[r, 1])
+                        value += lumping[p, j] * (out_w[b, j, 9] * normal_w[b, j, r]
+                                                  + out_w[b, j, 10] * tangent_w[b, j, r])
                     force_w[b, p, r] = value
                     moment_w[b, p, r] = weights[p] * out_w[b, p, 11] * span_w[b, p, r]
                 F, M, rho = force_w[b, p], moment_w[b, p], rho_w[b, p]

@@ -15,8 +15,8 @@ quasi-steady alternative re-solves the BEM for every perturbation (:func:`bladef
 
 The Jacobians (:func:`aero_jacobians`) are central differences: over the speeds ``u`` the nodes' velocities change
 by ``h J_i`` at fixed positions and frames (exact: ``v = J(q) u``), so the kinematics are evaluated once; over the
-coordinates ``q`` the kinematics are re-evaluated (positions, frames, partial velocities and the out-of-plane slope
-all move).
+coordinates ``q`` the kinematics are re-evaluated (positions, frames, partial velocities and the sections' slopes,
+hence their cant, toe and twist, all move).
 """
 
 from __future__ import annotations
@@ -44,8 +44,8 @@ class NodeInflow:
 
     group : positions and factored partial velocities (:class:`~bladefem.models.turbine.kinematics.NodeGroup`)
     velocity : (B, Na, 3) node velocities, m/s; wind : (B, Na, 3) the undisturbed wind there, m/s
-    normal, tangent, span : (B, Na, 3) unit vectors: the coned blade's downwind normal turned by the out-of-plane
-        slope, the direction of rotation, the deflected span axis
+    normal, tangent, span : (B, Na, 3) unit vectors the section loads act along (``frame``'s: the bent section's
+        normal and direction of rotation, less the twist its orientation carries, and its span axis)
     rotor_W : (3, n) partial angular velocities of the rotor (the pitching moments act on it)
     frame : the projection of the relative wind and the sections' orientation (:mod:`bladefem.aero.polar`)
     """
@@ -71,14 +71,11 @@ def node_inflow(model, aero: TurbineAero, q: NDArray, u: NDArray) -> NodeInflow:
     group = aero_nodes(model, aero, q, u, motion)
     R = motion.blade_frames.R
     i3, e_t, i1 = R[:, None, :, 0], R[:, None, :, 1], R[:, None, :, 2]
-    w_slope = np.einsum("bk,kp->bp", q[model.blade_columns], aero.slope[:, :, 1])[..., None]
-    stretch = np.sqrt(1.0 + w_slope**2)
-    shape = group.r.shape
-    normal, span = (i1 - w_slope * i3) / stretch, (i3 + w_slope * i1) / stretch
-    frame = projection(aero.rotor.options.formulation == 2, group.r - motion.apex.r, motion.rotor.R[:, 0], normal,
-                       e_t, span)
+    v_slope, w_slope = np.einsum("bk,kpa->abp", q[model.blade_columns], aero.slope)
+    frame = projection(aero.rotor.options.formulation == 2, group.r - motion.apex.r, motion.rotor.R[:, 0], i1, e_t,
+                       i3, v_slope, w_slope)
     return NodeInflow(group=group, velocity=group.velocity(u), wind=aero.inflow.velocity(group.r[..., 2]),
-                      normal=normal, tangent=np.broadcast_to(e_t, shape), span=span, rotor_W=motion.rotor.W,
+                      normal=frame.normal, tangent=frame.tangent, span=frame.span, rotor_W=motion.rotor.W,
                       frame=frame)
 
 
@@ -121,7 +118,8 @@ class SectionAero:
         bare, rotor = self.bare, self.bare.rotor
         shape = x.shape
         x_, y_, chord, theta, cant, toe = (np.ascontiguousarray(np.broadcast_to(value, shape), dtype=float).ravel()
-                                           for value in (x, y, rotor.chord, bare.theta, frame.cant, frame.toe))
+                                           for value in (x, y, rotor.chord, bare.theta + frame.twist, frame.cant,
+                                                         frame.toe))
         ones = np.ones(x.size)
         airfoil = np.ascontiguousarray(np.broadcast_to(rotor.airfoil, shape)).ravel().astype(np.int64)
         out = np.empty((x.size, NODE_OUTPUTS))

@@ -36,7 +36,7 @@ class CompiledPitch:
         aero = compiled.aero
         self.aero_value = aero[0].copy()                     # (k, Na, 3)
         self.aero_slope = (np.asarray(model.aero.slope, dtype=float).copy() if model.aero is not None
-                           else np.zeros((0, 0, 2)))         # (k, Na, 2): the kernels keep only z
+                           else np.zeros((0, 0, 2)))         # (k, Na, 2): in-plane, out-of-plane
         self.theta = aero[8].copy()
         self.tip = np.asarray(model.params.blade.tip_value, dtype=float).copy()      # (k, 2)
 
@@ -49,7 +49,7 @@ class CompiledPitch:
         data[5][..., 1], data[5][..., 2] = turn(self.blade[..., 1], self.blade[..., 2], delta)
         aero[0][..., 1], aero[0][..., 2] = turn(self.aero_value[..., 1], self.aero_value[..., 2], delta)
         if self.aero_slope.size:
-            aero[4][...] = turn(self.aero_slope[..., 0], self.aero_slope[..., 1], delta)[1]
+            aero[4][..., 0], aero[4][..., 1] = turn(self.aero_slope[..., 0], self.aero_slope[..., 1], delta)
         aero[8][...] = self.theta + delta
         self.pitch = pitch
 

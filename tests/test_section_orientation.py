@@ -1,0 +1,48 @@
+"""The bent blade section's orientation (``bladefem.aero.polar``): the least rotation of the span axis onto the
+deflected one (against scipy's rotation vectors), and AeroDyn's Euler angles of a section (against the matrix that
+the NWTC library's ``EulerConstruct`` builds, NWTC_Num.f90: M = R(theta_z) R(theta_y) R(theta_x), change of basis)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from bladefem.aero.polar import bent_axes, euler_angles
+
+
+@pytest.mark.parametrize("v, w", [(0.0, 0.0), (0.0, 0.15), (0.02, 0.0), (0.015, 0.17), (-0.3, 0.5), (0.8, -0.6)])
+def test_bent_axes_are_the_least_rotation_onto_the_deflected_axis(v, w):
+    """Components along (i3, e_t, i1) = (x, y, z) of the turned normal, tangent and span axis equal scipy's
+    rotation by the angle between i3 and s = (1, v, w) / L about i3 x s (a rotation axis normal to i3: no twist
+    about the span), to 1e-15; with v = 0 the normal is (i1 - w i3) / sqrt(1 + w^2)."""
+    n3, nt, n1, t3, tt, t1, s3, st, s1 = bent_axes(v, w)
+    span = np.array([1.0, v, w]) / math.sqrt(1 + v * v + w * w)
+    axis = np.cross([1.0, 0.0, 0.0], span)
+    size = np.linalg.norm(axis)
+    rotation = Rotation.from_rotvec(axis / size * math.atan2(size, span[0]) if size > 0 else np.zeros(3))
+    expected = rotation.apply(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]))
+    np.testing.assert_allclose([[n3, nt, n1], [t3, tt, t1], [s3, st, s1]], expected, rtol=0, atol=1e-15)
+    if v == 0.0:
+        np.testing.assert_allclose([n3, nt, n1], np.array([-w, 0.0, 1.0]) / math.sqrt(1 + w * w), atol=1e-16)
+
+
+def euler_construct(toe: float, cant: float, twist: float) -> np.ndarray:
+    """NWTC's M = R(theta_z) R(theta_y) R(theta_x) with theta_x = toe, theta_y = cant, theta_z = -twist."""
+    cx, sx, cy, sy = math.cos(toe), math.sin(toe), math.cos(cant), math.sin(cant)
+    cz, sz = math.cos(-twist), math.sin(-twist)
+    return np.array([[cy * cz, cx * sz + sx * sy * cz, sx * sz - cx * sy * cz],
+                     [-cy * sz, cx * cz - sx * sy * sz, sx * cz + cx * sy * sz],
+                     [sy, -sx * cy, cx * cy]])
+
+
+@pytest.mark.parametrize("toe, cant, twist", [(0.0, 0.0, 0.0), (0.01, 0.17, 0.001), (-0.3, 0.5, 1.2),
+                                              (2.0, -1.0, -2.5), (0.4, math.pi / 2, 0.0)])
+def test_euler_angles_invert_the_nwtc_construction(toe, cant, twist):
+    """The angles of the constructed matrix come back to 1e-12 (at cant = 90 deg, gimbal lock, as the NWTC
+    library: the twist taken 0 and the toe from the second row)."""
+    M = euler_construct(toe, cant, twist)
+    angles = euler_angles(M[0, 0], M[0, 1], M[0, 2], M[1, 0], M[1, 1], M[1, 2], M[2, 0])
+    np.testing.assert_allclose(angles, (toe, cant, twist), rtol=0, atol=1e-12)
