@@ -188,13 +188,15 @@ def test_the_command_line_runs_the_dynamic_wake(tmp_path, capsys):
 
 def test_batch_simulation_runs_the_dynamic_wake(tmp_path):
     """A batch plan's turbine_simulate case of a DBEMT_Mod 2 deck runs with the dynamic wake: its thrust equals
-    `bladefem turbine --simulate`'s (the same model and integrator), and differs from the quasi-steady deck's."""
+    `bladefem turbine --simulate`'s (the same model and integrator), and differs from the quasi-steady deck's where
+    the blades' first swing changes the inflow: the lagging induction lets the thrust's first dip (0.25 s) go 1.1 %
+    deeper (measured; the 2 s means differ by only 3e-5, the wake returning what it took)."""
     pytest.importorskip("pyarrow")
     from bladefem.batch import read_plan, run_case
     from bladefem.cli import main
     deck_model(tmp_path, "2")
     fst = tmp_path / "deck2_2" / FST
-    means = {}
+    means, lowest = {}, {}
     for name, path in (("dynamic", fst), ("quasi-steady", CASE / FST)):
         plan_file = tmp_path / f"plan_{name}.yaml"
         plan_file.write_text(f"model: {path}\nanalysis: {{type: turbine_simulate, seconds: 2, dt: 0.05, "
@@ -202,6 +204,7 @@ def test_batch_simulation_runs_the_dynamic_wake(tmp_path):
         rows = run_case(read_plan(plan_file).cases[0])
         assert all(row["status"] == "ok" for row in rows)
         means[name] = {row["channel"]: row["mean"] for row in rows}["RtAeroFxh"]
+        lowest[name] = {row["channel"]: row["min"] for row in rows}["RtAeroFxh"]
     output = tmp_path / "run.csv"
     assert main(["turbine", str(fst), "--simulate", "2", "--dt", "0.05", "--rpm", "12.1", "--pitch-deg", "0",
                  "--wind-speed", "11.4", "--output", str(output), "--quiet"]) == 0
@@ -209,4 +212,5 @@ def test_batch_simulation_runs_the_dynamic_wake(tmp_path):
     column = lines[0].split(",").index(next(c for c in lines[0].split(",") if c.startswith("RtAeroFxh")))
     thrust = np.array([float(line.split(",")[column]) for line in lines[1:]])
     assert means["dynamic"] == pytest.approx(thrust.mean(), rel=1e-8)
-    assert abs(means["dynamic"] / means["quasi-steady"] - 1) > 1e-3
+    assert lowest["dynamic"] == pytest.approx(thrust.min(), rel=1e-8)
+    assert lowest["dynamic"] / lowest["quasi-steady"] - 1 < -5e-3

@@ -50,7 +50,8 @@ if njit is not None:                                   # module-level kernels: n
                 y, z = value[i, p, 1], value[i, p, 2]
                 sections[i, p, 1], sections[i, p, 2] = y * c + z * s, -y * s + z * c
             for p in range(slope.shape[1]):
-                aero[4][i, p] = -slope[i, p, 0] * s + slope[i, p, 1] * c
+                y, z = slope[i, p, 0], slope[i, p, 1]
+                aero[4][i, p, 0], aero[4][i, p, 1] = y * c + z * s, -y * s + z * c
         for p in range(theta.shape[0]):
             aero[8][p] = theta[p] + delta
 
