@@ -28,7 +28,7 @@ if njit is not None:
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
-    @njit(cache=True, inline="always")
+    @njit(cache=True)
     def rate(t, x, q0, u0, index, data, work, hub_radius, row):
         """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
         same evaluation of the equations) if it is not empty."""

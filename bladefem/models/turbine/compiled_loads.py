@@ -274,7 +274,7 @@ if njit is not None:                                   # module-level kernels: n
             f[i] -= torque * generator_angle[i]
         return torque
 
-    @njit(cache=True, inline="always")
+    @njit(cache=True)
     def equations(q, u, data, work, t):
         """Mass matrix and forcing with the aerodynamic loads (wind at time t) and the generator torque."""
         structure, aero, law = data

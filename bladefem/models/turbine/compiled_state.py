@@ -25,7 +25,7 @@ if njit is not None:                                   # module-level kernels: n
                 Mf[i, j] = M[index[i], index[j]]
         return solve_spd(Mf, ff)
 
-    @njit(cache=True, inline="always")
+    @njit(cache=True)
     def state_rate(x, M, f, index):
         """dx/dt of the free state x = (q_f, u_f): its rates, then the free accelerations from M and f."""
         size = index.shape[0]
@@ -36,7 +36,7 @@ if njit is not None:                                   # module-level kernels: n
             out[size + i] = du[i]
         return out
 
-    @njit(cache=True, inline="always")
+    @njit(cache=True)
     def full_state(t, x, q0, u0, index):
         """All coordinates and rates at time t for the free state x (locked ones move on at their initial
         rate)."""
