@@ -99,7 +99,8 @@ def _cm_axial_read_into_cm_loc(deck: BModesInput) -> BModesInput:
 
 DIFFERENCES = (
     Difference("gravity", "BModes has no gravity (towers: axial load and top-mass pendulum)",
-               model=lambda model: model.with_(gravity=0.0) if hasattr(model, "gravity") else model),
+               model=lambda model: model.with_(gravity=0.0) if isinstance(getattr(model, "gravity", None), float)
+               else model),                              # a tower's g; a blade's weight is off by default
     Difference("rotary inertia", "BModes' sections have no rotary inertia in bending (nor its first-moment and "
                "centrifugal share)", patches=_rotary_patches),
     Difference("axial softening", "BModes leaves out the centrifugal softening of axial motion",
