@@ -9,8 +9,8 @@ only these changes, each one what bladefem's two options mean:
   ``SpdSound``), its ``DT`` 0.005 s and its module files; ``CompHydro`` and ``CompSub`` 0 (rigid foundation);
   text output every 0.05 s.
 - ElastoDyn: the IEA file with every platform DOF off (the tower clamped at ``TowerBsHt`` 15 m, as bladefem's
-  rigid foundation), the v4 lines ``HubIner_Teeter`` 0 (two-bladed rotors only), ``PtfmXYIner``/``PtfmYZIner``/``PtfmXZIner`` 0 and the yaw-friction block
-  (``YawFrctMod`` 0), the v5 lines ``PitchDOF`` False, ``PtfmRefxt``/``PtfmRefyt`` 0, ``PBrIner``/``BlPIner`` 0;
+  rigid foundation), the v4 lines ``HubIner_Teeter`` 0 (two-bladed rotors only), ``PtfmXYIner``/``PtfmYZIner``/
+  ``PtfmXZIner`` 0 and the yaw-friction block (``YawFrctMod`` 0), the v5 lines ``PitchDOF`` False, ``PtfmRefxt``/``PtfmRefyt`` 0, ``PBrIner``/``BlPIner`` 0;
   the blade file without its ``PitchAxis`` column (removed in v4, unused by ElastoDyn); initial ``RotSpeed`` and
   ``BlPitch`` of the case; output channels added.
 - AeroDyn: the NREL 5MW deck's v4.2.1 primary file (v5 additions) carrying the IEA file's airfoils, blade file,
