@@ -113,6 +113,25 @@ def test_root_moment_of_a_resting_horizontal_blade_is_its_weight_moment(model, b
     np.testing.assert_allclose(result.outputs["Azimuth"], 90.0)
 
 
+@pytest.mark.parametrize("backend", ["numba", "numpy"])
+def test_tower_base_moment_of_the_resting_turbine_is_its_weight_moment(model, backend):
+    """Everything at rest (blade 1 at 30 deg azimuth, the nacelle yawed 20 deg so that the masses sit off both
+    axes; only the balanced rotor free): the tower-base moments are the weight's moment about the base, ``TwrBsMyt = g sum m x`` (downwind mass
+    positive) and ``TwrBsMxt = -g sum m y`` (mass to the left looking downwind negative), summed over every point
+    mass at its place; the compiled outputs and the numpy ones alike."""
+    if backend == "numpy":
+        model = TurbineModel(model.params)
+        model._fast = model.equations
+    q, u = np.zeros(model.n), np.zeros(model.n)
+    q[4], q[5] = np.radians(20.0), np.radians(30.0)
+    result = simulate(FreeSystem(model, np.eye(model.n, dtype=bool)[5], q, u), 0.1, dt_output=0.05)
+    r = model.positions(model.motion(q, u))
+    g = model.params.gravity
+    np.testing.assert_allclose(result.outputs["TwrBsMyt"] * 1e3, g * model.masses @ r[:, 0], rtol=1e-9)
+    np.testing.assert_allclose(result.outputs["TwrBsMxt"] * 1e3, -g * model.masses @ r[:, 1], rtol=1e-9)
+    assert g * model.masses @ r[:, 0] < 0 < -g * model.masses @ r[:, 1]      # rotor upwind, yawed to the right
+
+
 def test_tip_deflection_channels_follow_openfast_signs(model):
     """OoPDefl1 positive downwind, IPDefl1 positive toward the trailing edge (OpenFAST's xc1, yc1): blade 1 up
     (azimuth 0) moves toward -y as the rotor turns, so its trailing edge faces +y and a tip moved toward +y reads

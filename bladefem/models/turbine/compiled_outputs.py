@@ -11,13 +11,16 @@ from ...numba_cache import cached_njit
 njit = cached_njit()
 
 #: columns of :func:`load_outputs` (SI): blade root moments (N m), low-speed-shaft thrust (N) and torque (N m),
-#: generator torque (N m), the aerodynamic rotor summary (compiled_loads.HUB), aerodynamic and damping power (W)
+#: generator torque (N m), the aerodynamic rotor summary (compiled_loads.HUB), aerodynamic and damping power (W),
+#: tower-base moment about the base's x and y axes (N m)
 COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_torque", "aero_thrust", "aero_torque",
-           "aero_power", "tsr", "cp", "ct", "disk_velocity", "skew", "aero_work", "damping_power")
+           "aero_power", "tsr", "cp", "ct", "disk_velocity", "skew", "aero_work", "damping_power", "tower_base_x",
+           "tower_base_y")
 
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
     from .compiled_loads import equations, law_torque, load_wake
+    from .compiled_tower_base import add_tower_and_nacelle
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
@@ -39,7 +42,8 @@ if njit is not None:                                   # module-level kernels: n
         (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for
         loads toward the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
         gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
-        holds a locked generator at its speed."""
+        holds a locked generator at its speed; tower-base moment: the rotor's loads carried from the apex to the
+        base, plus the tower, nacelle and rotary inertias (:func:`.compiled_tower_base.add_tower_and_nacelle`)."""
         structure, law = data[0], data[2]
         n, b_mass, gravity, C = structure[0], structure[8], structure[20], structure[22]
         generator, rigid_mass, inertias = structure[15], structure[18], structure[19]
@@ -127,6 +131,13 @@ if njit is not None:                                   # module-level kernels: n
             for j in range(n):
                 damping += u[i] * C[i, j] * u[j]
         out[14] = damping
+        apex = work[0][6]
+        arm[0], arm[1], arm[2] = apex[0], apex[1], apex[2] - structure[23]
+        base = moment.copy()
+        accumulate_moment(base, arm, force)
+        add_tower_and_nacelle(q, u, du, structure, base)
+        out[15] = base[0]
+        out[16] = base[1]
 
     @njit(cache=True)
     def accumulate_moment(total, arm, load):

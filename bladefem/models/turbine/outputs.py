@@ -7,7 +7,9 @@ frame (``OoPDefl1`` along ``xc1`` downwind, ``IPDefl1`` along ``yc1`` toward the
 displacements downwind and to the left looking downwind, root moments ``RootMOoP1 = RootMyc1`` (from downwind
 loads) and ``RootMIP1 = RootMxc1`` (from loads toward the leading edge), shaft loads acting from the rotor on the
 shaft (``RotThrust`` downwind along the shaft, ``RotTorq`` in the direction of rotation), aerodynamic loads on the
-rotor about the hub (``RtAeroFxh`` downwind, ``RtAeroMxh`` in the direction of rotation).
+rotor about the hub (``RtAeroFxh`` downwind, ``RtAeroMxh`` in the direction of rotation), tower-base moments of the
+turbine above the base about the base's earth axes (``TwrBsMyt`` fore-aft, from downwind loads positive;
+``TwrBsMxt`` side-to-side, from loads to the right looking downwind positive).
 """
 
 from __future__ import annotations
@@ -34,6 +36,9 @@ CHANNELS = {
     "GenSpeed": ("rpm", "generator (high-speed shaft) speed"),
     "RootMOoP1": ("kN m", "blade 1 root out-of-plane bending moment (from downwind loads positive)"),
     "RootMIP1": ("kN m", "blade 1 root in-plane bending moment (from loads toward the leading edge positive)"),
+    "TwrBsMxt": ("kN m", ("tower-base side-to-side (roll) moment about the downwind axis xt, from loads to the right "
+                          "looking downwind positive")),
+    "TwrBsMyt": ("kN m", "tower-base fore-aft (pitch) moment about the lateral axis yt, from downwind loads positive"),
     "RotThrust": ("kN", ("low-speed-shaft thrust: rotor (hub and blades) aerodynamic, gravity and inertial loads "
                          "along the shaft, downwind positive")),
     "RotTorq": ("kN m", "low-speed-shaft torque from the rotor, positive in the direction of rotation"),
@@ -54,7 +59,7 @@ AERO_CHANNELS = ("RtAeroFxh", "RtAeroMxh", "RtAeroPwr", "RtTSR", "RtAeroCp", "Rt
 #: columns of :func:`load_row` (and of the compiled outputs), SI
 LOAD_COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_torque", "aero_thrust",
                 "aero_torque", "aero_power", "tsr", "cp", "ct", "disk_velocity", "skew", "aero_work",
-                "damping_power")
+                "damping_power", "tower_base_x", "tower_base_y")
 
 
 def load_row(model, q: NDArray, u: NDArray, du: NDArray, blade: int = 0, t: float = 0.0,
@@ -63,7 +68,7 @@ def load_row(model, q: NDArray, u: NDArray, du: NDArray, blade: int = 0, t: floa
     root moments of ``blade`` from gravity, d'Alembert and aerodynamic loads; the rotor's (hub and blades) loads
     along and about the shaft; the generator torque of the law plus the generalized force holding a locked
     generator; the aerodynamic summary; the power of the aerodynamic loads and of the damping (wind at time t; the
-    dynamic wake's states ``wake``)."""
+    dynamic wake's states ``wake``); the tower-base moment about the base's x and y axes (:func:`tower_base_moment`)."""
     from .aero import aero_loads
     p = model.params
     motion = model.motion(q, u)
@@ -94,9 +99,30 @@ def load_row(model, q: NDArray, u: NDArray, du: NDArray, blade: int = 0, t: floa
     g = model.dofs.index("generator_azimuth")
     ratio = p.gearbox_ratio
     law = model.generator.torque(ratio * u[g]) if model.generator is not None else 0.0
+    base = tower_base_moment(model, motion, du, positions, forces, moments)
     return np.array([-(own @ R[:, 1]), own @ R[:, 2], total_force @ shaft,
                      total_moment @ shaft - p.hub_inertia * spin, law - (M[g] @ du - f[g]) / ratio, *summary,
-                     aero_work, u @ model.C @ u])
+                     aero_work, u @ model.C @ u, base[0], base[1]])
+
+
+def tower_base_moment(model, motion, du: NDArray, positions: NDArray, forces: NDArray, moments: NDArray) -> NDArray:
+    """Moment (3,), N m, about the tower base of the loads on the turbine above it, earth components (ElastoDyn's
+    ``TwrBsMxt``, ``TwrBsMyt``, ``TwrBsMzt`` of a fixed base): ``sum (r - r_base) x m (g - a)`` over the tower,
+    nacelle and hub masses, the blade nodes' gravity, d'Alembert and aerodynamic forces (``forces`` at ``positions``,
+    (B, N, 3)) and moments, less the rate of change of the rotary bodies' angular momentum,
+    ``I [k (k . alpha) + (k . omega) omega x k]`` (nacelle about the yaw axis, hub and generator about the shaft).
+    The springs, dampers and generator torque between these bodies are internal and cancel."""
+    tower, rigid = motion.tower, motion.rigid
+    tower_a = np.einsum("pkm,m->pk", tower.G, tower.Z @ du) + tower.a
+    points = np.concatenate([tower.r, rigid.r, positions.reshape(-1, 3)])
+    loads = np.concatenate([model.tower_masses[:, None] * (model.gravity - tower_a),
+                            model.rigid_masses[:, None] * (model.gravity - (rigid.J @ du + rigid.a)),
+                            forces.reshape(-1, 3)])
+    total = np.sum(np.cross(points - model.base.r, loads), axis=0) + moments.sum(axis=(0, 1))
+    for frame, axis, inertia in model.rigid_bodies(motion):
+        alpha = frame.W @ du + frame.alpha
+        total -= inertia * (axis * (axis @ alpha) + (axis @ frame.omega) * np.cross(frame.omega, axis))
+    return total
 
 
 def channels(model, q: NDArray, u: NDArray, loads: NDArray) -> dict[str, NDArray]:
@@ -115,7 +141,8 @@ def channels(model, q: NDArray, u: NDArray, loads: NDArray) -> dict[str, NDArray
         "YawPzn": np.degrees(q[:, 4]), "Azimuth": np.degrees(q[:, 5] + q[:, 6]) % 360.0,
         "RotSpeed": rotor_speed * RAD_S_TO_RPM, "LSSGagVxa": u[:, 5] * RAD_S_TO_RPM,
         "GenSpeed": generator_speed * RAD_S_TO_RPM, "RootMOoP1": column["root_oop"] / 1e3,
-        "RootMIP1": column["root_ip"] / 1e3, "RotThrust": column["shaft_thrust"] / 1e3,
+        "RootMIP1": column["root_ip"] / 1e3, "TwrBsMxt": column["tower_base_x"] / 1e3,
+        "TwrBsMyt": column["tower_base_y"] / 1e3, "RotThrust": column["shaft_thrust"] / 1e3,
         "RotTorq": column["shaft_torque"] / 1e3, "RotPwr": column["shaft_torque"] * rotor_speed / 1e3,
         "GenTq": column["generator_torque"] / 1e3,
         "GenPwr": column["generator_torque"] * generator_speed * efficiency / 1e3,

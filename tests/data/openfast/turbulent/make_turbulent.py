@@ -38,7 +38,8 @@ INFLOW = "NRELOffshrBsline5MW_InflowWind_Steady11p4mps.dat"
 START = 30.0
 #: OpenFAST channel -> bladefem channel compared
 CHANNELS = {"RootMyc1": "RootMOoP1", "RootMxc1": "RootMIP1", "RotThrust": "RotThrust", "RotTorq": "RotTorq",
-            "TTDspFA": "TTDspFA", "OoPDefl1": "OoPDefl1", "RotSpeed": "RotSpeed", "GenPwr": "GenPwr"}
+            "TTDspFA": "TTDspFA", "OoPDefl1": "OoPDefl1", "RotSpeed": "RotSpeed", "GenPwr": "GenPwr",
+            "TwrBsMxt": "TwrBsMxt", "TwrBsMyt": "TwrBsMyt"}
 
 
 def deck(folder: Path, v5: bool, seconds: float) -> Path:

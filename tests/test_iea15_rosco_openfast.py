@@ -1,0 +1,79 @@
+"""The IEA-15MW monopile deck with its own ROSCO settings (rigid foundation, quasi-steady BEM) in steady wind against
+OpenFAST v5.0.0 with the same library, deck and start (tests/data/openfast/iea15_rosco/steady.json, written by
+write_decks.py there): below rated (8 m/s), just above (11 m/s) and well above (16 m/s).
+
+bladefem runs ElastoDyn's structure (``--elastodyn-compatible``: the blade file's polynomial shapes, ElastoDyn's
+discretization and damping convention), as OpenFAST does, so that the comparison is of the loads, the Kane model and
+the controller's loop. With bladefem's default FE blade shapes the tip deflection at 11 m/s is 2.1 % above
+OpenFAST's (docs/turbine-aero.md)."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bladefem.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+DECK = ROOT / "tests" / "data" / "iea15" / "IEA-15-240-RWT-Monopile" / "IEA-15-240-RWT-Monopile.fst"
+REFERENCE = ROOT / "tests" / "data" / "openfast" / "iea15_rosco" / "steady.json"
+
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="controlled runs need numba")]
+
+
+def table(path: Path) -> dict[str, np.ndarray]:
+    lines = path.read_text().splitlines()
+    names = [name.rsplit("_", 1)[0] for name in lines[0].split(",")]
+    data = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
+    return {name: data[:, i] for i, name in enumerate(names)}
+
+
+@pytest.fixture(scope="module")
+def reference():
+    return json.loads(REFERENCE.read_text())
+
+
+@pytest.fixture(scope="module", params=["8", "11", "16"])
+def case(request, reference, tmp_path_factory):
+    """bladefem's run of one OpenFAST case, 120 s (OpenFAST's 200 s runs show the means over 70-120 s settled: the
+    means over 150-200 s differ by at most 0.031 %, the tip deflection's by 0.29 %) from the same rotor speed and
+    pitch, with ElastoDyn's fixed step (the adaptive step collapses in the IEA-15MW's start-up transient:
+    tests/test_iea15_simulation.py) and ElastoDyn's structure."""
+    wind = request.param
+    initial = reference["provenance"]["initial"][wind]
+    out = tmp_path_factory.mktemp("iea15_rosco") / f"bf_{wind}.csv"
+    code = main(["turbine", str(DECK), "--simulate", f"{reference['compared_run_s']:g}", "--foundation", "rigid",
+                 "--quasi-steady", "--wind-speed", wind, "--initial", f"RotSpeed={initial['RotSpeed_rpm']}",
+                 "--pitch-deg", str(initial["BlPitch_deg"]), "--method", "RK4", "--step", "0.005",
+                 "--elastodyn-compatible", "--quiet",
+                 "-o", str(out)])
+    assert code == 0
+    return wind, table(out)
+
+
+#: (wind, channel) outside the acceptance today, with the measured difference: an open defect, not a tolerance
+KNOWN = {("8", "OoPDefl1"): "tip deflection -2.04 % at 8 m/s (power -1.19 %, rotor speed -0.39 %, thrust -0.94 %: "
+                            "bladefem's IEA-15MW rotor draws about 1.2 % less power below rated than OpenFAST's, "
+                            "docs/turbine-aero.md)"}
+
+
+@pytest.mark.parametrize("channel", ["BldPitch1", "GenPwr", "RotSpeed", "RotThrust", "OoPDefl1"])
+def test_iea15_rosco_steady_operation_against_openfast(reference, case, channel, request):
+    """Means over 70-120 s of generator power, rotor speed, rotor thrust and blade-tip out-of-plane deflection
+    within 2 %, blade pitch within 0.5 deg (the acceptance of the NREL 5MW's ROSCO comparison; measured figures in
+    docs/turbine-aero.md). The pairs in :data:`KNOWN` fail today and are marked so (strict: they report when they
+    pass)."""
+    wind, ours = case
+    if (wind, channel) in KNOWN:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=KNOWN[wind, channel]))
+    theirs = reference["cases"][wind][channel]["mean"]
+    mean = np.mean(ours[channel][ours["Time"] >= reference["window_s"][0] - 1e-9])
+    if channel == "BldPitch1":
+        assert mean == pytest.approx(theirs, abs=0.5)
+    else:
+        assert mean == pytest.approx(theirs, rel=0.02)
