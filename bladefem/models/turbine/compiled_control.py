@@ -28,7 +28,7 @@ njit = cached_njit()
 FAILED, OVERRIDE, NOT_FINITE = 6, 7, 8
 
 if njit is not None:
-    from .compiled_integrators import check_state, combination, rate
+    from .compiled_integrators import check_state, combination, dense_output, error_norm, rate
     from .compiled_kernels import store_row
     from .compiled_state import full_state
 
@@ -105,7 +105,6 @@ if njit is not None:                                   # module-level kernels: n
         1e-9 ``spacing`` of t_end take the end state) from the dense output; the end's load channels in
         ``end_row``. Returns (x, derivative at the end, next_out, right-hand sides, status, offending index)."""
         A, B, C, E, P = tableau
-        size = x.shape[0]
         store_row(K, 0, f0)
         count = 0
         h = t_end - t
@@ -122,13 +121,7 @@ if njit is not None:                                   # module-level kernels: n
             store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, end_row if last else
                                  end_row[:0]))
             count += 6
-            total = 0.0
-            for i in range(size):
-                error = 0.0
-                for j in range(7):
-                    error += E[j] * K[j, i]
-                total += (h * error / (atol + rtol * max(abs(x[i]), abs(new[i])))) ** 2
-            norm = np.sqrt(total / size)
+            norm = error_norm(x, new, K, E, h, rtol, atol)
             if norm <= 1.0:
                 bad = check_state(new, limit)
                 if bad >= 0:
@@ -136,16 +129,7 @@ if njit is not None:                                   # module-level kernels: n
                 t_new = t_end if last else t + h
                 while next_out < times.shape[0] and (times[next_out] < t_end - near if last else
                                                      times[next_out] <= t_new):
-                    theta = (times[next_out] - t) / h
-                    y = x.copy()
-                    for i in range(size):
-                        power = 1.0
-                        for r in range(4):
-                            power *= theta
-                            value = 0.0
-                            for j in range(7):
-                                value += K[j, i] * P[j, r]
-                            y[i] += h * value * power
+                    y = dense_output(x, K, P, h, (times[next_out] - t) / h)
                     store_row(out, next_out, y)
                     rate(times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
                     next_out += 1

@@ -51,6 +51,33 @@ if njit is not None:                                   # module-level kernels: n
         return -1
 
     @njit(cache=True)
+    def error_norm(x, new, K, E, h, rtol, atol):
+        """The step's RMS error estimate ``h sum_j E_j K_j`` scaled by ``atol + rtol max(|x|, |new|)`` (a step is
+        taken when it is at most 1)."""
+        total = 0.0
+        for i in range(x.shape[0]):
+            error = 0.0
+            for j in range(7):
+                error += E[j] * K[j, i]
+            total += (h * error / (atol + rtol * max(abs(x[i]), abs(new[i])))) ** 2
+        return np.sqrt(total / x.shape[0])
+
+    @njit(cache=True)
+    def dense_output(x, K, P, h, theta):
+        """Dormand-Prince's continuous extension at ``theta`` (0 to 1) of the step ``h`` from ``x`` with the stages
+        ``K`` (7, n) and the interpolation weights ``P`` (7, 4): ``x + h sum_r theta^(r+1) (P^T K)_r``."""
+        y = x.copy()
+        for i in range(x.shape[0]):
+            power = 1.0
+            for r in range(4):
+                power *= theta
+                value = 0.0
+                for j in range(7):
+                    value += K[j, i] * P[j, r]
+                y[i] += h * value * power
+        return y
+
+    @njit(cache=True)
     def combination(x, h, weights, K, stages):
         """x + h sum_j weights_j K_j over the first ``stages`` rows of K."""
         out = x.copy()
@@ -159,26 +186,11 @@ if njit is not None:                                   # module-level kernels: n
             new = combination(x, h, B, K, 6)
             store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             count += 6
-            total = 0.0
-            for i in range(size):
-                error = 0.0
-                for j in range(7):
-                    error += E[j] * K[j, i]
-                total += (h * error / (atol + rtol * max(abs(x[i]), abs(new[i])))) ** 2
-            norm = np.sqrt(total / size)
+            norm = error_norm(x, new, K, E, h, rtol, atol)
             if norm <= 1.0:
                 t_new = t_end if t + h >= t_end else t + h
                 while next_out < times.shape[0] and times[next_out] <= t_new:
-                    theta = (times[next_out] - t) / h
-                    y = x.copy()
-                    for i in range(size):
-                        power = 1.0
-                        for r in range(4):
-                            power *= theta
-                            value = 0.0
-                            for j in range(7):
-                                value += K[j, i] * P[j, r]
-                            y[i] += h * value * power
+                    y = dense_output(x, K, P, h, (times[next_out] - t) / h)
                     store_row(out, next_out, y)
                     rate(times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
                     next_out += 1

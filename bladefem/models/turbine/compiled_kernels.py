@@ -95,6 +95,20 @@ if njit is not None:                                   # module-level kernels: n
         return rotation_step(R, axis, angle), w2, W2, al2
 
     @njit(cache=True)
+    def carried_point(J, base_a, W, w, al, rho):
+        """A point at ``rho`` (m) from a base point of a rigid body (angular velocity ``w``, its partials ``W``
+        (3, n), angular acceleration bias ``al``): its velocity partials ``J += W x rho`` (in place, J the base's)
+        and its acceleration bias ``base_a + al x rho + w x (w x rho)`` (returned)."""
+        for c in range(J.shape[1]):
+            J[0, c] += W[1, c] * rho[2] - W[2, c] * rho[1]
+            J[1, c] += W[2, c] * rho[0] - W[0, c] * rho[2]
+            J[2, c] += W[0, c] * rho[1] - W[1, c] * rho[0]
+        wr = np.array([w[1] * rho[2] - w[2] * rho[1], w[2] * rho[0] - w[0] * rho[2], w[0] * rho[1] - w[1] * rho[0]])
+        return np.array([base_a[0] + al[1] * rho[2] - al[2] * rho[1] + w[1] * wr[2] - w[2] * wr[1],
+                         base_a[1] + al[2] * rho[0] - al[0] * rho[2] + w[2] * wr[0] - w[0] * wr[2],
+                         base_a[2] + al[0] * rho[1] - al[1] * rho[0] + w[0] * wr[1] - w[1] * wr[0]])
+
+    @njit(cache=True)
     def accumulate_node(A, F, G, m, load):
         """A += m G^T G, F += G^T load for one node (G is 3 x c)."""
         c = G.shape[1]
@@ -242,22 +256,13 @@ if njit is not None:                                   # module-level kernels: n
         # rigid points in the nacelle frame: nacelle centre of mass, apex, hub centre of mass
         apex_J = np.zeros((3, n))
         apex_a = np.zeros(3)
-        rho, wr, a = np.zeros(3), np.zeros(3), np.zeros(3)
+        rho = np.zeros(3)
         for i in range(3):
             for r in range(3):
                 rho[r] = RN[r, 0] * rigid_offsets[i, 0] + RN[r, 1] * rigid_offsets[i, 1] \
                     + RN[r, 2] * rigid_offsets[i, 2]
             J = top_J.copy()
-            for c in range(n):
-                J[0, c] += WN[1, c] * rho[2] - WN[2, c] * rho[1]
-                J[1, c] += WN[2, c] * rho[0] - WN[0, c] * rho[2]
-                J[2, c] += WN[0, c] * rho[1] - WN[1, c] * rho[0]
-            wr[0] = wN[1] * rho[2] - wN[2] * rho[1]
-            wr[1] = wN[2] * rho[0] - wN[0] * rho[2]
-            wr[2] = wN[0] * rho[1] - wN[1] * rho[0]
-            a[0] = top_a[0] + alN[1] * rho[2] - alN[2] * rho[1] + wN[1] * wr[2] - wN[2] * wr[1]
-            a[1] = top_a[1] + alN[2] * rho[0] - alN[0] * rho[2] + wN[2] * wr[0] - wN[0] * wr[2]
-            a[2] = top_a[2] + alN[0] * rho[1] - alN[1] * rho[0] + wN[0] * wr[1] - wN[1] * wr[0]
+            a = carried_point(J, top_a, WN, wN, alN, rho)
             m = rigid_mass[i]
             for r in range(3):
                 load[r] = m * (gravity[r] - a[r])

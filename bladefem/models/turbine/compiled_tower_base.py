@@ -13,7 +13,7 @@ from ...numba_cache import cached_njit
 njit = cached_njit()
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
-    from .compiled_kernels import beam_node, rotate
+    from .compiled_kernels import beam_node, carried_point, rotate
 
     @njit(cache=True)
     def add_point(total, r, base_height, m, gravity, J, bias, du):
@@ -67,19 +67,10 @@ if njit is not None:                                   # module-level kernels: n
         R, w, W, al = rotate(R, w, W, al, 0, side_side, q, u)
         RN, wN, WN, alN = rotate(R, w, W, al, 2, yaw, q, u)
         # nacelle centre of mass, carried from the tower top (the last tower node: r, J, bias as left above)
-        rho, wr, a = np.zeros(3), np.zeros(3), np.zeros(3)
+        rho = np.zeros(3)
         for i in range(3):
             rho[i] = RN[i, 0] * rigid_offsets[0, 0] + RN[i, 1] * rigid_offsets[0, 1] + RN[i, 2] * rigid_offsets[0, 2]
-        for c in range(n):
-            J[0, c] += WN[1, c] * rho[2] - WN[2, c] * rho[1]
-            J[1, c] += WN[2, c] * rho[0] - WN[0, c] * rho[2]
-            J[2, c] += WN[0, c] * rho[1] - WN[1, c] * rho[0]
-        wr[0] = wN[1] * rho[2] - wN[2] * rho[1]
-        wr[1] = wN[2] * rho[0] - wN[0] * rho[2]
-        wr[2] = wN[0] * rho[1] - wN[1] * rho[0]
-        a[0] = bias[0] + alN[1] * rho[2] - alN[2] * rho[1] + wN[1] * wr[2] - wN[2] * wr[1]
-        a[1] = bias[1] + alN[2] * rho[0] - alN[0] * rho[2] + wN[2] * wr[0] - wN[0] * wr[2]
-        a[2] = bias[2] + alN[0] * rho[1] - alN[1] * rho[0] + wN[0] * wr[1] - wN[1] * wr[0]
+        a = carried_point(J, bias, WN, wN, alN, rho)
         for i in range(3):
             r[i] += rho[i]
         add_point(total, r, base_height, rigid_mass[0], gravity, J, a, du)
