@@ -128,7 +128,7 @@ class CompiledEquations:
     ``aero`` and ``state`` the aerodynamic ones (:mod:`.compiled_loads`), ``law`` the generator's."""
 
     def __init__(self, data: tuple, hub_radius: float, aero: tuple, law: NDArray) -> None:
-        from .compiled_loads import aero_state
+        from .compiled_aero_arrays import aero_state
         self.data, self.hub_radius, self.aero, self.law = data, hub_radius, aero, law
         n, blade_across, blades = data[0], data[5], data[10].shape[0]
         k, nodes = blade_across.shape[:2]
@@ -233,7 +233,7 @@ def compiled_equations(model) -> CompiledEquations | None:
     BLADEFEM_NO_NUMBA set."""
     if numba is None or os.environ.get("BLADEFEM_NO_NUMBA"):
         return None
-    from .compiled_loads import aero_data
+    from .compiled_aero_arrays import aero_data
     from .control import Generator
     law = (model.generator or Generator()).vector()
     return CompiledEquations(model_data(model), model.params.hub_radius, aero_data(model), law)

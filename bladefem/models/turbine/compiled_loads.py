@@ -5,9 +5,10 @@
 frame, shared partials ``Z = [J_apex; W_rotor; E_blade]`` and the apex position in ``work``: the aerodynamic nodes'
 kinematics follow from those (``omega = W u``, ``v_apex = J_apex u``), the node solver runs node by node (from
 scratch, as the numpy twin: the loads are a function of the state alone), and the lumped loads add
-``Z^T sum_p [F; rho x F + M; (R D)^T F]`` to the forcing. ``aero`` is the tuple of :func:`aero_data`; ``state``
-the arrays of :func:`aero_state`. The kernels :func:`equations` and :func:`derivative` take ``data = (structure,
-aero, generator law)`` and ``work = (structural work, aero state)``.
+``Z^T sum_p [F; rho x F + M; (R D)^T F]`` to the forcing. ``aero`` is the tuple of
+:func:`.compiled_aero_arrays.aero_data`; ``state`` the arrays of :func:`.compiled_aero_arrays.aero_state`. The
+kernels :func:`equations` and :func:`derivative` take ``data = (structure, aero, generator law)`` and ``work =
+(structural work, aero state)``.
 
 The dynamic wake's states (:mod:`bladefem.aero.dynamic_wake`) ride at the end of the integrator's state vector,
 after the free coordinates and rates: :func:`load_wake` copies them into the aero state before the equations (which
@@ -24,59 +25,6 @@ import numpy as np
 from ...numba_cache import cached_njit
 
 njit = cached_njit()
-
-#: columns of the rotor summary a call leaves in the state (``state[9]``)
-HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")
-
-
-def aero_data(model) -> tuple:
-    """The aerodynamic arrays of ``model`` in the order :func:`add_aero` unpacks them (empty arrays without
-    aerodynamics, so that the kernels compile once for both)."""
-    from ...aero.rotor import Inflow
-    from .aero import TurbineAero
-    aero: TurbineAero | None = model.aero
-    k = model.params.blade.n_modes
-    if aero is None:
-        empty = np.zeros(0)
-        return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0, 2)),
-                np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
-                np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
-                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty)
-    across = np.zeros((k, aero.n_nodes, 3))
-    across[:, :, 1:] = aero.value
-    inflow, rotor = aero.inflow, aero.rotor
-    knots, values, coefs, start, count = aero.polar_arrays
-    return (across, aero.shortening.copy(), aero.axial.copy(), aero.offset.copy(),
-            np.ascontiguousarray(aero.slope, dtype=float), aero.force_lumping(), aero.moment_weights(),
-            rotor.chord.copy(), np.ascontiguousarray(aero.theta, dtype=float), aero.tip_constant.copy(),
-            aero.hub_constant.copy(), rotor.airfoil.astype(np.int64), knots, values, coefs, start, count,
-            aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays(),
-            *wake_data(aero, model.params.n_blades))
-
-
-def wake_data(aero, blades: int) -> tuple:
-    """The dynamic wake's (model, tau1_const, k) (model 0: none), the nodes' weights in the disk-averaged induction
-    (Na,) (one blade's, over the number of blades) and their undeflected r / R (Na,)."""
-    from ...aero.dynamic_wake import disk_weights
-    radius = aero.undeflected_radius
-    weights = disk_weights(np.broadcast_to(radius, (blades, len(radius))))[0].copy()
-    settings = aero.rotor.dynamic_wake if aero.wake_states else None
-    return (np.zeros(3) if settings is None else settings.vector(), weights, radius / radius.max())
-
-
-def aero_state(blades: int, nodes: int, modes: int) -> tuple:
-    """Per node: offset from the apex rho, absolute velocity (B, Na, 3), R D (B, Na, 3, k), the bent section's
-    normal and span axis (B, Na, 3; after the node solve the axes its loads act along), the relative wind
-    (B, Na, 3), the node solutions (B, Na, 13), lumped forces and moments (B, Na, 3); the rotor summary
-    (:data:`HUB`); the dynamic wake's states and their rates (B, Na, 4), the quasi-steady induced velocities
-    (B, Na, 2) and (states given: 1 or 0, tau1 in s); the bent section's direction of rotation (B, Na, 3; after
-    the solve the tangential load's axis)."""
-    shape = (blades, nodes, 3)
-    return (np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 3, modes)), np.zeros(shape),
-            np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 13)), np.zeros(shape), np.zeros(shape),
-            np.zeros(len(HUB)), np.zeros((blades, nodes, 4)), np.zeros((blades, nodes, 4)),
-            np.zeros((blades, nodes, 2)), np.zeros(2), np.zeros(shape))
-
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
     from ...aero.bem import node_loads
@@ -216,7 +164,8 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def add_aero(f, q, u, data, aero, work, state, t):
-        """f += the generalized aerodynamic forces at (q, u) and time t; fills ``state`` (loads, solutions, rotor summary)."""
+        """f += the generalized aerodynamic forces at (q, u) and time t; fills ``state`` (loads, solutions, rotor
+        summary)."""
         nodes = aero[2].shape[0]
         if nodes == 0:
             return

@@ -11,7 +11,7 @@ from ...numba_cache import cached_njit
 njit = cached_njit()
 
 #: columns of :func:`load_outputs` (SI): blade root moments (N m), low-speed-shaft thrust (N) and torque (N m),
-#: generator torque (N m), the aerodynamic rotor summary (compiled_loads.HUB), aerodynamic and damping power (W),
+#: generator torque (N m), the aerodynamic rotor summary (compiled_aero_arrays.HUB), aerodynamic and damping power (W),
 #: tower-base moment about the base's x and y axes (N m)
 COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_torque", "aero_thrust", "aero_torque",
            "aero_power", "tsr", "cp", "ct", "disk_velocity", "skew", "aero_work", "damping_power", "tower_base_x",
@@ -40,8 +40,8 @@ if njit is not None:                                   # module-level kernels: n
         """Fill ``out`` with the :data:`COLUMNS` at (q, u), given the equations ``M du/dt = f`` there (whose kernel
         has just left that state's motion and loads in ``work``). Root moments of ``blade``: ``sum (r - r_root) x
         (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for
-        loads toward the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and blades)
-        gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
+        loads toward the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and
+        blades) gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
         holds a locked generator at its speed; tower-base moment: the rotor's loads carried from the apex to the
         base, plus the tower, nacelle and rotary inertias (:func:`.compiled_tower_base.add_tower_and_nacelle`)."""
         structure, law = data[0], data[2]
