@@ -143,12 +143,7 @@ def test_out_of_plane_1p_swing_per_source_against_openfast(tmp_path, case):
     the gravity-driven swing; without gravity it was within 3 % before as after."""
     folder = tmp_path / case
     shutil.copytree(DECK.parent, folder)
-    for file, labels in make_swing.CASES[case].items():
-        for label, value in labels.items():
-            if file == make_swing.BLADE:
-                make_swing.untwisted(folder / file)
-            else:
-                make_swing.set_value(folder / file, label, value)
+    make_swing.edit(folder, case)
     _, _, result = run(11.4, 12.1, make_swing.DURATION, locked=True, dt=0.025, deck_path=folder / DECK.name)
     ours = make_swing.harmonic(result.time, np.radians(result.outputs["Azimuth"]), result.outputs["OoPDefl1"],
                                make_swing.DURATION)

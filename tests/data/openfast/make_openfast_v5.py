@@ -122,17 +122,33 @@ def extend_outputs(folder: Path) -> None:
     (folder / AD).write_text("\n".join(lines) + "\n")
 
 
+def apply_edits(folder: Path, common: dict, edits: dict, special: dict | None = None) -> None:
+    """Each file's labels set in the deck in ``folder``: ``common`` updated by the case's ``edits`` ({file: {label:
+    value}}); a file named in ``special`` is changed by its function of the file's path instead of label by label."""
+    special = special or {}
+    for file in {*common, *edits}:
+        if file in special:
+            special[file](folder / file)
+            continue
+        for label, value in {**common.get(file, {}), **edits.get(file, {})}.items():
+            set_value(folder / file, label, value)
+
+
+def prepare(folder: Path, common: dict, edits: dict, special: dict | None = None) -> Path:
+    """A fresh copy of the shipped deck in ``folder``, brought to the v5 layout, its outputs extended, and
+    :func:`apply_edits`."""
+    if folder.exists():
+        shutil.rmtree(folder)
+    shutil.copytree(CASE, folder)
+    to_v5(folder)
+    extend_outputs(folder)
+    apply_edits(folder, common, edits, special)
+    return folder
+
+
 def run(executable: str, runs: Path) -> None:
     for case, edits in CASES.items():
-        folder = runs / case
-        if folder.exists():
-            shutil.rmtree(folder)
-        shutil.copytree(CASE, folder)
-        to_v5(folder)
-        extend_outputs(folder)
-        for file, labels in {**COMMON, **edits}.items():
-            for label, value in {**COMMON.get(file, {}), **labels}.items():
-                set_value(folder / file, label, value)
+        folder = prepare(runs / case, COMMON, edits)
         subprocess.run([executable, FST], cwd=folder, check=True, stdout=subprocess.DEVNULL)
 
 

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -34,7 +33,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from make_aeroturbine import read_out  # noqa: E402  (one reader of OpenFAST's text outputs)
-from make_openfast_v5 import AD, CASE, ED, FST, OPENFAST, extend_outputs, set_value, to_v5  # noqa: E402
+import make_openfast_v5  # noqa: E402  (one preparation of the decks)
+from make_openfast_v5 import AD, ED, FST, OPENFAST  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 BLADE = "NRELOffshrBsline5MW_Blade.dat"
@@ -64,21 +64,17 @@ def untwisted(path: Path) -> None:
     path.write_text("\n".join(lines) + "\n")
 
 
+#: the files a case changes as a whole rather than label by label
+SPECIAL = {BLADE: untwisted}
+
+
 def prepare(case: str, runs: Path) -> Path:
-    folder = runs / case
-    if folder.exists():
-        shutil.rmtree(folder)
-    shutil.copytree(CASE, folder)
-    to_v5(folder)
-    extend_outputs(folder)
-    edits = CASES[case]
-    for file in {*COMMON, *edits}:
-        for label, value in {**COMMON.get(file, {}), **edits.get(file, {})}.items():
-            if file == BLADE:
-                untwisted(folder / BLADE)
-            else:
-                set_value(folder / file, label, value)
-    return folder
+    return make_openfast_v5.prepare(runs / case, COMMON, CASES[case], special=SPECIAL)
+
+
+def edit(folder: Path, case: str) -> None:
+    """The case's own changes (not :data:`COMMON`) made to the deck in ``folder``."""
+    make_openfast_v5.apply_edits(folder, {}, CASES[case], special=SPECIAL)
 
 
 def run(executable: str, runs: Path, workers: int = 2) -> None:
