@@ -1,16 +1,16 @@
 """The NREL 5MW in a TurbSim box against OpenFAST v5.0.0 in the same box (tests/data/openfast/turbulent/README.md):
-the torque law at fixed pitch, BEM_Mod 1, quasi-steady, class B turbulence at 8 m/s, 230 s; the mean, standard
+the torque law at fixed pitch, BEM_Mod 1, quasi-steady, class B turbulence at 8 m/s, 630 s; the mean, standard
 deviation and damage-equivalent load of the blade root moments, tower-base moments, shaft thrust and torque,
-tower-top fore-aft displacement, tip deflection, rotor speed and power over 30-230 s within 2.5 % of OpenFAST's (the
-goal of the comparison is 5 %).
+tower-top fore-aft displacement, tip deflection, rotor speed and power over the 600 s from 30 s within 2.5 % of
+OpenFAST's (the goal of the comparison is 5 %).
 
-With bladefem's default structure (FE shapes, its discretization) every statistic is within 1.4 % (the tip
-deflection's standard deviation, the thrust's DEL) but the side-to-side tower-base moment's standard deviation and
-DEL, +5.2 % and +4.6 %: the first side-to-side tower mode (0.31 Hz) answers the turbulence 7 % more strongly than
-ElastoDyn's (the tower-top side-to-side displacement too, +4.4 %; all of the difference lies in the 0.25-0.4 Hz band),
-a difference of the structural model, not of the loads. With ElastoDyn's own choices (``--elastodyn-compatible``:
-its polynomial shapes, discretization and damping convention) every statistic, TwrBsMxt's included, is within
-1.7 % (TwrBsMxt: mean -0.37 %, standard deviation -0.01 %, DEL +0.18 %)."""
+With ``--elastodyn-compatible`` (ElastoDyn's polynomial shapes, discretization and damping convention) every
+statistic is within 1.27 % (the side-to-side tower-base moment's standard deviation -1.27 %, the tip deflection
++1.1 to +1.2 %). With bladefem's default structure every statistic is within 0.93 % but the side-to-side
+tower-base moment's standard deviation and DEL, -4.2 % and -3.8 %, held to the comparison's goal of 5 %: the first
+side-to-side tower mode (0.31 Hz) is lightly damped, its response to the turbulence depends on the structural
+model's small differences of frequency and damping, and over one realization its standard deviation moves either
+way (over a shorter 230 s box it was +5.2 %)."""
 
 from __future__ import annotations
 
@@ -38,7 +38,10 @@ def edit(path: Path, label: str, value: str) -> None:
     path.write_text(text)
 
 
-#: the statistics the default structure leaves out (the module docstring: a difference of the tower model)
+#: the box: 630 s, the comparison's 600 s window from 30 s (tests/data/openfast/turbulent/README.md)
+BOX = "turbulent_8mps_630s_small"
+#: the statistics the default structure holds to the comparison's goal of 5 % rather than 2.5 % (the module
+#: docstring: the first side-to-side tower mode of its FE tower)
 STRUCTURAL = {"TwrBsMxt": ("std", "del")}
 
 
@@ -50,11 +53,11 @@ def test_turbulent_run_against_openfast(tmp_path, structure):
     from bladefem.batch.loads import damage_equivalent_load, wohler_slope
     from bladefem.cli import main
 
-    reference = json.loads((DATA / "turbulent_8mps_small.json").read_text())
+    reference = json.loads((DATA / f"{BOX}.json").read_text())
     start, seconds = reference["window_s"]
     folder = tmp_path / "deck"
     shutil.copytree(CASE, folder)
-    shutil.copyfile(DATA / "turbulent_8mps_small.bts", folder / "box.bts")
+    shutil.copyfile(DATA / f"{BOX}.bts", folder / "box.bts")
     for file, labels in EDITS.items():
         for label, value in labels.items():
             edit(folder / file, label, value)
@@ -69,6 +72,5 @@ def test_turbulent_run_against_openfast(tmp_path, structure):
         ours = {"mean": values.mean(), "std": values.std(),
                 "del": damage_equivalent_load(values, wohler_slope(channel), seconds - start)}
         for statistic in ("mean", "std", "del"):
-            if not structure and statistic in STRUCTURAL.get(channel, ()):
-                continue
-            assert ours[statistic] == pytest.approx(theirs[statistic], rel=0.025), (channel, statistic)
+            tolerance = 0.05 if not structure and statistic in STRUCTURAL.get(channel, ()) else 0.025
+            assert ours[statistic] == pytest.approx(theirs[statistic], rel=tolerance), (channel, statistic)

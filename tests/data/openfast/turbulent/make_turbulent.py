@@ -3,8 +3,8 @@ stored here. Not run by the tests (OpenFAST and TurbSim are not needed to use th
 
 1. TurbSim (OpenFAST v5.0.0's) writes ``box.bts`` from ``NAME.inp`` (beside this script): IEC Kaimal normal
    turbulence class B, 8 m/s at the 90 m hub, power-law exponent 0.2, over 140 m (periodic); ``turbulent_8mps``:
-   15 x 15 points, 0.05 s, 330 s; ``turbulent_8mps_small``: 7 x 7 points, 0.1 s, 230 s, whose box is kept here
-   (``turbulent_8mps_small.bts``, 0.7 MB) for the test that reruns bladefem.
+   15 x 15 points, 0.05 s, 330 s; ``turbulent_8mps_630s_small``: 7 x 7 points, 0.1 s, 630 s, whose box is kept here
+   (``turbulent_8mps_630s_small.bts``, 1.9 MB) for the test that reruns bladefem.
 2. OpenFAST v5.0.0 runs the shipped NREL 5MW deck (``cases/nrel5mw``) in that box: the deck turned into v5's layout
    by ``make_openfast_v5.py`` (``to_v5``, ``extend_outputs``: the sibling script of ``tests/data/openfast``),
    InflowWind ``WindType`` 3 with ``box.bts``, AeroDyn ``BEM_Mod`` 1, ``TMax`` the box's time, the torque law at
