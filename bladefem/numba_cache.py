@@ -17,7 +17,8 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 #: The files whose numba kernels call one another, relative to the package.
-KERNEL_SOURCES = ("aero/*.py", "models/turbine/compiled*.py", "models/turbine/control.py")
+KERNEL_SOURCES = ("aero/*.py", "models/turbine/compiled*.py", "models/turbine/control.py",
+                  "models/turbine/pitching.py")
 
 
 @cache

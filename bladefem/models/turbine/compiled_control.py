@@ -6,7 +6,7 @@ and RK4): per controller interval ``[t_k, t_k + DLL_DT]``, the records ServoDyn'
 from call to call are written (those that do not are the Python loop's first call's,
 :meth:`.discon.DisconController.constant_records`, written again before each call), the library called, its
 collective pitch (record 45) and torque (47) held over the interval, the pitch set on the kernels' arrays as
-:class:`.pitching.CompiledPitch` sets it, and the equations integrated with Dormand-Prince 5(4) (the steps and the
+:class:`.pitching.CompiledPitch` sets it (one definition, :func:`.pitching.pitch_arrays`), and the equations integrated with Dormand-Prince 5(4) (the steps and the
 error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval). The load channels and
 the derivative at an interval's end, which the next call measures, come from the last stage of the step that ends
 there (evaluated with its output row), not from one more right-hand side. The kernel returns after ``budget``
@@ -31,29 +31,9 @@ if njit is not None:
     from .compiled_integrators import check_state, combination, dense_output, error_norm, rate
     from .compiled_kernels import store_row
     from .compiled_state import full_state
+    from .pitching import set_pitch
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
-
-    @njit(cache=True)
-    def set_pitch(pitch, base, references, data, aero):
-        """Every blade pitched to ``pitch`` (rad) on the kernels' arrays: the shapes' across components and the
-        aerodynamic sections turned by ``pitch - base`` from the ``references`` built at ``base``."""
-        blade, value, slope, theta = references
-        delta = pitch - base
-        c, s = math.cos(delta), math.sin(delta)
-        shapes, sections = data[5], aero[0]
-        for i in range(blade.shape[0]):
-            for p in range(blade.shape[1]):
-                y, z = blade[i, p, 1], blade[i, p, 2]
-                shapes[i, p, 1], shapes[i, p, 2] = y * c + z * s, -y * s + z * c
-            for p in range(value.shape[1]):
-                y, z = value[i, p, 1], value[i, p, 2]
-                sections[i, p, 1], sections[i, p, 2] = y * c + z * s, -y * s + z * c
-            for p in range(slope.shape[1]):
-                y, z = slope[i, p, 0], slope[i, p, 1]
-                aero[4][i, p, 0], aero[4][i, p, 1] = y * c + z * s, -y * s + z * c
-        for p in range(theta.shape[0]):
-            aero[8][p] = theta[p] + delta
 
     @njit(cache=True)
     def fill(records, t, x, rate_x, row, pitch, torque, q0, u0, index, turbine, constants):
@@ -156,7 +136,7 @@ if njit is not None:                                   # module-level kernels: n
         already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place to
         the interval's end), its demands held (``commands`` = pitch, torque, updated), the interval integrated
         (:func:`dp54_interval`), the pitch of each output row in ``held``. ``pitching`` = (base pitch, reference
-        arrays) of :func:`set_pitch`. Returns (next interval, its start time, next output row, right-hand sides,
+        arrays) of :func:`.pitching.pitch_arrays`. Returns (next interval, its start time, next output row, right-hand sides,
         status, offending index)."""
         structure, aero, law = data
         count = 0

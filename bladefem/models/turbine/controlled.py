@@ -236,8 +236,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
                  np.asarray(model.tower_columns, dtype=np.int64))
     turbine = np.array([run.generator, run.ratio, run.efficiency, run.hub_wind, p.n_blades], dtype=float)
     pitcher = run.pitcher
-    pitching = (float(pitcher.base), tuple(np.ascontiguousarray(a, dtype=float) for a in (
-        pitcher.blade, pitcher.aero_value, pitcher.aero_slope, pitcher.theta)))
+    pitching = (float(pitcher.base), pitcher.references)
     K, tableau = np.zeros((7, len(x))), _dp54_tableau()
     index, q0, u0 = (np.ascontiguousarray(a) for a in (system.index, system.q0, system.u0))
     k, t, rows, evaluations, call_first = 0, 0.0, 1, 0, False

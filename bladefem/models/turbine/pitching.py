@@ -18,11 +18,42 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ...numba_cache import cached_njit
+
+njit = cached_njit()
+
 
 def turn(y: NDArray, z: NDArray, angle: float) -> tuple[NDArray, NDArray]:
     """Across components (in-plane, out-of-plane) turned by ``angle`` (rad) of pitch."""
     c, s = math.cos(angle), math.sin(angle)
     return y * c + z * s, -y * s + z * c
+
+
+def pitch_arrays(pitch, base, references, structure, aero):
+    """Every blade pitched to ``pitch`` (rad) on the kernels' arrays (``structure``, ``aero``: the structural and
+    aerodynamic tuples of :class:`~.compiled.CompiledEquations`): the shapes' across components, the sections' and
+    their slopes turned by ``pitch - base`` from the ``references`` (shapes, sections, slopes, angles) built at
+    ``base``, and ``pitch - base`` added to the sections' angles. Loops, so that numba compiles the same definition
+    for the compiled controller loop."""
+    blade, value, slope, theta = references
+    delta = pitch - base
+    c, s = math.cos(delta), math.sin(delta)
+    shapes, sections, slopes, angles = structure[5], aero[0], aero[4], aero[8]
+    for i in range(blade.shape[0]):
+        for p in range(blade.shape[1]):
+            y, z = blade[i, p, 1], blade[i, p, 2]
+            shapes[i, p, 1], shapes[i, p, 2] = y * c + z * s, -y * s + z * c
+        for p in range(value.shape[1]):
+            y, z = value[i, p, 1], value[i, p, 2]
+            sections[i, p, 1], sections[i, p, 2] = y * c + z * s, -y * s + z * c
+        for p in range(slope.shape[1]):
+            y, z = slope[i, p, 0], slope[i, p, 1]
+            slopes[i, p, 0], slopes[i, p, 1] = y * c + z * s, -y * s + z * c
+    for p in range(theta.shape[0]):
+        angles[p] = theta[p] + delta
+
+
+set_pitch = njit(cache=True)(pitch_arrays) if njit is not None else pitch_arrays
 
 
 class CompiledPitch:
@@ -32,25 +63,19 @@ class CompiledPitch:
         self.base = model.aero.pitch if model.aero is not None else model.params.pitch
         self.compiled = compiled
         self.pitch = self.base
-        self.blade = compiled.data[5].copy()                 # (k, P, 3) structural shapes
         aero = compiled.aero
-        self.aero_value = aero[0].copy()                     # (k, Na, 3)
-        self.aero_slope = (np.asarray(model.aero.slope, dtype=float).copy() if model.aero is not None
-                           else np.zeros((0, 0, 2)))         # (k, Na, 2): in-plane, out-of-plane
-        self.theta = aero[8].copy()
+        slope = (np.asarray(model.aero.slope, dtype=float) if model.aero is not None
+                 else np.zeros((0, 0, 2)))                  # (k, Na, 2): in-plane, out-of-plane
+        #: the arrays at the base pitch: structural shapes (k, P, 3), sections (k, Na, 3), their slopes, angles
+        self.references = tuple(np.ascontiguousarray(a, dtype=float).copy()
+                                for a in (compiled.data[5], aero[0], slope, aero[8]))
         self.tip = np.asarray(model.params.blade.tip_value, dtype=float).copy()      # (k, 2)
 
     def set(self, pitch: float) -> None:
         """Pitch every blade to ``pitch`` (rad)."""
         if pitch == self.pitch:
             return
-        delta = pitch - self.base
-        data, aero = self.compiled.data, self.compiled.aero
-        data[5][..., 1], data[5][..., 2] = turn(self.blade[..., 1], self.blade[..., 2], delta)
-        aero[0][..., 1], aero[0][..., 2] = turn(self.aero_value[..., 1], self.aero_value[..., 2], delta)
-        if self.aero_slope.size:
-            aero[4][..., 0], aero[4][..., 1] = turn(self.aero_slope[..., 0], self.aero_slope[..., 1], delta)
-        aero[8][...] = self.theta + delta
+        set_pitch(float(pitch), float(self.base), self.references, self.compiled.data, self.compiled.aero)
         self.pitch = pitch
 
     def tip_values(self, pitch: float) -> NDArray:
