@@ -12,7 +12,7 @@ TwrBsMxt's included, is within 1.7 % (TwrBsMxt: mean -0.37 %, standard deviation
 
 Which choice makes the difference (switched one at a time, same box, TwrBsMxt standard deviation / DEL): the
 ElastoDyn blade polynomials with bladefem's integration +6.1 % / +5.3 %; bladefem's FE blades with the
-ElastoDyn-compatible tower +1.0 % / -0.7 % low; the ElastoDyn-compatible model with only its tower side-side 1
+ElastoDyn-compatible tower -1.0 % / -0.7 %; the ElastoDyn-compatible model with only its tower side-side 1
 generalized stiffness raised by 0.33 % to bladefem's +6.6 % / +5.7 %. So it is the tower's discretization alone:
 ElastoDyn integrates the tower polynomial's curvature at the midpoints of TwrNodes = 20 elements, 0.33 % below the
 exact integral of the same polynomial (which bladefem's default gives, within 1e-5), the mode 0.16 % lower in
