@@ -85,7 +85,8 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     normal_n = np.broadcast_to(normal[..., None, :], position.shape)
     tangent_n = np.broadcast_to(tangent[..., None, :], position.shape)
     axis_n = np.broadcast_to(axis[..., None, :], position.shape)
-    frame = projection(rotor.options.formulation == 2, position, xs, normal_n, tangent_n, axis_n)
+    frame = projection(rotor.options.formulation == 2, position, xs, normal_n, tangent_n, axis_n,
+                       curve_angle=rotor.curve_angle)
     vx, vy = frame.components(velocity)
     axial = position @ xs
     r_local = np.linalg.norm(position - axial[..., None] * xs, axis=-1)

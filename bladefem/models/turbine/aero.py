@@ -255,7 +255,8 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     relative = aero.inflow.velocity_at(r, t) - v
     apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
     arm = r - apex
-    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, i1, e_t, i3, v_slope, w_slope)
+    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, i1, e_t, i3, v_slope, w_slope,
+                       aero.rotor.curve_angle)
     vx, vy = frame.components(relative)
     r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
     disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)
