@@ -6,6 +6,7 @@ and moving blades feel aerodynamic damping."""
 from __future__ import annotations
 
 import os
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -44,15 +45,17 @@ def spinning(model, azimuth: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     return q, u
 
 
-@pytest.mark.parametrize("shear", [0.0, 0.2])
-def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear):
-    """Undeflected turbine at 12.1 rpm, the deck's tilt, precone and aerodynamic-centre offsets: the same node
-    inputs as the rigid-rotor kinematics, so loads, thrust, torque, Cp and the tip-speed ratio agree to rounding;
-    the torque is the generalized force on the generator azimuth and on the drivetrain twist."""
-    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear)
+@pytest.mark.parametrize("shear, formulation, cant", [(0.0, 2, False), (0.2, 2, False), (0.2, 1, True),
+                                                     (0.2, 2, True)])
+def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear, formulation, cant):
+    """Undeflected turbine at 12.1 rpm, the deck's tilt, precone and aerodynamic-centre offsets (and sections
+    canted by ``BlCrvAng``): the same node inputs as the rigid-rotor kinematics, so loads, thrust, torque, Cp and
+    the tip-speed ratio agree to rounding; the torque is the generalized force on the generator azimuth and on the
+    drivetrain twist."""
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear), formulation, cant)
     for azimuth in (0.0, 0.7, 2.0):
         loads = aero_loads(model, aero, *spinning(model, azimuth))
-        rigid = performance_at(deck.rotor(), aero.inflow, RATED, 0.0, 0.0, np.array([azimuth]))
+        rigid = performance_at(aero.rotor, aero.inflow, RATED, 0.0, 0.0, np.array([azimuth]))
         np.testing.assert_allclose(loads.column("fn"), rigid.fn[0], rtol=0, atol=1e-10 * np.abs(rigid.fn).max())
         np.testing.assert_allclose(loads.column("ft"), rigid.ft[0], rtol=0, atol=1e-10 * np.abs(rigid.ft).max())
         for ours, theirs in ((loads.thrust, rigid.thrust), (loads.torque, rigid.torque), (loads.cp, rigid.cp),
@@ -128,11 +131,22 @@ def test_flapping_blade_feels_aerodynamic_damping(deck, model):
                                atol=1e-6)
 
 
-@pytest.mark.parametrize("generator_free", [True, False])
-def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free):
+def canted(aero: TurbineAero, formulation: int, cant: bool) -> TurbineAero:
+    """``aero`` with the projection of ``BEM_Mod`` ``formulation`` and, with ``cant``, sections canted like a
+    prebent blade's (``BlCrvAng`` from 0 at the root to -6 deg at the tip; the 5MW's are 0)."""
+    rotor = aero.rotor
+    angle = -np.radians(6.0) * (rotor.span / rotor.span[-1]) ** 2 if cant else None
+    return replace(aero, rotor=replace(rotor, curve_angle=angle, options=replace(rotor.options,
+                                                                                 formulation=formulation)))
+
+
+@pytest.mark.parametrize("generator_free, formulation, cant",
+                         [(True, 2, False), (False, 2, False), (True, 1, True), (True, 2, True)])
+def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free, formulation, cant):
     """The compiled right-hand side with aerodynamics (sheared wind) and the generator's torque law equals the
     numpy assembly to rounding at a random deflected, yawed, spinning state (both solve the BEM from scratch
-    there), and so do the load channels (root moments, shaft loads, generator torque, rotor summary, powers)."""
+    there), and so do the load channels (root moments, shaft loads, generator torque, rotor summary, powers): both
+    projections (BEM_Mod 1 and 2), with the sections canted by a prebent blade's ``BlCrvAng`` and without."""
     pytest.importorskip("numba")
     if os.environ.get("BLADEFEM_NO_NUMBA"):
         pytest.skip("compiled kernels switched off")
@@ -140,7 +154,7 @@ def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free):
     from bladefem.models.turbine.compiled import compiled_equations
     from bladefem.models.turbine.control import Generator
     from bladefem.models.turbine.outputs import load_row
-    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1)
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1), formulation, cant)
     loaded = TurbineModel(model.params, aero=aero, generator=Generator.from_servodyn(deck.servodyn))
     compiled = compiled_equations(loaded)
     rng = np.random.default_rng(2)
