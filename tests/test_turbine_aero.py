@@ -21,6 +21,7 @@ from bladefem.models.turbine.aero import (
     aero_forcing,
     aero_loads,
     aero_nodes,
+    turbine_aero,
 )
 
 DECK = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
@@ -52,7 +53,8 @@ def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear, formula
     canted by ``BlCrvAng``): the same node inputs as the rigid-rotor kinematics, so loads, thrust, torque, Cp and
     the tip-speed ratio agree to rounding; the torque is the generalized force on the generator azimuth and on the
     drivetrain twist."""
-    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear), formulation, cant)
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear), model.params,
+                  formulation, cant)
     for azimuth in (0.0, 0.7, 2.0):
         loads = aero_loads(model, aero, *spinning(model, azimuth))
         rigid = performance_at(aero.rotor, aero.inflow, RATED, 0.0, 0.0, np.array([azimuth]))
@@ -65,10 +67,11 @@ def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear, formula
         np.testing.assert_allclose(generalized, rigid.torque, rtol=1e-12)
 
 
-def test_node_partial_velocities_are_position_derivatives(deck, model):
-    """J of every aerodynamic node (with its aerodynamic-centre offset) equals the central difference of its
-    position over each coordinate, at a deflected, yawed, spinning state."""
-    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4)
+@pytest.mark.parametrize("prebent", [False, True])
+def test_node_partial_velocities_are_position_derivatives(deck, model, prebent):
+    """J of every aerodynamic node (with its aerodynamic-centre offset, swept and prebent) equals the central
+    difference of its position over each coordinate, at a deflected, yawed, spinning state."""
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4), model.params, 2, prebent)
     rng = np.random.default_rng(3)
     q = rng.normal(scale=0.3, size=model.n)
     u = rng.normal(scale=0.3, size=model.n)
@@ -81,6 +84,27 @@ def test_node_partial_velocities_are_position_derivatives(deck, model):
         derivative = (aero_nodes(model, aero, q + dq, u).r - aero_nodes(model, aero, q - dq, u).r) / (2 * h)
         np.testing.assert_allclose(J[..., i], derivative, rtol=0, atol=1e-7)
     np.testing.assert_allclose(nodes.velocity(u), np.einsum("bpkn,n->bpk", J, u), atol=1e-12)
+
+
+def test_offset_nodes_turn_with_the_bent_section(deck, model):
+    """A node off the blade axis (a prebent blade's aerodynamic centre, 3 m upwind at the tip, and the 5MW's sweep)
+    rides on a rigid arm turned with its section, as OpenFAST carries AeroDyn's nodes on ElastoDyn's: its place
+    relative to the node without the offset is the offset turned by the bent section's rotation
+    (:func:`bladefem.aero.polar.bent_axes` of the two slopes), to second order in the slopes."""
+    from bladefem.aero.polar import bent_axes
+    aero = canted(TurbineAero.from_deck(deck, model.params), model.params, 2, True)
+    bare = replace(aero, offset=0 * aero.offset)
+    q, u = spinning(model, 0.4)
+    q[model.blade_columns[1]] = [0.2, -0.05, 0.03]
+    R = model.motion(q, u).blade_frames.R[1]                   # columns i3, e_t, i1
+    v_slope, w_slope = np.einsum("k,kpa->ap", q[model.blade_columns[1]], aero.slope)
+    arm = aero_nodes(model, aero, q, u).r[1] - aero_nodes(model, bare, q, u).r[1]
+    for p in range(aero.n_nodes):
+        c = np.array(bent_axes(v_slope[p], w_slope[p]))
+        turned = aero.offset[p, 1] * c[3:6] + aero.offset[p, 2] * c[0:3]      # (i3, e_t, i1) components
+        slope2 = v_slope[p] ** 2 + w_slope[p] ** 2
+        np.testing.assert_allclose(arm[p], R @ turned, rtol=0, atol=np.abs(aero.offset[p]).max() * slope2 + 1e-12)
+    assert np.abs(arm[-1] - R @ aero.offset[-1][[0, 1, 2]]).max() > 1e-3           # the turn is seen
 
 
 def test_nodes_move_with_the_structural_blade(deck, model):
@@ -131,13 +155,14 @@ def test_flapping_blade_feels_aerodynamic_damping(deck, model):
                                atol=1e-6)
 
 
-def canted(aero: TurbineAero, formulation: int, cant: bool) -> TurbineAero:
-    """``aero`` with the projection of ``BEM_Mod`` ``formulation`` and, with ``cant``, sections canted like a
-    prebent blade's (``BlCrvAng`` from 0 at the root to -6 deg at the tip; the 5MW's are 0)."""
-    rotor = aero.rotor
-    angle = -np.radians(6.0) * (rotor.span / rotor.span[-1]) ** 2 if cant else None
-    return replace(aero, rotor=replace(rotor, curve_angle=angle, options=replace(rotor.options,
-                                                                                 formulation=formulation)))
+def canted(aero: TurbineAero, params, formulation: int, cant: bool) -> TurbineAero:
+    """``aero`` with the projection of ``BEM_Mod`` ``formulation`` and, with ``cant``, a prebent blade's aerodynamic
+    centres and sections (``BlCrvAC`` to -3 m and ``BlCrvAng`` to -6 deg at the tip; the 5MW's are 0)."""
+    rotor = replace(aero.rotor, options=replace(aero.rotor.options, formulation=formulation))
+    if cant:                                     # the prebend whose slope the cant is: 3 m upwind at the tip
+        shape = (rotor.span / rotor.span[-1]) ** 2
+        rotor = replace(rotor, curve=-3.0 * shape, curve_angle=-np.radians(6.0) * shape)
+    return turbine_aero(rotor, aero.inflow, params, aero.pitch)
 
 
 @pytest.mark.parametrize("generator_free, formulation, cant",
@@ -154,7 +179,8 @@ def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free, f
     from bladefem.models.turbine.compiled import compiled_equations
     from bladefem.models.turbine.control import Generator
     from bladefem.models.turbine.outputs import load_row
-    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1), formulation, cant)
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1), model.params,
+                  formulation, cant)
     loaded = TurbineModel(model.params, aero=aero, generator=Generator.from_servodyn(deck.servodyn))
     compiled = compiled_equations(loaded)
     rng = np.random.default_rng(2)

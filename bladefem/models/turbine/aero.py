@@ -85,6 +85,14 @@ class TurbineAero:
         """The packed polars (:func:`bladefem.aero.polars.pack_polars`) the kernels read."""
         return pack_polars(self.rotor.polars).arrays
 
+    @property
+    def along(self) -> NDArray:
+        """(k, Na) each node's motion along the blade axis per modal amplitude: its aerodynamic-centre offset o
+        (``offset``, across the axis) turned by the section's rotation, -(o . slope) to first order in the slopes
+        (as OpenFAST carries AeroDyn's node on the rigid arm from ElastoDyn's, turned with it: a prebent blade's
+        node, upwind of the axis, moves outward as the blade bends downwind)."""
+        return -np.einsum("kpa,pa->kp", self.slope, self.offset[:, 1:])
+
     @cached_property
     def undeflected_radius(self) -> NDArray:
         """(Na,) the nodes' distance from the shaft axis with the blade undeflected (coned by PreCone, the
@@ -230,7 +238,8 @@ class AeroLoads:
 def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) -> NodeGroup:
     """Positions, partial velocities (factored) and bias accelerations of every blade's aerodynamic nodes."""
     motion = model.motion(q, u) if motion is None else motion
-    nodes = BeamNodes(aero.axial, aero.value, aero.shortening, (0, 1, 2), np.eye(model.n)[model.blade_columns])
+    nodes = BeamNodes(aero.axial, aero.value, aero.shortening, (0, 1, 2), np.eye(model.n)[model.blade_columns],
+                      aero.along)
     span = nodes.deflect(q[model.blade_columns], u[model.blade_columns])
     return carry_nodes(motion.apex, motion.blade_frames, span.offset + aero.offset, span.partials,
                        nodes.selection, span.velocity, span.bias)
