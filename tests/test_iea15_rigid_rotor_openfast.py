@@ -12,7 +12,14 @@ OpenFAST's (BEM_Mod 1; 0.9 % and 1.0 % with BEM_Mod 2).
 Still open: with the legacy projection at 16 m/s and 12.95 deg pitch bladefem's rotor carries 0.93 % more thrust
 and 1.0 % more torque than OpenFAST's (0.08 % with the polar projection at the same point; without the cant the
 legacy gap was 2.5 %, the polar's 1.6 %). Turning the cant about the pitched chord axis, as AeroDyn composes the
-node's reference orientation with the root's pitch, moves it by 0.05 % only: the cause is not found."""
+node's reference orientation with the root's pitch, moves it by 0.05 % only: the cause is not found.
+
+Still open too: the flexible turbine held at its speed at 8 m/s carries OpenFAST's loads (thrust, torque, root
+moment within 0.15 %) but its tip deflection is 1.09 % below ElastoDyn's with the same blade shapes; without
+aerodynamics (gravity and the coned blade's centrifugal load, whole revolutions) the two deflections agree to
+3e-5. So the gap is in how the aerodynamic line load, not its resultant, bends the two blades: its spread over the
+modes (ElastoDyn maps AeroDyn's nodal loads onto its own element midpoints, bladefem lumps them by virtual work
+at AeroDyn's nodes) or ElastoDyn's moment terms of the offset loads."""
 
 from __future__ import annotations
 
@@ -113,3 +120,42 @@ def test_prebent_rigid_rotor_loads_in_the_turbine_are_openfasts(tmp_path, wind):
     ours = run(tmp_path, point)
     for theirs, (name, factor) in CHANNELS.items():
         assert ours[name] * factor == pytest.approx(point["means"][theirs], rel=1e-4), theirs
+
+
+#: channel -> (bladefem channel, relative tolerance) of the flexible turbine held at its speed
+FLEXIBLE = {"RtAeroFxh": ("RtAeroFxh", 2e-3), "RtAeroMxh": ("RtAeroMxh", 2e-3), "RootMyc1": ("RootMOoP1", 2e-3),
+            "TTDspFA": ("TTDspFA", 5e-3), "OoPDefl1": ("OoPDefl1", 5e-3)}
+#: outside the acceptance today, with the measured difference: an open defect, not a tolerance
+FLEXIBLE_KNOWN = {"OoPDefl1": "tip deflection -1.09 % with the loads within 0.15 % (module docstring)"}
+
+
+@pytest.fixture(scope="module")
+def flexible_run(tmp_path_factory):
+    point = REFERENCE["flexible"]
+    out = tmp_path_factory.mktemp("iea15_flexible") / "flexible.csv"
+    assert main(["turbine", str(DECK), "--simulate", f"{point['run_s']:g}", "--foundation", "rigid",
+                 "--quasi-steady", "--wind-speed", f"{point['wind_speed_m_s']:g}",
+                 "--rpm", f"{point['rotor_speed_rpm']:g}", "--pitch-deg", f"{point['pitch_deg']:g}", "--method",
+                 "RK4", "--step", "0.005", "--elastodyn-compatible", "--quiet", "-o", str(out)]) == 0
+    lines = out.read_text().splitlines()
+    names = [name.rsplit("_", 1)[0] for name in lines[0].split(",")]
+    data = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
+    window = data[:, 0] >= point["window_s"][0] - 1e-9
+    return {name: float(data[window, i].mean()) for i, name in enumerate(names)}
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="the fixed-step run needs numba")
+@pytest.mark.parametrize("channel", list(FLEXIBLE))
+def test_flexible_prebent_turbine_at_fixed_speed_against_openfast(flexible_run, channel, request):
+    """The flexible turbine (ElastoDyn's structure) held at 5.68 rpm in 8 m/s, means over the last three of 60 s:
+    aerodynamic thrust, torque and the blade-root out-of-plane moment within 0.2 % (measured +0.11 %, +0.15 %,
+    +0.12 %), the tower-top fore-aft displacement and the tip deflection within 0.5 % (measured -0.34 %, -1.09 %).
+    The nodes' rigid arms turn with the bent sections: carried without turning (the prebend's 4 m arm held along
+    the undeflected normal) the root moment was 0.47 % low and the tower top 1.4 %; without the sections' cant
+    as well, 1.3 % and 4.3 %. The pairs in :data:`FLEXIBLE_KNOWN` fail today and are marked so (strict)."""
+    if channel in FLEXIBLE_KNOWN:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=FLEXIBLE_KNOWN[channel]))
+    name, tolerance = FLEXIBLE[channel]
+    theirs = REFERENCE["flexible"]["means"][channel]
+    assert flexible_run[name] == pytest.approx(theirs, rel=tolerance)

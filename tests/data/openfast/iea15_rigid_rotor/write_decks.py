@@ -9,7 +9,11 @@ foundation, quasi-steady BEM: its docstring lists every change) with these furth
 - ElastoDyn: every DOF off (``GenDOF`` included: the rotor turns at ``RotSpeed``);
 - AeroDyn: ``BEM_Mod`` 1 (legacy projection, as the ROSCO runs) or 2 (polar projection).
 
-Per case: the means over the samples of the first whole revolution (0 <= t < 60 / rpm) of ``RtAeroFxh`` (N),
+And one flexible case (``FLEXIBLE``): 8 m/s, 5.68 rpm, pitch 0, ``BEM_Mod`` 1, 60 s with the deck's blade and
+tower DOFs and only ``GenDOF`` off (the rotor held at its speed, no controller), output every 0.05 s: the means over
+the last three revolutions of ``RtAeroFxh``, ``RtAeroMxh``, ``RootMyc1``, ``OoPDefl1`` and ``TTDspFA``.
+
+Per rigid case: the means over the samples of the first whole revolution (0 <= t < 60 / rpm) of ``RtAeroFxh`` (N),
 ``RtAeroMxh`` (N m), ``RtAeroPwr`` (W) and the blade-root moments ``RootMyc1``, ``RootMxc1`` (kN m). Not run by the
 tests; rerun with
 
@@ -61,6 +65,36 @@ def write_case(folder: Path, case: tuple, library: str) -> Path:
     return deck
 
 
+FLEXIBLE = (8.0, 5.68, 0.0, 1)
+FLEXIBLE_SECONDS, FLEXIBLE_CHANNELS = 60.0, ("RtAeroFxh", "RtAeroMxh", "RootMyc1", "OoPDefl1", "TTDspFA")
+
+
+def write_flexible(folder: Path, library: str) -> Path:
+    wind, rpm, pitch, bem = FLEXIBLE
+    deck = rosco.write_case(folder, wind, library, seconds=FLEXIBLE_SECONDS)
+    rosco.edit(deck, "CompServo", "0")
+    ed = folder / rosco.MONO / rosco.ED
+    rosco.edit(ed, "GenDOF", "False")
+    rosco.edit(ed, "RotSpeed", f"{rpm:g}")
+    for b in (1, 2, 3):
+        rosco.edit(ed, f"BlPitch({b})", f"{pitch:g}")
+    rosco.outputs(ed, ("RootMyc1",))
+    ad = folder / rosco.MONO / rosco.AD
+    rosco.edit(ad, "BEM_Mod", str(bem))
+    rosco.outputs(ad, ("RtAeroMxh",))
+    return deck
+
+
+def flexible_means(runs: Path) -> dict:
+    wind, rpm, pitch, bem = FLEXIBLE
+    data, _ = read_out(runs / "flexible" / rosco.MONO / rosco.FST.replace(".fst", ".out"))
+    start = FLEXIBLE_SECONDS - 3 * 60.0 / rpm
+    window = data["Time"] >= start - 1e-9
+    return {"wind_speed_m_s": wind, "rotor_speed_rpm": rpm, "pitch_deg": pitch, "bem_mod": bem,
+            "run_s": FLEXIBLE_SECONDS, "window_s": [start, FLEXIBLE_SECONDS],
+            "means": {c: float(f"{data[c][window].mean():.7g}") for c in FLEXIBLE_CHANNELS}}
+
+
 def reduce(runs: Path) -> None:
     results = []
     for case in CASES:
@@ -77,7 +111,7 @@ def reduce(runs: Path) -> None:
                                     "docstring and that of ../iea15_rosco/write_decks.py)",
                           "extraction": "means over the samples (every 0.005 s) of the first whole revolution; "
                                         "7 significant digits; OpenFAST's units (N, N m, W, kN m)"},
-           "cases": results}
+           "cases": results, "flexible": flexible_means(runs)}
     (HERE / "rigid_rotor.json").write_text(json.dumps(out, indent=1) + "\n")
 
 
@@ -85,6 +119,8 @@ def main(openfast: str, library: str, runs: str) -> None:
     for case in CASES:
         deck = write_case(Path(runs) / name(case), case, library)
         subprocess.run([openfast, deck.name], cwd=deck.parent, check=True, stdout=subprocess.DEVNULL)
+    deck = write_flexible(Path(runs) / "flexible", library)
+    subprocess.run([openfast, deck.name], cwd=deck.parent, check=True, stdout=subprocess.DEVNULL)
     reduce(Path(runs))
 
 
