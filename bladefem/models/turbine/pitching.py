@@ -7,7 +7,8 @@ out-of-plane ``z``) by ``d = p - p0`` about the pitch axis, the same turn that b
 (flapwise ``(sin t, cos t)`` and edgewise ``(cos t, -sin t)`` both go to ``(y cos d + z sin d, -y sin d + z cos d)``
 at ``t + d``), and adds ``d`` to the sections' angle. What does not depend on the pitch is left alone: the modal
 stiffness (ElastoDyn's from the untwisted polynomials; bladefem's FE shapes turn with their stiffness), masses on
-the pitch axis, shortening integrals, the aerodynamic-centre offsets (as ``--pitch-deg`` builds them). The pitch
+the pitch axis, shortening integrals, the aerodynamic-centre offsets (as ``--pitch-deg`` builds them; their
+arms' motion along the axis, -(offset . slope), follows the turned slopes). The pitch
 rate's own inertial effect is left out, as in ElastoDyn without its pitch DOF.
 """
 
@@ -50,6 +51,8 @@ class CompiledPitch:
         aero[0][..., 1], aero[0][..., 2] = turn(self.aero_value[..., 1], self.aero_value[..., 2], delta)
         if self.aero_slope.size:
             aero[4][..., 0], aero[4][..., 1] = turn(self.aero_slope[..., 0], self.aero_slope[..., 1], delta)
+            # the offset nodes' motion along the axis follows the turned slopes (TurbineAero.along)
+            aero[0][..., 0] = -(aero[4][..., 0] * aero[3][:, 1] + aero[4][..., 1] * aero[3][:, 2])
         aero[8][...] = self.theta + delta
         self.pitch = pitch
 
