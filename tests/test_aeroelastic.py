@@ -112,7 +112,8 @@ def refined_rotor(blade, nodes: int):
     airfoil = base.airfoil[np.clip(np.searchsorted(base.span, span, side="right") - 1, 0, len(base.span) - 1)]
     return dataclasses.replace(base, span=span, chord=np.interp(span, base.span, base.chord),
                                twist=np.interp(span, base.span, base.twist), airfoil=airfoil,
-                               curve=np.zeros(nodes), sweep=np.zeros(nodes), shaft_tilt=0.0, hub_height=90.0,
+                               curve=np.zeros(nodes), sweep=np.zeros(nodes), curve_angle=np.zeros(nodes), shaft_tilt=0.0,
+                               hub_height=90.0,
                                options=dataclasses.replace(base.options, formulation=1))
 
 

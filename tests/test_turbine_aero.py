@@ -6,6 +6,7 @@ and moving blades feel aerodynamic damping."""
 from __future__ import annotations
 
 import os
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,7 @@ from bladefem.models.turbine.aero import (
     aero_forcing,
     aero_loads,
     aero_nodes,
+    turbine_aero,
 )
 
 DECK = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
@@ -44,15 +46,18 @@ def spinning(model, azimuth: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     return q, u
 
 
-@pytest.mark.parametrize("shear", [0.0, 0.2])
-def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear):
-    """Undeflected turbine at 12.1 rpm, the deck's tilt, precone and aerodynamic-centre offsets: the same node
-    inputs as the rigid-rotor kinematics, so loads, thrust, torque, Cp and the tip-speed ratio agree to rounding;
-    the torque is the generalized force on the generator azimuth and on the drivetrain twist."""
-    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear)
+@pytest.mark.parametrize("shear, formulation, cant", [(0.0, 2, False), (0.2, 2, False), (0.2, 1, True),
+                                                     (0.2, 2, True)])
+def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear, formulation, cant):
+    """Undeflected turbine at 12.1 rpm, the deck's tilt, precone and aerodynamic-centre offsets (and sections
+    canted by ``BlCrvAng``): the same node inputs as the rigid-rotor kinematics, so loads, thrust, torque, Cp and
+    the tip-speed ratio agree to rounding; the torque is the generalized force on the generator azimuth and on the
+    drivetrain twist."""
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=shear), model.params,
+                  formulation, cant)
     for azimuth in (0.0, 0.7, 2.0):
         loads = aero_loads(model, aero, *spinning(model, azimuth))
-        rigid = performance_at(deck.rotor(), aero.inflow, RATED, 0.0, 0.0, np.array([azimuth]))
+        rigid = performance_at(aero.rotor, aero.inflow, RATED, 0.0, 0.0, np.array([azimuth]))
         np.testing.assert_allclose(loads.column("fn"), rigid.fn[0], rtol=0, atol=1e-10 * np.abs(rigid.fn).max())
         np.testing.assert_allclose(loads.column("ft"), rigid.ft[0], rtol=0, atol=1e-10 * np.abs(rigid.ft).max())
         for ours, theirs in ((loads.thrust, rigid.thrust), (loads.torque, rigid.torque), (loads.cp, rigid.cp),
@@ -62,10 +67,11 @@ def test_rigid_rotor_loads_equal_the_rigid_rotor_bem(deck, model, shear):
         np.testing.assert_allclose(generalized, rigid.torque, rtol=1e-12)
 
 
-def test_node_partial_velocities_are_position_derivatives(deck, model):
-    """J of every aerodynamic node (with its aerodynamic-centre offset) equals the central difference of its
-    position over each coordinate, at a deflected, yawed, spinning state."""
-    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4)
+@pytest.mark.parametrize("prebent", [False, True])
+def test_node_partial_velocities_are_position_derivatives(deck, model, prebent):
+    """J of every aerodynamic node (with its aerodynamic-centre offset, swept and prebent) equals the central
+    difference of its position over each coordinate, at a deflected, yawed, spinning state."""
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4), model.params, 2, prebent)
     rng = np.random.default_rng(3)
     q = rng.normal(scale=0.3, size=model.n)
     u = rng.normal(scale=0.3, size=model.n)
@@ -78,6 +84,27 @@ def test_node_partial_velocities_are_position_derivatives(deck, model):
         derivative = (aero_nodes(model, aero, q + dq, u).r - aero_nodes(model, aero, q - dq, u).r) / (2 * h)
         np.testing.assert_allclose(J[..., i], derivative, rtol=0, atol=1e-7)
     np.testing.assert_allclose(nodes.velocity(u), np.einsum("bpkn,n->bpk", J, u), atol=1e-12)
+
+
+def test_offset_nodes_turn_with_the_bent_section(deck, model):
+    """A node off the blade axis (a prebent blade's aerodynamic centre, 3 m upwind at the tip, and the 5MW's sweep)
+    rides on a rigid arm turned with its section, as OpenFAST carries AeroDyn's nodes on ElastoDyn's: its place
+    relative to the node without the offset is the offset turned by the bent section's rotation
+    (:func:`bladefem.aero.polar.bent_axes` of the two slopes), to second order in the slopes."""
+    from bladefem.aero.polar import bent_axes
+    aero = canted(TurbineAero.from_deck(deck, model.params), model.params, 2, True)
+    bare = replace(aero, offset=0 * aero.offset)
+    q, u = spinning(model, 0.4)
+    q[model.blade_columns[1]] = [0.2, -0.05, 0.03]
+    R = model.motion(q, u).blade_frames.R[1]                   # columns i3, e_t, i1
+    v_slope, w_slope = np.einsum("k,kpa->ap", q[model.blade_columns[1]], aero.slope)
+    arm = aero_nodes(model, aero, q, u).r[1] - aero_nodes(model, bare, q, u).r[1]
+    for p in range(aero.n_nodes):
+        c = np.array(bent_axes(v_slope[p], w_slope[p]))
+        turned = aero.offset[p, 1] * c[3:6] + aero.offset[p, 2] * c[0:3]      # (i3, e_t, i1) components
+        slope2 = v_slope[p] ** 2 + w_slope[p] ** 2
+        np.testing.assert_allclose(arm[p], R @ turned, rtol=0, atol=np.abs(aero.offset[p]).max() * slope2 + 1e-12)
+    assert np.abs(arm[-1] - R @ aero.offset[-1][[0, 1, 2]]).max() > 1e-3           # the turn is seen
 
 
 def test_nodes_move_with_the_structural_blade(deck, model):
@@ -128,11 +155,23 @@ def test_flapping_blade_feels_aerodynamic_damping(deck, model):
                                atol=1e-6)
 
 
-@pytest.mark.parametrize("generator_free", [True, False])
-def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free):
+def canted(aero: TurbineAero, params, formulation: int, cant: bool) -> TurbineAero:
+    """``aero`` with the projection of ``BEM_Mod`` ``formulation`` and, with ``cant``, a prebent blade's aerodynamic
+    centres and sections (``BlCrvAC`` to -3 m and ``BlCrvAng`` to -6 deg at the tip; the 5MW's are 0)."""
+    rotor = replace(aero.rotor, options=replace(aero.rotor.options, formulation=formulation))
+    if cant:                                     # the prebend whose slope the cant is: 3 m upwind at the tip
+        shape = (rotor.span / rotor.span[-1]) ** 2
+        rotor = replace(rotor, curve=-3.0 * shape, curve_angle=-np.radians(6.0) * shape)
+    return turbine_aero(rotor, aero.inflow, params, aero.pitch)
+
+
+@pytest.mark.parametrize("generator_free, formulation, cant",
+                         [(True, 2, False), (False, 2, False), (True, 1, True), (True, 2, True)])
+def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free, formulation, cant):
     """The compiled right-hand side with aerodynamics (sheared wind) and the generator's torque law equals the
     numpy assembly to rounding at a random deflected, yawed, spinning state (both solve the BEM from scratch
-    there), and so do the load channels (root moments, shaft loads, generator torque, rotor summary, powers)."""
+    there), and so do the load channels (root moments, shaft loads, generator torque, rotor summary, powers): both
+    projections (BEM_Mod 1 and 2), with the sections canted by a prebent blade's ``BlCrvAng`` and without."""
     pytest.importorskip("numba")
     if os.environ.get("BLADEFEM_NO_NUMBA"):
         pytest.skip("compiled kernels switched off")
@@ -140,7 +179,8 @@ def test_compiled_loads_equal_the_numpy_reference(deck, model, generator_free):
     from bladefem.models.turbine.compiled import compiled_equations
     from bladefem.models.turbine.control import Generator
     from bladefem.models.turbine.outputs import load_row
-    aero = TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1)
+    aero = canted(TurbineAero.from_deck(deck, model.params, wind_speed=11.4, shear_exponent=0.1), model.params,
+                  formulation, cant)
     loaded = TurbineModel(model.params, aero=aero, generator=Generator.from_servodyn(deck.servodyn))
     compiled = compiled_equations(loaded)
     rng = np.random.default_rng(2)

@@ -27,7 +27,9 @@ class NodeKinematics:
     """Inputs of :func:`bladefem.aero.bem.node_loads` at (azimuth, blade, node), and the frames to sum loads.
 
     position : node relative to the rotor centre (..., 3), m; shaft : x_s (3,)
-    normal : i1 (..., 3); rotation : e_t (..., 3), direction of the blade motion; axis : i3 (..., 3), pitch axis
+    normal, rotation, axis : (..., 3) the axes the node loads fn, ft and the pitching moment act along (the
+        projection's: i1, e_t (direction of the blade motion) and i3, the pitch axis, turned by the section's
+        cant ``BlCrvAng`` in the legacy projection)
     vx, vy : relative velocity components, m/s; r_local : m; z : distance along the blade from the centre, m
     tip_constant, hub_constant : Prandtl constants; tip_ratio : r_local / max r_local of the blade
     chi0 : skew angle per azimuth (n_az,), rad; skew_cos : (..,)
@@ -85,7 +87,8 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     normal_n = np.broadcast_to(normal[..., None, :], position.shape)
     tangent_n = np.broadcast_to(tangent[..., None, :], position.shape)
     axis_n = np.broadcast_to(axis[..., None, :], position.shape)
-    frame = projection(rotor.options.formulation == 2, position, xs, normal_n, tangent_n, axis_n)
+    frame = projection(rotor.options.formulation == 2, position, xs, normal_n, tangent_n, axis_n,
+                       curve_angle=rotor.curve_angle)
     vx, vy = frame.components(velocity)
     axial = position @ xs
     r_local = np.linalg.norm(position - axial[..., None] * xs, axis=-1)
@@ -103,9 +106,9 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     in_plane = np.divide(in_plane, size, out=np.zeros_like(in_plane), where=size > 1e-12 * np.maximum(speed, 1)[:,
                                                                                                          None])
     skew_cos = np.broadcast_to(np.einsum("abk,ak->ab", radial, in_plane)[..., None], vx.shape)
-    return NodeKinematics(position, xs, normal_n, tangent_n, axis_n, vx, vy, r_local, z, tip_constant, hub_constant,
-                          tip_ratio, chi0, skew_cos, disk_velocity, float(r_local.max()), frame.cant, frame.toe,
-                          frame.drdz)
+    return NodeKinematics(position, xs, frame.normal, frame.tangent, frame.span, vx, vy, r_local, z, tip_constant,
+                          hub_constant, tip_ratio, chi0, skew_cos, disk_velocity, float(r_local.max()), frame.cant,
+                          frame.toe, frame.drdz)
 
 
 def _distance_along_blade(rotor: Rotor, position: NDArray, axis: NDArray) -> NDArray:

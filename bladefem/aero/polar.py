@@ -110,6 +110,18 @@ def bent_axes(v_slope, w_slope):
 
 
 @kernel
+def curved_axes(v_slope, w_slope, cos_curve, sin_curve):
+    """:func:`bent_axes` of a section whose undeflected axes are already canted by the blade's curvature angle c
+    (AeroDyn's ``BlCrvAng``, positive downwind: the reference orientation R_y(c) of its blade nodes): the normal
+    cos(c) i1 - sin(c) i3 and span axis sin(c) i1 + cos(c) i3, turned by the deflection's rotation (as OpenFAST maps
+    the structural node's rotation onto the AeroDyn node, keeping the node's reference orientation)."""
+    n3, nt, n1, t3, tt, t1, s3, st, s1 = bent_axes(v_slope, w_slope)
+    return (cos_curve * n3 - sin_curve * s3, cos_curve * nt - sin_curve * st, cos_curve * n1 - sin_curve * s1,
+            t3, tt, t1,
+            sin_curve * n3 + cos_curve * s3, sin_curve * nt + cos_curve * st, sin_curve * n1 + cos_curve * s1)
+
+
+@kernel
 def euler_angles(m11, m12, m13, m21, m22, m23, m31):
     """(toe, cant, twist), rad: AeroDyn's Euler angles of a section (``TwistToeCant_FromLocalPolar``: NWTC
     ``EulerExtract`` of M = R(theta_z) R(theta_y) R(theta_x), toe = theta_x, cant = theta_y, twist = -theta_z) from
@@ -148,15 +160,18 @@ class Projection:
 
 
 def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tangent: NDArray, span: NDArray,
-               in_plane_slope: NDArray | float = 0.0, out_of_plane_slope: NDArray | float = 0.0) -> Projection:
+               in_plane_slope: NDArray | float = 0.0, out_of_plane_slope: NDArray | float = 0.0,
+               curve_angle: NDArray | float = 0.0) -> Projection:
     """The projection of every node: ``arm`` (B, Na, 3) the nodes from the apex, ``shaft`` (3,) the shaft axis,
     ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the undeflected blade's axes i1, e_t, i3,
-    the sections turned by the slopes (B, Na) of the deflected blade (:func:`bent_axes`)."""
+    the sections canted by the blade's curvature angle ``curve_angle`` (Na,) rad (``BlCrvAng``) and turned by the
+    slopes (B, Na) of the deflected blade (:func:`curved_axes`)."""
     shape = arm.shape[:-1]
     normal, tangent, span = (np.broadcast_to(axis, arm.shape) for axis in (normal, tangent, span))
     basis = np.stack([span, tangent, normal], axis=-2)                           # (B, Na, 3 axes, 3)
-    slopes = (np.broadcast_to(np.asarray(slope, dtype=float), shape) for slope in (in_plane_slope, out_of_plane_slope))
-    c = np.stack(np.vectorize(bent_axes, otypes=[float] * 9)(*slopes), axis=-1)           # (B, Na, 9)
+    slopes = [np.broadcast_to(np.asarray(slope, dtype=float), shape) for slope in (in_plane_slope, out_of_plane_slope)]
+    curve = np.broadcast_to(np.asarray(curve_angle, dtype=float), shape)
+    c = np.stack(np.vectorize(curved_axes, otypes=[float] * 9)(*slopes, np.cos(curve), np.sin(curve)), axis=-1)
     n_b, t_b, s_b = (np.einsum("...i,...ik->...k", c[..., 3 * j:3 * j + 3], basis) for j in range(3))
     if not polar:
         # AeroDyn's NoSweepPitchTwist: the Euler angles against the unturned blade (x i1, y -e_t, z i3); vx along

@@ -34,6 +34,8 @@ class Rotor:
     polars : the airfoil tables
     curve, sweep : offsets of the aerodynamic centre from the pitch axis at zero pitch (BlCrvAC positive downwind,
         BlSwpAC positive opposite to the rotation), m; zero when not given
+    curve_angle : the sections' cant from the pitch axis (BlCrvAng, positive toward downwind: the local slope of a
+        prebent blade), rad; zero when not given
     precone : ElastoDyn PreCone, rad; shaft_tilt : ElastoDyn ShftTilt, rad
     hub_height : height of the rotor centre above the ground (for shear), m
     air_density : kg/m^3; kinematic_viscosity : m^2/s (kept for reference: the polars do not depend on Re)
@@ -53,6 +55,7 @@ class Rotor:
     polars: tuple[Polar, ...]
     curve: NDArray[np.float64] | None = None
     sweep: NDArray[np.float64] | None = None
+    curve_angle: NDArray[np.float64] | None = None
     precone: float = 0.0
     shaft_tilt: float = 0.0
     hub_height: float = math.nan
@@ -64,7 +67,7 @@ class Rotor:
 
     def __post_init__(self) -> None:
         n = len(self.span)
-        for name in ("span", "chord", "twist", "curve", "sweep"):
+        for name in ("span", "chord", "twist", "curve", "sweep", "curve_angle"):
             value = getattr(self, name)
             value = np.zeros(n) if value is None else np.asarray(value, dtype=float)
             if value.shape != (n,):

@@ -58,7 +58,8 @@ def aerodyn_rotor(primary_path: str | os.PathLike, blade: Blade, n_blades: int =
                          field="BlSpn")
     return Rotor(n_blades=n_blades, hub_radius=blade.hub_radius, span=planform.span, chord=planform.chord,
                  twist=planform.twist, airfoil=planform.airfoil - 1, polars=polars, curve=planform.curve,
-                 sweep=planform.sweep, precone=blade.precone, air_density=default_air_density(primary.air_density),
+                 sweep=planform.sweep, curve_angle=planform.curve_angle, precone=blade.precone,
+                 air_density=default_air_density(primary.air_density),
                  options=primary.options(), notes=(f"aerodynamics of {primary.path} ({planform.source})", *left_out))
 
 

@@ -92,7 +92,8 @@ class OpenFASTDeck:
                              line=blade.lines[-1], field="BlSpn")
         return Rotor(n_blades=ed.num_blades, hub_radius=ed.hub_radius, span=blade.span, chord=blade.chord,
                      twist=blade.twist, airfoil=blade.airfoil - 1, polars=self.polars, curve=blade.curve,
-                     sweep=blade.sweep, precone=ed.precone[0], shaft_tilt=ed.shaft_tilt, hub_height=self.hub_height,
+                     sweep=blade.sweep, curve_angle=blade.curve_angle, precone=ed.precone[0], shaft_tilt=ed.shaft_tilt,
+                     hub_height=self.hub_height,
                      air_density=self.air_density, kinematic_viscosity=self.kinematic_viscosity,
                      options=self.aerodyn.options(), notes=(f"rotor of {self.path}",),
                      dynamic_wake=self.aerodyn.dynamic_wake())

@@ -3,7 +3,8 @@
 Each AeroDyn node (``BlSpn``) is a point of the flexible blade: its modal shapes, slopes and shortening integrals
 are linear interpolations of the structural beam's (root, span nodes, tip), as OpenFAST maps ElastoDyn's blade
 motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
-rotation) ride rigidly in the blade frame. At every state the node's absolute velocity (tower, nacelle, rotor and
+rotation) ride on rigid arms turned with the bent section (:attr:`TurbineAero.along`), each section canted by
+``BlCrvAng``. At every state the node's absolute velocity (tower, nacelle, rotor and
 blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
 the node solver (:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and
 out-of-plane slopes v', w' (:func:`bladefem.aero.polar.bent_axes`), with BEM_Mod 1 in AeroDyn's legacy projection
@@ -84,6 +85,14 @@ class TurbineAero:
     def polar_arrays(self) -> tuple[NDArray, ...]:
         """The packed polars (:func:`bladefem.aero.polars.pack_polars`) the kernels read."""
         return pack_polars(self.rotor.polars).arrays
+
+    @property
+    def along(self) -> NDArray:
+        """(k, Na) each node's motion along the blade axis per modal amplitude: its aerodynamic-centre offset o
+        (``offset``, across the axis) turned by the section's rotation, -(o . slope) to first order in the slopes
+        (as OpenFAST carries AeroDyn's node on the rigid arm from ElastoDyn's, turned with it: a prebent blade's
+        node, upwind of the axis, moves outward as the blade bends downwind)."""
+        return -np.einsum("kpa,pa->kp", self.slope, self.offset[:, 1:])
 
     @cached_property
     def undeflected_radius(self) -> NDArray:
@@ -230,7 +239,8 @@ class AeroLoads:
 def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) -> NodeGroup:
     """Positions, partial velocities (factored) and bias accelerations of every blade's aerodynamic nodes."""
     motion = model.motion(q, u) if motion is None else motion
-    nodes = BeamNodes(aero.axial, aero.value, aero.shortening, (0, 1, 2), np.eye(model.n)[model.blade_columns])
+    nodes = BeamNodes(aero.axial, aero.value, aero.shortening, (0, 1, 2), np.eye(model.n)[model.blade_columns],
+                      aero.along)
     span = nodes.deflect(q[model.blade_columns], u[model.blade_columns])
     return carry_nodes(motion.apex, motion.blade_frames, span.offset + aero.offset, span.partials,
                        nodes.selection, span.velocity, span.bias)
@@ -255,7 +265,8 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     relative = aero.inflow.velocity_at(r, t) - v
     apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
     arm = r - apex
-    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, i1, e_t, i3, v_slope, w_slope)
+    frame = projection(aero.rotor.options.formulation == 2, arm, shaft, i1, e_t, i3, v_slope, w_slope,
+                       aero.rotor.curve_angle)
     vx, vy = frame.components(relative)
     r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
     disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)

@@ -23,8 +23,9 @@ def aero_data(model) -> tuple:
         return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0, 2)),
                 np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
                 np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
-                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty)
+                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty, np.zeros((0, 2)))
     across = np.zeros((k, aero.n_nodes, 3))
+    across[:, :, 0] = aero.along
     across[:, :, 1:] = aero.value
     inflow, rotor = aero.inflow, aero.rotor
     knots, values, coefs, start, count = aero.polar_arrays
@@ -33,7 +34,8 @@ def aero_data(model) -> tuple:
             rotor.chord.copy(), np.ascontiguousarray(aero.theta, dtype=float), aero.tip_constant.copy(),
             aero.hub_constant.copy(), rotor.airfoil.astype(np.int64), knots, values, coefs, start, count,
             aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays(),
-            *wake_data(aero, model.params.n_blades))
+            *wake_data(aero, model.params.n_blades),
+            np.column_stack([np.cos(rotor.curve_angle), np.sin(rotor.curve_angle)]))
 
 
 def wake_data(aero, blades: int) -> tuple:

@@ -189,7 +189,7 @@ if njit is not None:                                   # module-level kernels: n
                 D[r, i] = across[i, p, r]
                 d[r] += across[i, p, r] * q[i]
             D[order, i] -= Sq
-        d[order] = axial[p] - 0.5 * s2
+        d[order] += axial[p] - 0.5 * s2
         for r in range(3):
             for i in range(k):
                 rate[r] += D[r, i] * u[i]

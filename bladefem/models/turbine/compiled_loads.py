@@ -31,7 +31,7 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.dynamic_wake import BLEND, MODEL, time_constant, wake_node_loads, wake_rates
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
-    from ...aero.polar import bent_axes, euler_angles
+    from ...aero.polar import curved_axes, euler_angles
     from ...aero.wind import point_wind
     from .compiled_kernels import beam_node
     from .compiled_state import full_state, state_rate
@@ -50,7 +50,7 @@ if njit is not None:                                   # module-level kernels: n
         aerodynamic node."""
         b_columns = data[9]
         across, short, axial, offset, slope = aero[0], aero[1], aero[2], aero[3], aero[4]
-        params, table, grid = aero[19], aero[20], aero[21]
+        params, table, grid, curve = aero[19], aero[20], aero[21], aero[25]
         wind = np.zeros(3)
         Z_w, frame_w, apex_w = work[4], work[5], work[6]
         rho_w, vel_w, RD_w, normal_w, span_w, rel_w = state[0], state[1], state[2], state[3], state[4], state[5]
@@ -75,7 +75,7 @@ if njit is not None:                                   # module-level kernels: n
                 for i in range(k):
                     v += slope[i, p, 0] * qb[i]
                     w += slope[i, p, 1] * qb[i]
-                n3, nt, n1, t3, tt, t1, s3, st, s1 = bent_axes(v, w)
+                n3, nt, n1, t3, tt, t1, s3, st, s1 = curved_axes(v, w, curve[p, 0], curve[p, 1])
                 for r in range(3):
                     rho_w[b, p, r] = (R[r, 0] * (d[0] + offset[p, 0]) + R[r, 1] * (d[1] + offset[p, 1])
                                       + R[r, 2] * (d[2] + offset[p, 2]))

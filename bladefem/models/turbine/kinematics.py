@@ -221,14 +221,15 @@ class BeamDeflection:
 class BeamNodes:
     """A modal beam's nodes: undeflected axial positions ``axial`` (P,), shapes ``value`` (k, P, 2) and
     shortening integrals ``shortening`` (k, k, P); the node offset is ``axial - s(x)`` along the beam axis plus
-    the modal displacement across it, ``s = 1/2 q^T S q``.
+    the modal displacement across it, ``s = 1/2 q^T S q``; ``along`` (k, P), for points offset from the axis, their
+    linear motion along it (the offset turned by the section's rotation).
 
     order : frame axes of (axial, transverse 1, transverse 2); selection : (k, n) or (B, k, n) matrix picking the
     beam's amplitudes out of the generalized coordinates (B beams alike, e.g. blades).
     """
 
     def __init__(self, axial: NDArray, value: NDArray, shortening: NDArray, order: tuple[int, int, int],
-                 selection: NDArray) -> None:
+                 selection: NDArray, along: NDArray | None = None) -> None:
         k, P = value.shape[:2]
         self.k, self.P = k, P
         self.axial = axial
@@ -236,6 +237,8 @@ class BeamNodes:
         across = np.zeros((k, P, 3))                  # the shapes in the frame's axes
         across[:, :, order[1]] = value[:, :, 0]
         across[:, :, order[2]] = value[:, :, 1]
+        if along is not None:                         # (k, P) linear motion along the axis (offset points)
+            across[:, :, order[0]] = along
         self.across_flat = across.reshape(k, P * 3)
         self.partials_template = np.moveaxis(across, 0, -1).copy()      # (P, 3, k), axial row filled per state
         self.shortening_flat = shortening.reshape(k, k * P)
@@ -250,11 +253,11 @@ class BeamNodes:
         Su = (u @ self.shortening_flat).reshape(lead + (self.k, self.P))
         ax = self.axial_axis
         offset = (q @ self.across_flat).reshape(shape)
-        offset[..., ax] = self.axial - 0.5 * np.einsum("...i,...ip->...p", q, Sq)
+        offset[..., ax] += self.axial - 0.5 * np.einsum("...i,...ip->...p", q, Sq)
         velocity = (u @ self.across_flat).reshape(shape)
-        velocity[..., ax] = -np.einsum("...i,...ip->...p", u, Sq)
+        velocity[..., ax] -= np.einsum("...i,...ip->...p", u, Sq)
         partials = np.broadcast_to(self.partials_template, lead + self.partials_template.shape).copy()
-        partials[..., ax, :] = -np.swapaxes(Sq, -1, -2)
+        partials[..., ax, :] -= np.swapaxes(Sq, -1, -2)
         bias = np.zeros(shape)
         bias[..., ax] = -np.einsum("...i,...ip->...p", u, Su)
         return BeamDeflection(offset=offset, partials=partials, velocity=velocity, bias=bias)

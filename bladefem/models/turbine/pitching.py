@@ -7,7 +7,8 @@ out-of-plane ``z``) by ``d = p - p0`` about the pitch axis, the same turn that b
 (flapwise ``(sin t, cos t)`` and edgewise ``(cos t, -sin t)`` both go to ``(y cos d + z sin d, -y sin d + z cos d)``
 at ``t + d``), and adds ``d`` to the sections' angle. What does not depend on the pitch is left alone: the modal
 stiffness (ElastoDyn's from the untwisted polynomials; bladefem's FE shapes turn with their stiffness), masses on
-the pitch axis, shortening integrals, the aerodynamic-centre offsets (as ``--pitch-deg`` builds them). The pitch
+the pitch axis, shortening integrals, the aerodynamic-centre offsets (as ``--pitch-deg`` builds them; their
+arms' motion along the axis, -(offset . slope), follows the turned slopes). The pitch
 rate's own inertial effect is left out, as in ElastoDyn without its pitch DOF.
 """
 
@@ -33,12 +34,12 @@ def pitch_arrays(pitch, base, references, structure, aero):
     """Every blade pitched to ``pitch`` (rad) on the kernels' arrays (``structure``, ``aero``: the structural and
     aerodynamic tuples of :class:`~.compiled.CompiledEquations`): the shapes' across components, the sections' and
     their slopes turned by ``pitch - base`` from the ``references`` (shapes, sections, slopes, angles) built at
-    ``base``, and ``pitch - base`` added to the sections' angles. Loops, so that numba compiles the same definition
-    for the compiled controller loop."""
+    ``base``, the offset nodes' motion along the axis set from the turned slopes, and ``pitch - base`` added to the
+    sections' angles. Loops, so that numba compiles the same definition for the compiled controller loop."""
     blade, value, slope, theta = references
     delta = pitch - base
     c, s = math.cos(delta), math.sin(delta)
-    shapes, sections, slopes, angles = structure[5], aero[0], aero[4], aero[8]
+    shapes, sections, offsets, slopes, angles = structure[5], aero[0], aero[3], aero[4], aero[8]
     for i in range(blade.shape[0]):
         for p in range(blade.shape[1]):
             y, z = blade[i, p, 1], blade[i, p, 2]
@@ -49,6 +50,8 @@ def pitch_arrays(pitch, base, references, structure, aero):
         for p in range(slope.shape[1]):
             y, z = slope[i, p, 0], slope[i, p, 1]
             slopes[i, p, 0], slopes[i, p, 1] = y * c + z * s, -y * s + z * c
+            # the offset node's motion along the axis follows the turned slopes (TurbineAero.along)
+            sections[i, p, 0] = -(slopes[i, p, 0] * offsets[p, 1] + slopes[i, p, 1] * offsets[p, 2])
     for p in range(theta.shape[0]):
         angles[p] = theta[p] + delta
 
