@@ -129,9 +129,10 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     calls = int(math.floor(duration / step + 1e-9))
     boundaries = np.append(np.arange(calls + 1) * step, duration) if calls * step < duration * (1 - 1e-12) else (
         np.arange(calls + 1) * step)
-    if method != "RK4" and controller.library is not None and not controller.setup.individual:
+    if controller.library is not None and not controller.setup.individual:
         try:
-            return compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress)
+            return compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress,
+                                 rk4_step if method == "RK4" else 0.0)
         finally:
             controller.close(run.last_call)
     x = system.initial_state()
@@ -166,7 +167,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             else:
                 out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
                                          limit=limit, first_step=end - t, watch=steps)
-            evaluations += out.evaluations
+            evaluations += out.evaluations + (method == "RK4")      # RK4: the end's rate, measured afresh
             if out.status == 4:
                 raise stop(SimulationStopped(*out.reason))
             if out.status:
@@ -203,10 +204,11 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
 
 
 def compiled_loop(run: Controlled, controller: DisconController, times: NDArray, boundaries: NDArray, rtol: float,
-                  atol: float, limit: NDArray, monitor: Monitor, progress: Callable[[float], None] | None
-                  ) -> SimulationResult:
+                  atol: float, limit: NDArray, monitor: Monitor, progress: Callable[[float], None] | None,
+                  rk4_step: float = 0.0) -> SimulationResult:
     """The loop of :func:`simulate_controlled` compiled (:mod:`.compiled_control`: the library called from the
-    kernel) for a library loaded in this process and collective pitch; its first call made here (a library or
+    kernel) for a library loaded in this process and collective pitch (DP54, or RK4 with steps up to ``rk4_step``
+    s where it is positive); its first call made here (a library or
     input file that fails there is an :class:`InputError`). Between kernel calls (about ``BUDGET`` right-hand
     sides) the new rows are watched, progress told and Ctrl-C looked for."""
     from .compiled import _dp54_tableau, first_call
@@ -249,7 +251,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
         while k < len(boundaries) - 1:
             start, before = t, rows
             args = (k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
-                    float(rtol), float(atol), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
+                    float(rtol), float(atol), float(rk4_step), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
                     float(compiled.hub_radius), pitching, function, controller.records, buffers, turbine, constants)
             with first_call("controlled loop", "controlled simulation kernels", controlled_chunk, args):
                 k, t, rows, count, status, bad = controlled_chunk(*args)
@@ -258,7 +260,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
             controller.pitch_command[:] = held_commands[0]
             run.last_call = float(boundaries[max(k - 1, 0)]) if not status else float(t)
             if status in (1, 2, 3):
-                error = diverged(system, int(bad), t, status, "DP54")
+                error = diverged(system, int(bad), t, status, "RK4" if rk4_step > 0 else "DP54")
                 error.result = result(rows)
                 raise error
             if status:
