@@ -104,6 +104,11 @@ class Controlled:
         self.law[2] = torque
 
 
+#: the share of RK4's stability limit (at the initial state) that "auto" allows one step per controller interval:
+#: a margin for the operating point's changes of the fastest mode
+RK4_MARGIN = 0.5
+
+
 def simulate_controlled(system: FreeSystem, controller: DisconController, duration: float,
                         dt_output: float = 0.05, rtol: float = 1e-6, atol: float = 1e-8, hub_wind: float = 0.0,
                         efficiency: float = 1.0, progress: Callable[[float], None] | None = None,
@@ -111,16 +116,20 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     """Integrate from 0 to ``duration`` (s) with the controller called every ``controller.setup.time_step``
     seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
     at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back);
-    ``method``: "DP54" (adaptive) or "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
-    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit).
+    ``method``: "DP54" (adaptive), "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
+    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit) or
+    "auto" (one RK4 step per controller interval where the interval is within ``RK4_MARGIN`` of that limit, as
+    ElastoDyn steps once per DT; DP54 otherwise).
     Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
     failure or Ctrl-C; a controller that fails on its first call (its library or input file) is an
     :class:`InputError`."""
     run = Controlled(system, hub_wind, efficiency)
     compiled, step = run.compiled, controller.setup.time_step
-    if method == "RK4":
+    if method in ("auto", "RK4"):
         stable, dof = rk4_stable_step(system)
-        if rk4_step > stable:
+        if method == "auto":
+            method, rk4_step = ("RK4", step) if step <= RK4_MARGIN * stable else ("DP54", rk4_step)
+        if method == "RK4" and rk4_step > stable:
             raise UnstableStep(f"RK4 with a step of {rk4_step:g} s is unstable for the fastest mode ({dof}): the "
                                f"step must be below {stable:.3g} s")
     times = output_times(duration, dt_output)
