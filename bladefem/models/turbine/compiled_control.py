@@ -8,7 +8,8 @@ from call to call are written (those that do not are the Python loop's first cal
 collective pitch (record 45) and torque (47) held over the interval, the pitch set on the kernels' arrays as
 :class:`.pitching.CompiledPitch` sets it, and the equations integrated with Dormand-Prince 5(4) (the steps and the
 error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval) or with classical
-RK4 at fixed steps (one per interval where the interval is no longer than the step, as ElastoDyn steps at DT). The load channels and
+RK4 at fixed steps (one per interval where the interval is no longer than the step, as ElastoDyn steps at DT) with
+the BEM solved at each step's start and its induction held over the step's other stages. The load channels and
 the derivative at an interval's end, which the next call measures, come from the last stage of the step that ends
 there (evaluated with its output row), not from one more right-hand side. The kernel returns after ``budget``
 right-hand sides (the caller watches the rows, polls Ctrl-C) or with a status.
@@ -158,13 +159,16 @@ if njit is not None:                                   # module-level kernels: n
                      data, work, hub_radius):
         """Classical RK4 from t to t_end (ElastoDyn's fixed steps, the twin of :func:`.controlled.rk4_interval`):
         steps no longer than ``step`` landing on each output time ``times[next_out:]`` inside the interval, whose
-        load row is the right-hand side that starts the next step; the rows within 1e-9 ``spacing`` of t_end take
+        load row is the right-hand side that starts the next step; the BEM solved at each step's start (``f0`` for
+        the first: solved there with the interval's commands) and its induced velocities held over the other three
+        stages (AeroDyn solves once per step too; without the dynamic wake, whose states carry the induction); the rows within 1e-9 ``spacing`` of t_end take
         the end state and the end's load channels (``end_row``, with the derivative there, one more right-hand
         side). Returns (x, derivative at the end, next_out, right-hand sides, status, offending index) as
         :func:`dp54_interval` does."""
         near = 1e-9 * spacing
         store_row(K, 0, f0)
         count = 0
+        hold = work[1][13]
         while True:
             inner = next_out < times.shape[0] and times[next_out] < t_end - near
             target = times[next_out] if inner else t_end
@@ -174,9 +178,12 @@ if njit is not None:                                   # module-level kernels: n
                 if i > 0:
                     store_row(K, 0, rate(t, x, q0, u0, index, data, work, hub_radius, end_row[:0]))
                     count += 1
+                hold[2] = 1.0                          # stages 2-4: the induction of the step's first
                 for s in range(1, 4):
                     stage = combination(x, h, RK4[s - 1], K, s)
-                    store_row(K, s, rate(t + RK4_C[s] * h, stage, q0, u0, index, data, work, hub_radius, end_row[:0]))
+                    store_row(K, s, rate(t + RK4_C[s] * h, stage, q0, u0, index, data, work, hub_radius,
+                                         end_row[:0]))
+                hold[2] = 0.0
                 x = combination(x, h, RK4[3], K, 4)
                 t = target if i == n - 1 else t + h
                 count += 3

@@ -296,9 +296,9 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
 def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,
                  rows: int) -> Integration:
     """Classical RK4 over the times ``chunk`` (steps no longer than ``step``, landing on each), the compiled
-    right-hand side; the load channels at the first ``rows`` times after the start (the output rows). Stops at a
+    right-hand side, the BEM's induction of each step's first stage held over the other three; the load channels at the first ``rows`` times after the start (the output rows). Stops at a
     state beyond ``limit`` or not finite (status 1, 2), as the adaptive kernel does."""
-    q0, u0, index = system.q0, system.u0, system.index
+    q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
     states, count = np.full((len(chunk), len(x)), np.nan), 0
     states[0] = x
     for i, (a, b) in enumerate(zip(chunk[:-1], chunk[1:])):
@@ -306,9 +306,11 @@ def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step:
         h, t = (b - a) / n, a
         for _ in range(n):
             k1 = compiled.derivative(t, x, q0, u0, index)
+            hold[2] = 1.0                                  # the induction of k1's solve held over k2-k4
             k2 = compiled.derivative(t + h / 2, x + h / 2 * k1, q0, u0, index)
             k3 = compiled.derivative(t + h / 2, x + h / 2 * k2, q0, u0, index)
             k4 = compiled.derivative(t + h, x + h * k3, q0, u0, index)
+            hold[2] = 0.0
             x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
             t += h
         count += 4 * n
