@@ -161,10 +161,10 @@ if njit is not None:                                   # module-level kernels: n
         steps no longer than ``step`` landing on each output time ``times[next_out:]`` inside the interval, whose
         load row is the right-hand side that starts the next step; the BEM solved at each step's start (``f0`` for
         the first: solved there with the interval's commands) and its induced velocities held over the other three
-        stages (AeroDyn solves once per step too; without the dynamic wake, whose states carry the induction); the rows within 1e-9 ``spacing`` of t_end take
-        the end state and the end's load channels (``end_row``, with the derivative there, one more right-hand
-        side). Returns (x, derivative at the end, next_out, right-hand sides, status, offending index) as
-        :func:`dp54_interval` does."""
+        stages (AeroDyn solves once per step too; without the dynamic wake, whose states carry the induction); the
+        rows within 1e-9 ``spacing`` of t_end take the end state and the end's load channels (``end_row``, with the
+        derivative there, one more right-hand side). Returns (x, derivative at the end, next_out, right-hand sides,
+        status, offending index) as :func:`dp54_interval` does."""
         near = 1e-9 * spacing
         store_row(K, 0, f0)
         count = 0

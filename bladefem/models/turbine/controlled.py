@@ -260,8 +260,9 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
         while k < len(boundaries) - 1:
             start, before = t, rows
             args = (k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
-                    float(rtol), float(atol), float(rk4_step), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
-                    float(compiled.hub_radius), pitching, function, controller.records, buffers, turbine, constants)
+                    float(rtol), float(atol), float(rk4_step), limit, tableau, K, q0, u0, index, compiled.loaded,
+                    compiled.all_work, float(compiled.hub_radius), pitching, function, controller.records, buffers,
+                    turbine, constants)
             with first_call("controlled loop", "controlled simulation kernels", controlled_chunk, args):
                 k, t, rows, count, status, bad = controlled_chunk(*args)
             call_first, evaluations = True, evaluations + count
@@ -296,8 +297,9 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
 def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,
                  rows: int) -> Integration:
     """Classical RK4 over the times ``chunk`` (steps no longer than ``step``, landing on each), the compiled
-    right-hand side, the BEM's induction of each step's first stage held over the other three; the load channels at the first ``rows`` times after the start (the output rows). Stops at a
-    state beyond ``limit`` or not finite (status 1, 2), as the adaptive kernel does."""
+    right-hand side, the BEM's induction of each step's first stage held over the other three; the load channels at
+    the first ``rows`` times after the start (the output rows). Stops at a state beyond ``limit`` or not finite
+    (status 1, 2), as the adaptive kernel does."""
     q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
     states, count = np.full((len(chunk), len(x)), np.nan), 0
     states[0] = x
