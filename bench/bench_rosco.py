@@ -3,14 +3,15 @@ machine: the deck with ROSCO (cases/nrel5mw/NRELOffshrBsline5MW_Onshore_ROSCO.fs
 torque law (``--torque-law``: cases/nrel5mw/NRELOffshrBsline5MW_Onshore.fst at its 11.4 m/s).
 
     python bench/bench_rosco.py [--torque-law] [--seconds 100] [--wind 16] [--repeats 1] \
-        [--openfast OPENFAST [--library LIBDISCON]]
+        [--openfast OPENFAST [--library LIBDISCON]] [--also '--method DP54' ...]
 
 bladefem: ``turbine DECK --simulate SECONDS`` (the whole command: deck read, model built, run, table written) in
 this process after a warm-up run (the numba kernels compiled and cached); with ROSCO the controller is called every
 DLL_DT (0.00625 s), started at ``--pitch-deg 10``, outputs every 0.05 s. OpenFAST: a copy of the deck brought to
 v5's layout (tests/data/openfast/rosco/write_decks.py for the ROSCO deck, tests/data/openfast/make_openfast_v5.py
 for the torque-law one) with TMax = SECONDS, the torque-law deck otherwise as shipped (11.4 m/s, DT 0.00625 s,
-ABM4). With ``--repeats N`` the two tools run alternately N times each and the medians are printed. CPU time of
+ABM4). ``--also OPTIONS`` times bladefem with those options too, as one more row. With ``--repeats N`` the
+tools run alternately N times each and the medians are printed. CPU time of
 the process (bladefem) and of the child (OpenFAST), wall time of each; the load average is printed, as the machine
 may be shared. Markdown table.
 """
@@ -83,14 +84,22 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--openfast")
     parser.add_argument("--library")
+    parser.add_argument("--also", action="append", default=[], metavar="OPTIONS",
+                        help="bladefem options timed as one more row in the same alternation (e.g. '--method DP54', "
+                             "the integrator of controlled runs before one RK4 step per interval)")
     args = parser.parse_args()
     argv = bladefem_argv(args.torque_law, args.wind, Path(tempfile.mkdtemp()) / "out.csv")
     bladefem_seconds(argv, 0.5)                                            # compile or load the kernels
     fst = openfast_deck(args.torque_law, args.library, args.seconds, args.wind) if args.openfast else None
     print(f"load average before: {os.getloadavg()[0]:.1f}")
     times: dict[str, list[tuple[float, float]]] = {"bladefem": [], "OpenFAST": []}
+    variants = {f"bladefem {options}": [*argv, *options.split()] for options in args.also}
+    for name in variants:
+        times[name] = []
     for _ in range(args.repeats):
         times["bladefem"].append(bladefem_seconds(argv, args.seconds))
+        for name, variant in variants.items():
+            times[name].append(bladefem_seconds(variant, args.seconds))
         if fst is not None:
             times["OpenFAST"].append(openfast_seconds(args.openfast, fst))
     print(f"load average after: {os.getloadavg()[0]:.1f}")
@@ -103,9 +112,11 @@ def main() -> None:
             cpu, wall = statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs)
             medians[name] = (cpu, wall)
             print(f"| {name} | {cpu:.2f} | {wall:.2f} | {args.seconds / cpu:.1f} |")
-    if len(medians) == 2:
-        (cpu_b, wall_b), (cpu_o, wall_o) = medians["bladefem"], medians["OpenFAST"]
-        print(f"| bladefem faster | {cpu_o / cpu_b:.1f}x | {wall_o / wall_b:.1f}x | |")
+    if "OpenFAST" in medians:
+        cpu_o, wall_o = medians["OpenFAST"]
+        for name, (cpu_b, wall_b) in medians.items():
+            if name != "OpenFAST":
+                print(f"| {name} faster | {cpu_o / cpu_b:.1f}x | {wall_o / wall_b:.1f}x | |")
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ DECK = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBs
 pytestmark = pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="controlled runs need numba")
 
 
-def run(isolated: bool, wind: float, pitch_deg: float, rpm: float, shapes: str):
+def run(isolated: bool, wind: float, pitch_deg: float, rpm: float, shapes: str, method: str = "DP54"):
     deck = read_turbine_deck(DECK, wind_speed=wind, rpm=rpm, pitch=np.radians(pitch_deg), blade_shapes=shapes,
                              controller=True)
     model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
@@ -30,15 +30,19 @@ def run(isolated: bool, wind: float, pitch_deg: float, rpm: float, shapes: str):
     system = FreeSystem(model, np.ones(model.n, dtype=bool), q, u)
     with DisconController(controller_setup(deck, None), "twin", isolated=isolated) as controller:
         return simulate_controlled(system, controller, 0.6, dt_output=0.01, hub_wind=wind,
-                                   efficiency=model.generator.efficiency)
+                                   efficiency=model.generator.efficiency, method=method, rk4_step=0.004)
 
 
+@pytest.mark.parametrize("method", ["DP54", "RK4"])
 @pytest.mark.parametrize("wind, pitch_deg, rpm, shapes", [(16.0, 10.0, 12.1, "fe"), (8.0, 0.0, 9.16, "polynomial")])
-def test_compiled_loop_equals_the_python_loop(wind, pitch_deg, rpm, shapes):
-    """Above rated (pitch and constant power) and below (torque law), each blade model: every row, channel and
-    right-hand side count alike; only the rounding of the end-of-interval loads differs (the compiled loop takes
-    them from the step's last stage, the Python loop from the dense output at the interval's end)."""
-    compiled, python = run(False, wind, pitch_deg, rpm, shapes), run(True, wind, pitch_deg, rpm, shapes)
+def test_compiled_loop_equals_the_python_loop(wind, pitch_deg, rpm, shapes, method):
+    """Above rated (pitch and constant power) and below (torque law), each blade model, each integrator (RK4 at
+    0.004 s: two steps per 0.00625 s interval, output rows every 0.01 s inside intervals and at their ends): every
+    row, channel and right-hand side count alike; only the rounding of the end-of-interval loads differs (the
+    compiled DP54 loop takes them from the step's last stage, the Python loop from the dense output at the
+    interval's end)."""
+    compiled = run(False, wind, pitch_deg, rpm, shapes, method)
+    python = run(True, wind, pitch_deg, rpm, shapes, method)
     assert compiled.evaluations == python.evaluations
     np.testing.assert_array_equal(compiled.time, python.time)
     for name, values in python.outputs.items():

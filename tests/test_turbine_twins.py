@@ -195,3 +195,36 @@ def test_bem_mod1_deck_against_openfast(tmp_path):
     v5 = json.loads((CASE.parents[1] / "tests" / "data" / "openfast" / "rated_fixed_speed_v5.json").read_text())
     swing = float(np.std(result.outputs["OoPDefl1"][window]))
     assert swing == pytest.approx(v5["channels"]["BEM_Mod 1"]["OoPDefl1"]["std"], rel=0.03)
+
+
+@pytest.mark.parametrize("name", [name for name, (_, options, changes) in VARIANTS.items()
+                                  if options.get("aero", True) and not changes.get("time")])
+def test_held_induction_equals_the_numpy_frozen_wake(tmp_path, name):
+    """The compiled loads with the induction held (the flag RK4's inner stages of a controlled run set): each node
+    takes the induced velocities (vx a, vy a') of the last solve, here at another state, against the numpy frozen
+    wake (:meth:`bladefem.models.turbine.frozen_wake.SectionAero.generalized` with :func:`held_induction` of that
+    state) as the difference from the loads solved afresh, on every option of the steady-wind variants; the hold
+    at the solved state itself gives the solved loads. Rounding: 1e-10 of the largest entry."""
+    if os.environ.get("BLADEFEM_NO_NUMBA"):
+        pytest.skip("compiled kernels switched off")
+    from bladefem.models.turbine.aero import aero_loads
+    from bladefem.models.turbine.compiled import compiled_equations
+    from bladefem.models.turbine.frozen_wake import SectionAero, held_induction
+    model, changes = variant_model(tmp_path, name)
+    compiled = compiled_equations(model)
+    (q_before, u_before), (q, u) = states(model, changes, seed=len(name))
+    hold = compiled.state[13]
+    _, solved = compiled(q, u)
+    _, solved_before = compiled(q_before, u_before)
+    hold[2] = 1.0
+    _, held = compiled(q, u)
+    _, again = compiled(q_before, u_before)
+    hold[2] = 0.0
+    frozen = SectionAero.of(model.aero).generalized(model, held_induction(model, model.aero, q_before, u_before), q,
+                                                    u).sum(axis=0)
+    fresh = aero_loads(model, model.aero, q, u).generalized
+    change = frozen - fresh
+    np.testing.assert_allclose(held - solved, change, rtol=0, atol=ROUNDING * np.abs(solved).max())
+    np.testing.assert_allclose(again, solved_before, rtol=0, atol=ROUNDING * np.abs(solved).max())
+    if model.aero.rotor.options.induction:
+        assert np.abs(change).max() > 1e-2 * np.abs(fresh).max()            # the held induction is not the new one

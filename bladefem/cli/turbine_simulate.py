@@ -97,7 +97,8 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     with DisconController(setup, Path(args.main).stem) as controller:
         return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * 1e-2,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,
-                                   method="RK4" if args.method == "RK4" else "DP54",
+                                   method=args.method if args.method in ("RK4", "DP54") else
+                                   "DP54" if args.rtol is not None else "auto",
                                    rk4_step=0.01 if args.step is None else args.step)
 
 

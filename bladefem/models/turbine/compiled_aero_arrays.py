@@ -53,10 +53,11 @@ def aero_state(blades: int, nodes: int, modes: int) -> tuple:
     normal and span axis (B, Na, 3; after the node solve the axes its loads act along), the relative wind
     (B, Na, 3), the node solutions (B, Na, 13), lumped forces and moments (B, Na, 3); the rotor summary
     (:data:`HUB`); the dynamic wake's states and their rates (B, Na, 4), the quasi-steady induced velocities
-    (B, Na, 2) and (states given: 1 or 0, tau1 in s); the bent section's direction of rotation (B, Na, 3; after
-    the solve the tangential load's axis)."""
+    (B, Na, 2; without the dynamic wake those of the last BEM solve) and (states given: 1 or 0, tau1 in s, the
+    induction held: 1 or 0); the bent section's direction of rotation (B, Na, 3; after the solve the tangential
+    load's axis)."""
     shape = (blades, nodes, 3)
     return (np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 3, modes)), np.zeros(shape),
             np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 13)), np.zeros(shape), np.zeros(shape),
             np.zeros(len(HUB)), np.zeros((blades, nodes, 4)), np.zeros((blades, nodes, 4)),
-            np.zeros((blades, nodes, 2)), np.zeros(2), np.zeros(shape))
+            np.zeros((blades, nodes, 2)), np.zeros(3), np.zeros(shape))

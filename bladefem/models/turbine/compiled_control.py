@@ -6,8 +6,10 @@ and RK4): per controller interval ``[t_k, t_k + DLL_DT]``, the records ServoDyn'
 from call to call are written (those that do not are the Python loop's first call's,
 :meth:`.discon.DisconController.constant_records`, written again before each call), the library called, its
 collective pitch (record 45) and torque (47) held over the interval, the pitch set on the kernels' arrays as
-:class:`.pitching.CompiledPitch` sets it (one definition, :func:`.pitching.pitch_arrays`), and the equations integrated with Dormand-Prince 5(4) (the steps and the
-error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval). The load channels and
+:class:`.pitching.CompiledPitch` sets it (one definition), and the equations integrated with Dormand-Prince 5(4) (the steps and the
+error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval) or with classical
+RK4 at fixed steps (one per interval where the interval is no longer than the step, as ElastoDyn steps at DT) with
+the BEM solved at each step's start and its induction held over the step's other stages. The load channels and
 the derivative at an interval's end, which the next call measures, come from the last stage of the step that ends
 there (evaluated with its output row), not from one more right-hand side. The kernel returns after ``budget``
 right-hand sides (the caller watches the rows, polls Ctrl-C) or with a status.
@@ -26,6 +28,11 @@ njit = cached_njit()
 #: statuses beyond the integrator's (1 not finite, 2 beyond the limit, 3 step size underflow): the library's aviFAIL
 #: < 0, a pitch or torque override asked for (records 55, 56), a demand that is not finite
 FAILED, OVERRIDE, NOT_FINITE = 6, 7, 8
+
+#: classical RK4: the stages' weights (rows 0-2: stages 2-4 from the rates before) and the step's (row 3); the
+#: stages' times as fractions of the step
+RK4 = np.array([[0.5, 0.0, 0.0, 0.0], [0.0, 0.5, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [1 / 6, 1 / 3, 1 / 3, 1 / 6]])
+RK4_C = np.array([0.0, 0.5, 0.5, 1.0])
 
 if njit is not None:
     from .compiled_integrators import check_state, combination, dense_output, error_norm, rate
@@ -128,9 +135,59 @@ if njit is not None:                                   # module-level kernels: n
         return x, K[0], next_out, count, 0, -1
 
     @njit(cache=True)
+    def rk4_interval(t, x, f0, t_end, spacing, step, times, out, loads, next_out, end_row, K, limit, q0, u0, index,
+                     data, work, hub_radius):
+        """Classical RK4 from t to t_end (ElastoDyn's fixed steps, the twin of :func:`.controlled.rk4_interval`):
+        steps no longer than ``step`` landing on each output time ``times[next_out:]`` inside the interval, whose
+        load row is the right-hand side that starts the next step; the BEM solved at each step's start (``f0`` for
+        the first: solved there with the interval's commands) and its induced velocities held over the other three
+        stages (AeroDyn solves once per step too; without the dynamic wake, whose states carry the induction); the
+        rows within 1e-9 ``spacing`` of t_end take the end state and the end's load channels (``end_row``, with the
+        derivative there, one more right-hand side). Returns (x, derivative at the end, next_out, right-hand sides,
+        status, offending index) as :func:`dp54_interval` does."""
+        near = 1e-9 * spacing
+        store_row(K, 0, f0)
+        count = 0
+        hold = work[1][13]
+        while True:
+            inner = next_out < times.shape[0] and times[next_out] < t_end - near
+            target = times[next_out] if inner else t_end
+            n = max(1, int(math.ceil((target - t) / step - 1e-9)))
+            h = (target - t) / n
+            for i in range(n):
+                if i > 0:
+                    store_row(K, 0, rate(t, x, q0, u0, index, data, work, hub_radius, end_row[:0]))
+                    count += 1
+                hold[2] = 1.0                          # stages 2-4: the induction of the step's first
+                for s in range(1, 4):
+                    stage = combination(x, h, RK4[s - 1], K, s)
+                    store_row(K, s, rate(t + RK4_C[s] * h, stage, q0, u0, index, data, work, hub_radius,
+                                         end_row[:0]))
+                hold[2] = 0.0
+                x = combination(x, h, RK4[3], K, 4)
+                t = target if i == n - 1 else t + h
+                count += 3
+            bad = check_state(x, limit)
+            if bad >= 0:
+                return x, K[0], next_out, count, 1 if not np.isfinite(x[bad]) else 2, bad
+            if not inner:
+                break
+            store_row(out, next_out, x)
+            store_row(K, 0, rate(t, x, q0, u0, index, data, work, hub_radius, loads[next_out]))
+            count += 1
+            next_out += 1
+        f_end = rate(t_end, x, q0, u0, index, data, work, hub_radius, end_row)
+        count += 1
+        while next_out < times.shape[0] and times[next_out] <= t_end + near:
+            store_row(out, next_out, x)
+            store_row(loads, next_out, end_row)
+            next_out += 1
+        return x, f_end, next_out, count, 0, -1
+
+    @njit(cache=True)
     def controlled_chunk(k, boundaries, x, rate_x, row, commands, call_first, times, out, loads, held, next_out,
-                         budget, rtol, atol, limit, tableau, K, q0, u0, index, data, work, hub_radius, pitching,
-                         function, records, buffers, turbine, constants):
+                         budget, rtol, atol, step, limit, tableau, K, q0, u0, index, data, work, hub_radius,
+                         pitching, function, records, buffers, turbine, constants):
         """Controller intervals from ``k`` on until ``budget`` right-hand sides are spent or the run ends: at each,
         the controller called (but for the first interval of a call without ``call_first``: its commands set
         already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place to
@@ -159,9 +216,14 @@ if njit is not None:                                   # module-level kernels: n
             call_first = True
             f0 = rate(t, x, q0, u0, index, data, work, hub_radius, row[:0])
             first = next_out
-            new, f_end, next_out, used, status, bad = dp54_interval(
-                t, x, f0, end, boundaries[1] - boundaries[0], times, out, loads, next_out, row, K, rtol, atol,
-                limit, tableau, q0, u0, index, data, work, hub_radius)
+            if step > 0.0:
+                new, f_end, next_out, used, status, bad = rk4_interval(
+                    t, x, f0, end, boundaries[1] - boundaries[0], step, times, out, loads, next_out, row, K, limit,
+                    q0, u0, index, data, work, hub_radius)
+            else:
+                new, f_end, next_out, used, status, bad = dp54_interval(
+                    t, x, f0, end, boundaries[1] - boundaries[0], times, out, loads, next_out, row, K, rtol, atol,
+                    limit, tableau, q0, u0, index, data, work, hub_radius)
             count += used + 1
             for j in range(first, next_out):
                 held[j] = commands[0]

@@ -13,7 +13,11 @@ kernels :func:`equations` and :func:`derivative` take ``data = (structure, aero,
 The dynamic wake's states (:mod:`bladefem.aero.dynamic_wake`) ride at the end of the integrator's state vector,
 after the free coordinates and rates: :func:`load_wake` copies them into the aero state before the equations (which
 then use their induced velocities and leave the states' rates there), :func:`store_wake_rate` copies the rates into
-dx/dt; a state vector without them (or a call of the equations alone) gives the quasi-steady loads.
+dx/dt; a state vector without them (or a call of the equations alone) gives the quasi-steady loads. Without them
+each node solve leaves its induced velocities (vx a, vy a') in the state, and with the hold flag set (the third of
+``state[13]``) the nodes take those instead of solving (a frozen wake, as
+:meth:`.frozen_wake.SectionAero.generalized`: the section loads of :func:`bladefem.aero.bem.section_loads` at the
+new inflow), for the stages of a step between two solves.
 """
 
 from __future__ import annotations
@@ -27,7 +31,7 @@ from ...numba_cache import cached_njit
 njit = cached_njit()
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
-    from ...aero.bem import node_loads
+    from ...aero.bem import node_loads, section_loads
     from ...aero.dynamic_wake import BLEND, MODEL, time_constant, wake_node_loads, wake_rates
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
@@ -182,6 +186,7 @@ if njit is not None:                                   # module-level kernels: n
         wake_parameters, disk_weight, ratio0 = aero[22], aero[23], aero[24]
         wake, wake_rate, quasi, wake_flag = state[10], state[11], state[12], state[13]
         lagging = wake_flag[0] != 0.0 and wake_parameters[MODEL] != 0.0
+        held = wake_flag[2] != 0.0 and not lagging
         disk_induction = 0.0
         # disk averages (AeroDyn's DiskAvgValues): relative wind, skew angle and direction, tip-speed ratio
         mean = np.zeros(3)
@@ -238,11 +243,19 @@ if njit is not None:                                   # module-level kernels: n
                     quasi[b, p, 0], quasi[b, p, 1] = q_axial, q_tangential
                     if vx != 0.0:
                         disk_induction += disk_weight[p] * q_axial / vx
+                elif held:                             # the induced velocities of the last solve (frozen wake)
+                    a = quasi[b, p, 0] / vx if vx != 0.0 else 0.0
+                    ap = quasi[b, p, 1] / vy if vy != 0.0 else 0.0
+                    phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(
+                        vx, vy, a, ap, chord[p], theta[p] + twist, airfoil[p], knots, values, coefs, start, count,
+                        options, scalars[0], cant, toe)
+                    phi_solved, valid = out_w[b, p, 0], out_w[b, p, 12] != 0.0
                 else:
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
                         vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p], scalars[1],
                         r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start,
                         count, options, scalars[0], math.nan, cant, toe, drdz)
+                    quasi[b, p, 0], quasi[b, p, 1] = a * vx, ap * vy
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl
                 row[7], row[8], row[9], row[10], row[11] = cd, cm, fn, ft, m

@@ -104,6 +104,11 @@ class Controlled:
         self.law[2] = torque
 
 
+#: the share of RK4's stability limit (at the initial state) that "auto" allows one step per controller interval:
+#: a margin for the operating point's changes of the fastest mode
+RK4_MARGIN = 0.5
+
+
 def simulate_controlled(system: FreeSystem, controller: DisconController, duration: float,
                         dt_output: float = 0.05, rtol: float = 1e-6, atol: float = 1e-8, hub_wind: float = 0.0,
                         efficiency: float = 1.0, progress: Callable[[float], None] | None = None,
@@ -111,16 +116,20 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     """Integrate from 0 to ``duration`` (s) with the controller called every ``controller.setup.time_step``
     seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
     at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back);
-    ``method``: "DP54" (adaptive) or "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
-    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit).
+    ``method``: "DP54" (adaptive), "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
+    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit) or
+    "auto" (one RK4 step per controller interval where the interval is within ``RK4_MARGIN`` of that limit, as
+    ElastoDyn steps once per DT; DP54 otherwise).
     Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
     failure or Ctrl-C; a controller that fails on its first call (its library or input file) is an
     :class:`InputError`."""
     run = Controlled(system, hub_wind, efficiency)
     compiled, step = run.compiled, controller.setup.time_step
-    if method == "RK4":
+    if method in ("auto", "RK4"):
         stable, dof = rk4_stable_step(system)
-        if rk4_step > stable:
+        if method == "auto":
+            method, rk4_step = ("RK4", step) if step <= RK4_MARGIN * stable else ("DP54", rk4_step)
+        if method == "RK4" and rk4_step > stable:
             raise UnstableStep(f"RK4 with a step of {rk4_step:g} s is unstable for the fastest mode ({dof}): the "
                                f"step must be below {stable:.3g} s")
     times = output_times(duration, dt_output)
@@ -129,9 +138,10 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     calls = int(math.floor(duration / step + 1e-9))
     boundaries = np.append(np.arange(calls + 1) * step, duration) if calls * step < duration * (1 - 1e-12) else (
         np.arange(calls + 1) * step)
-    if method != "RK4" and controller.library is not None and not controller.setup.individual:
+    if controller.library is not None and not controller.setup.individual:
         try:
-            return compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress)
+            return compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress,
+                                 rk4_step if method == "RK4" else 0.0)
         finally:
             controller.close(run.last_call)
     x = system.initial_state()
@@ -166,7 +176,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             else:
                 out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
                                          limit=limit, first_step=end - t, watch=steps)
-            evaluations += out.evaluations
+            evaluations += out.evaluations + (method == "RK4")      # RK4: the end's rate, measured afresh
             if out.status == 4:
                 raise stop(SimulationStopped(*out.reason))
             if out.status:
@@ -203,10 +213,11 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
 
 
 def compiled_loop(run: Controlled, controller: DisconController, times: NDArray, boundaries: NDArray, rtol: float,
-                  atol: float, limit: NDArray, monitor: Monitor, progress: Callable[[float], None] | None
-                  ) -> SimulationResult:
+                  atol: float, limit: NDArray, monitor: Monitor, progress: Callable[[float], None] | None,
+                  rk4_step: float = 0.0) -> SimulationResult:
     """The loop of :func:`simulate_controlled` compiled (:mod:`.compiled_control`: the library called from the
-    kernel) for a library loaded in this process and collective pitch; its first call made here (a library or
+    kernel) for a library loaded in this process and collective pitch (DP54, or RK4 with steps up to ``rk4_step``
+    s where it is positive); its first call made here (a library or
     input file that fails there is an :class:`InputError`). Between kernel calls (about ``BUDGET`` right-hand
     sides) the new rows are watched, progress told and Ctrl-C looked for."""
     from .compiled import _dp54_tableau, first_call
@@ -248,8 +259,9 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
         while k < len(boundaries) - 1:
             start, before = t, rows
             args = (k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
-                    float(rtol), float(atol), limit, tableau, K, q0, u0, index, compiled.loaded, compiled.all_work,
-                    float(compiled.hub_radius), pitching, function, controller.records, buffers, turbine, constants)
+                    float(rtol), float(atol), float(rk4_step), limit, tableau, K, q0, u0, index, compiled.loaded,
+                    compiled.all_work, float(compiled.hub_radius), pitching, function, controller.records, buffers,
+                    turbine, constants)
             with first_call("controlled loop", "controlled simulation kernels", controlled_chunk, args):
                 k, t, rows, count, status, bad = controlled_chunk(*args)
             call_first, evaluations = True, evaluations + count
@@ -257,7 +269,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
             controller.pitch_command[:] = held_commands[0]
             run.last_call = float(boundaries[max(k - 1, 0)]) if not status else float(t)
             if status in (1, 2, 3):
-                error = diverged(system, int(bad), t, status, "DP54")
+                error = diverged(system, int(bad), t, status, "RK4" if rk4_step > 0 else "DP54")
                 error.result = result(rows)
                 raise error
             if status:
@@ -284,9 +296,10 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
 def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,
                  rows: int) -> Integration:
     """Classical RK4 over the times ``chunk`` (steps no longer than ``step``, landing on each), the compiled
-    right-hand side; the load channels at the first ``rows`` times after the start (the output rows). Stops at a
-    state beyond ``limit`` or not finite (status 1, 2), as the adaptive kernel does."""
-    q0, u0, index = system.q0, system.u0, system.index
+    right-hand side, the BEM's induction of each step's first stage held over the other three; the load channels at
+    the first ``rows`` times after the start (the output rows). Stops at a state beyond ``limit`` or not finite
+    (status 1, 2), as the adaptive kernel does."""
+    q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
     states, count = np.full((len(chunk), len(x)), np.nan), 0
     states[0] = x
     for i, (a, b) in enumerate(zip(chunk[:-1], chunk[1:])):
@@ -294,9 +307,11 @@ def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step:
         h, t = (b - a) / n, a
         for _ in range(n):
             k1 = compiled.derivative(t, x, q0, u0, index)
+            hold[2] = 1.0                                  # the induction of k1's solve held over k2-k4
             k2 = compiled.derivative(t + h / 2, x + h / 2 * k1, q0, u0, index)
             k3 = compiled.derivative(t + h / 2, x + h / 2 * k2, q0, u0, index)
             k4 = compiled.derivative(t + h, x + h * k3, q0, u0, index)
+            hold[2] = 0.0
             x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
             t += h
         count += 4 * n
