@@ -69,11 +69,37 @@ def install() -> None:
 
 
 def cached_njit():
-    """numba's ``njit`` with these locators installed (kernels cached, stale when any kernel source changes), or
-    None without numba: the one place the compiled modules take their compiler from."""
+    """numba's ``njit`` with these locators installed (kernels cached, stale when any kernel source changes) and
+    without literal specializations (:func:`_unliteral`), or None without numba: the one place the compiled
+    modules take their compiler from."""
     try:
         from numba import njit
     except ImportError:                                    # pragma: no cover - numba is a dependency
         return None
     install()
-    return njit
+
+    def compiler(*args, **options):
+        if args and callable(args[0]):
+            return _unliteral(njit(**options)(args[0]))
+        decorate = njit(*args, **options)
+        return lambda function: _unliteral(decorate(function))
+    return compiler
+
+
+def _unliteral(dispatcher):
+    """``dispatcher`` compiled once per argument types when another kernel calls it with constants: numba types a
+    constant argument (``rotate(..., 1, ...)``) as a literal and compiles, and links into every caller, one
+    machine-code version per value (eight of one wind interpolation, three of a frame rotation); this types the
+    arguments of such calls as their plain types (int64 for an int). Uses numba's ``get_call_template``; where
+    that moved, the dispatcher is left as it is."""
+    try:
+        from numba.core import types
+        template = dispatcher.get_call_template
+    except (ImportError, AttributeError):                # pragma: no cover - numba's API moved
+        return dispatcher
+
+    def get_call_template(args, kws):
+        return template(tuple(types.unliteral(a) for a in args), {k: types.unliteral(v) for k, v in kws.items()})
+
+    dispatcher.get_call_template = get_call_template
+    return dispatcher

@@ -239,3 +239,21 @@ def test_kernel_cache_goes_stale_with_any_kernel_source():
     assert locator.get_source_stamp()[1] == numba_cache.sources_hash()
     paths = [path for pattern in numba_cache.KERNEL_SOURCES for path in numba_cache.PACKAGE.glob(pattern)]
     assert {"bem.py", "compiled_loads.py", "control.py"} <= {path.name for path in paths}
+
+
+def test_kernels_compile_once_for_constant_arguments():
+    """numba compiles, and links into every caller, one version of a kernel per constant value it is called with
+    (the frame rotation about axis 0, 1, 2: three); bladefem's compiler types such calls by their plain types: one
+    version, the same result."""
+    njit = pytest.importorskip("bladefem.numba_cache").cached_njit()
+
+    @njit
+    def scaled(x, factor):
+        return x * factor
+
+    @njit
+    def twice(x):
+        return scaled(x, 2) + scaled(x, 3)
+
+    assert twice(1.5) == 7.5
+    assert [str(signature) for signature in scaled.signatures] == ["(float64, int64)"]
