@@ -32,6 +32,7 @@ from .simulate import (
     output_times,
     result_of,
     rk4_stable_step,
+    rk4_step,
 )
 from .system import FreeSystem
 from .watch import Interrupted, Monitor, SimulationStopped
@@ -300,19 +301,17 @@ def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step:
     the first ``rows`` times after the start (the output rows). Stops at a state beyond ``limit`` or not finite
     (status 1, 2), as the adaptive kernel does."""
     q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
+
+    def rate(t: float, x: NDArray) -> NDArray:
+        return compiled.derivative(t, x, q0, u0, index)
+
     states, count = np.full((len(chunk), len(x)), np.nan), 0
     states[0] = x
     for i, (a, b) in enumerate(zip(chunk[:-1], chunk[1:])):
         n = max(1, int(math.ceil((b - a) / step - 1e-9)))
         h, t = (b - a) / n, a
         for _ in range(n):
-            k1 = compiled.derivative(t, x, q0, u0, index)
-            hold[2] = 1.0                                  # the induction of k1's solve held over k2-k4
-            k2 = compiled.derivative(t + h / 2, x + h / 2 * k1, q0, u0, index)
-            k3 = compiled.derivative(t + h / 2, x + h / 2 * k2, q0, u0, index)
-            k4 = compiled.derivative(t + h, x + h * k3, q0, u0, index)
-            hold[2] = 0.0
-            x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            x = rk4_step(rate, t, x, h, hold)              # the induction of the first stage's solve held
             t += h
         count += 4 * n
         bad = np.flatnonzero(~np.isfinite(x) | (np.abs(x) > limit))

@@ -116,6 +116,21 @@ def rk4_stable_step(system: FreeSystem) -> tuple[float, str]:
     return RK4_STABILITY / abs(values[fastest]), f"{coordinate_label(dof)}, {abs(values[fastest]) / 2 / np.pi:.3g} Hz"
 
 
+def rk4_step(rhs, t: float, x: NDArray, h: float, hold: NDArray | None = None) -> NDArray:
+    """One classical RK4 step of ``h`` s from ``(t, x)``; with ``hold`` (the aerodynamic state's flags) its third
+    flag is set over the stages after the first, whose right-hand sides then take the induction of the first's BEM
+    solve (:mod:`.compiled_loads`)."""
+    k1 = rhs(t, x)
+    if hold is not None:
+        hold[2] = 1.0
+    k2 = rhs(t + h / 2, x + h / 2 * k1)
+    k3 = rhs(t + h / 2, x + h / 2 * k2)
+    k4 = rhs(t + h, x + h * k3)
+    if hold is not None:
+        hold[2] = 0.0
+    return x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+
+
 def runge_kutta4(rhs, states: list[NDArray], times: NDArray, step: float,
                  check: Callable[[float, NDArray], None]) -> None:
     """Classical fixed-step 4th-order Runge-Kutta (ElastoDyn's Method = 1) with steps no larger than ``step`` (s)
@@ -126,11 +141,7 @@ def runge_kutta4(rhs, states: list[NDArray], times: NDArray, step: float,
         count = max(1, int(np.ceil((target - t) / step - 1e-9)))
         h = (target - t) / count
         for _ in range(count):
-            k1 = rhs(t, x)
-            k2 = rhs(t + h / 2, x + h / 2 * k1)
-            k3 = rhs(t + h / 2, x + h / 2 * k2)
-            k4 = rhs(t + h, x + h * k3)
-            x = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            x = rk4_step(rhs, t, x, h)
             t += h
         t = target
         states.append(x)
