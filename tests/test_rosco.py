@@ -231,3 +231,36 @@ def test_dll_ramp_is_refused(capsys, tmp_path):
             "True          DLL_Ramp")
     code, _, err = run(capsys, "turbine", fst, "--simulate", "1", "--quiet")
     assert code == 2 and "DLL_Ramp" in err
+
+
+def test_controller_interval_from_the_command_line(capsys, tmp_path):
+    """--controller-dt replaces ServoDyn's DLL_DT (a deck whose DLL_DT is 'default' calls the library every DT,
+    0.0002 s in the IEA-22MW's monopile deck): the torque demand then changes only at its calls, every 0.02 s
+    here, sampled every 0.005 s; the deck's own interval (DLL_DT 'default': its DT, 0.00625 s) changes it at nearly every row."""
+    held = tmp_path / "held.csv"
+    code, _, err = run(capsys, "turbine", DECK, "--simulate", "1", "--wind-speed", "11.4", "--dt", "0.005",
+                       "--controller-dt", "0.02", "--quiet", "-o", held)
+    assert code == 0, err
+    assert "called every 0.02 s (--controller-dt)" in err
+    torque = table(held)["GenTq"]
+    changes = np.flatnonzero(np.abs(np.diff(torque)) > 1e-6 * np.abs(torque[1:])) + 1     # the demand moved
+    assert len(changes) > 10 and np.all(np.mod(changes, 4) == 1)     # just after each call (rows 0.02 s apart)
+    deck_rows = tmp_path / "deck.csv"
+    code, _, err = run(capsys, "turbine", DECK, "--simulate", "1", "--wind-speed", "11.4", "--dt", "0.005",
+                       "--quiet", "-o", deck_rows)
+    assert code == 0 and "called every 0.00625 s (DLL_DT 'default': the deck's DT" in err
+    torque = table(deck_rows)["GenTq"]
+    assert np.count_nonzero(np.abs(np.diff(torque)) > 1e-6 * np.abs(torque[1:])) > 2 * len(changes)
+
+
+@pytest.mark.parametrize("argv", [("--controller-dt", "0"), ("--controller-dt", "-1"), ("--controller-dt", "nan")])
+def test_controller_interval_must_be_positive(capsys, argv):
+    code, _, err = run(capsys, "turbine", DECK, "--simulate", "1", "--quiet", *argv)
+    assert code == 2 and "--controller-dt" in err and "Traceback" not in err
+
+
+def test_controller_interval_needs_a_controller(capsys):
+    """Held at --rpm, the deck runs no controller library: --controller-dt is refused, naming itself."""
+    code, _, err = run(capsys, "turbine", DECK, "--simulate", "1", "--rpm", "12.1", "--quiet",
+                       "--controller-dt", "0.01")
+    assert code == 2 and "--controller-dt" in err and "Bladed-style DLL" in err

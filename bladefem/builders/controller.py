@@ -66,8 +66,9 @@ def controller_library(servo, override: str | None) -> Path:
                      line=line, field="DLL_FileName")
 
 
-def controller_setup(deck, override: str | None) -> ControllerSetup:
-    """The :class:`ControllerSetup` of a :class:`~.turbine_deck.TurbineDeck` whose ServoDyn has a DLL."""
+def controller_setup(deck, override: str | None, time_step: float | None = None) -> ControllerSetup:
+    """The :class:`ControllerSetup` of a :class:`~.turbine_deck.TurbineDeck` whose ServoDyn has a DLL;
+    ``time_step`` (s, ``--controller-dt``) replaces ServoDyn's DLL_DT."""
     servo = deck.servodyn
     dll = servo.dll
     infile = Path(servo.path).parent / dll.infile.strip().strip('"')
@@ -76,6 +77,8 @@ def controller_setup(deck, override: str | None) -> ControllerSetup:
                          line=dll.lines["DLL_InFile"], field="DLL_InFile")
     return ControllerSetup(
         library=str(controller_library(servo, override)), infile=str(infile.resolve()),
-        time_step=dll.time_step or deck.time_step, blades=deck.params.n_blades, individual=dll.individual,
+        time_step=time_step or dll.time_step or deck.time_step, blades=deck.params.n_blades, individual=dll.individual,
         servodyn=servo.path, pitch_limits=dll.pitch_limits, rate_limits=dll.rate_limits,
-        air_density=deck.aero.rotor.air_density if deck.aero is not None else 1.225, hub_height=deck.hub_height)
+        air_density=deck.aero.rotor.air_density if deck.aero is not None else 1.225, hub_height=deck.hub_height,
+        time_step_from="--controller-dt" if time_step else "ServoDyn's DLL_DT" if dll.time_step else
+        "DLL_DT 'default': the deck's DT")

@@ -30,7 +30,7 @@ from .aeroelastic import (
     wants_aeroelastic,
 )
 from .aeroelastic import wind_speeds as wind_speeds_type
-from .options import check_output, check_turbine_bounds, emit, rpm_sweep
+from .options import check_output, check_turbine_bounds, emit, positive, rpm_sweep
 from .wind_options import add_wind_options, apply_wind, check_wind_options
 
 if TYPE_CHECKING:
@@ -45,7 +45,7 @@ ELASTODYN_INITIAL = {"OoPDefl": ("oop_deflection", 1.0), "IPDefl": ("ip_deflecti
 ANGLES = ("yaw", "generator_azimuth", "drivetrain")
 #: figure formats of --plot (by suffix)
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
-SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial", "discon_library")
+SIMULATION_ONLY = ("dt", "rtol", "method", "step", "initial", "discon_library", "controller_dt")
 AERO_ONLY = ("wind_speed", "shear_exp")
 
 
@@ -130,6 +130,9 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="the Bladed-style controller library (DISCON entry point) a deck with PCMode and "
                              "VSContrl 5 runs (default: ServoDyn's DLL_FileName, else an installed ROSCO's "
                              "libdiscon.so)")
+    parser.add_argument("--controller-dt", type=positive, default=None, metavar="SECONDS",
+                        help="interval between calls of the controller library, s (default: ServoDyn's DLL_DT; "
+                             "its 'default' is the deck's DT)")
     parser.add_argument("--step", type=float, default=None, help="step of --method RK4, s (default 0.01)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write the table (or JSON) to FILE")
     parser.add_argument("--plot", metavar="FILE", help="figure of --simulate or --campbell (PNG, PDF, SVG)")

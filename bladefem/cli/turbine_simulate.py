@@ -19,12 +19,13 @@ def controller_of(deck, args: argparse.Namespace):
 
     servo = getattr(deck, "servodyn", None)
     if servo is None or servo.dll is None or not runs_controller(args):
-        if args.discon_library is not None:
-            raise InputError("the deck runs no Bladed-style DLL here (ServoDyn PCMode and VSContrl 5, without "
-                             "--rpm)", field="--discon-library")
+        for name, value in (("--discon-library", args.discon_library), ("--controller-dt", args.controller_dt)):
+            if value is not None:
+                raise InputError("the deck runs no Bladed-style DLL here (ServoDyn PCMode and VSContrl 5, without "
+                                 "--rpm)", field=name)
         return None
     from ..builders.controller import controller_setup
-    return controller_setup(deck, args.discon_library)
+    return controller_setup(deck, args.discon_library, args.controller_dt)
 
 
 def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse.Namespace,
@@ -93,7 +94,8 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     hub_wind = 0.0 if inflow is None else inflow.speed * (
         setup.hub_height / inflow.reference_height) ** inflow.shear_exponent
     efficiency = model.generator.efficiency if model.generator is not None else 1.0
-    print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s", file=sys.stderr)
+    print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s "
+          f"({setup.time_step_from}{'' if args.controller_dt else '; --controller-dt sets it'})", file=sys.stderr)
     with DisconController(setup, Path(args.main).stem) as controller:
         return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * 1e-2,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,

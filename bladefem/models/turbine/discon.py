@@ -54,6 +54,7 @@ class ControllerSetup:
     individual : Ptch_Cntrl 1 (the library returns one pitch per blade); servodyn : the ServoDyn file (for messages)
     pitch_limits : Ptch_Min, Ptch_Max, rad; rate_limits : PtchRate_Min, PtchRate_Max, rad/s; air_density : kg/m^3
     hub_height : rotor centre above the ground, m (where the wind speed sent is taken)
+    time_step_from : where time_step was set (for messages)
     """
 
     library: str
@@ -66,6 +67,7 @@ class ControllerSetup:
     rate_limits: tuple[float, float] = (-math.radians(8.0), math.radians(8.0))
     air_density: float = 1.225
     hub_height: float = 0.0
+    time_step_from: str = "DLL_DT"
 
 
 @dataclass(frozen=True)
