@@ -264,3 +264,17 @@ def test_controller_interval_needs_a_controller(capsys):
     code, _, err = run(capsys, "turbine", DECK, "--simulate", "1", "--rpm", "12.1", "--quiet",
                        "--controller-dt", "0.01")
     assert code == 2 and "--controller-dt" in err and "Bladed-style DLL" in err
+
+
+def test_the_first_call_check_is_silent_unless_it_fails(capfd, tmp_path):
+    """The first call is made first in an isolated twin of the library (a crash there is reported, not suffered):
+    what that twin prints is shown only when it fails. A good run shows the library's banner once; a run whose
+    DISCON.IN names a missing performance table shows the twin's Fortran runtime error naming that file."""
+    code = main(["turbine", str(DECK), "--simulate", "0.1", "--quiet", "-o", str(tmp_path / "out.csv")])
+    err = capfd.readouterr().err
+    assert code == 0 and err.count("Running ROSCO") == 1
+    fst = deck_copy(tmp_path)
+    (fst.parent / "Cp_Ct_Cq.NREL5MW.txt").unlink()
+    code = main(["turbine", str(fst), "--simulate", "1", "--quiet"])
+    err = capfd.readouterr().err
+    assert code == 2 and "Cp_Ct_Cq.NREL5MW.txt" in err and "Traceback" not in err

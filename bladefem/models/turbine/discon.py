@@ -112,10 +112,13 @@ class DisconController:
     default) a private copy of the library is loaded into this process (one instance per simulation: ROSCO's state
     is global to a loaded library), its prints sent to stderr while it is loaded, and its first call is made
     first in an isolated twin, so that a library or input file that crashes it (a Fortran runtime error reading
-    DISCON.IN) is reported."""
+    DISCON.IN) is reported; that twin's prints (ROSCO's banner and warnings, which the run's own instance prints
+    again) are shown only when it fails (``echo`` False)."""
 
-    def __init__(self, setup: ControllerSetup, root_name: str = "bladefem", isolated: bool = False) -> None:
+    def __init__(self, setup: ControllerSetup, root_name: str = "bladefem", isolated: bool = False,
+                 echo: bool = True) -> None:
         self.setup, self.root_name, self.isolated = setup, root_name, isolated
+        self.captured = None if echo else tempfile.TemporaryFile()
         self.status = 0
         self.pitch_command = np.zeros(setup.blades)
         self.folder = tempfile.TemporaryDirectory(prefix="bladefem-discon-")
@@ -135,11 +138,12 @@ class DisconController:
         """The library in its own process, told the array size and the two strings."""
         worker = Path(__file__).with_name("discon_worker.py")
         self.process = subprocess.Popen([sys.executable, str(worker), self.setup.library], stdin=subprocess.PIPE,
-                                        stdout=subprocess.PIPE, cwd=self.folder.name)
+                                        stdout=subprocess.PIPE, stderr=self.captured, cwd=self.folder.name)
         self.process.stdin.write(struct.pack("<3i", RECORDS, *self.lengths) + infile + outname)
         self.process.stdin.flush()
         if self.process.stdout.readline() != b"ready\n":
             self.process.wait()
+            self.replay()
             self.folder.cleanup()
             raise InputError(f"the controller library could not be loaded (its process ended with exit status "
                              f"{self.process.returncode}; the reason is above)", file=self.setup.library)
@@ -199,8 +203,12 @@ class DisconController:
     def call(self, time: float, measurements: Measurements) -> Commands:
         """Call the library at ``time`` (s) with the turbine's state; its pitch and torque demands."""
         if self.status == 0 and not self.isolated:
-            with DisconController(self.setup, self.root_name, isolated=True) as probe:
-                probe.call(time, measurements)
+            with DisconController(self.setup, self.root_name, isolated=True, echo=False) as probe:
+                try:
+                    probe.call(time, measurements)
+                except ControllerError:
+                    probe.replay()
+                    raise
         self.fill(time, measurements)
         records, fail, message = self.exchange(time)
         if fail < 0:
@@ -218,6 +226,13 @@ class DisconController:
             pitch = np.full(blades, float(records[44]))
         self.pitch_command = pitch
         return Commands(pitch=pitch, torque=float(records[46]))
+
+    def replay(self) -> None:
+        """What the library printed while its prints were held back (``echo`` False), onto stderr."""
+        if self.captured is not None:
+            self.captured.seek(0)
+            sys.stderr.write(self.captured.read().decode(errors="replace"))
+            sys.stderr.flush()
 
     def exchange(self, time: float) -> tuple[np.ndarray, int, str]:
         """One call of the library on the records; a library that ended its process is a ControllerError."""
@@ -264,4 +279,6 @@ class DisconController:
             except (ControllerError, OSError, subprocess.TimeoutExpired):
                 self.process.kill()
                 self.process.wait()
+        if self.captured is not None:
+            self.captured.close()
         self.folder.cleanup()
