@@ -8,7 +8,12 @@ Each repeat starts ``bladefem turbine cases/nrel5mw/NRELOffshrBsline5MW_Onshore.
 11.4`` in a subprocess with an empty numba cache (``NUMBA_CACHE_DIR`` a fresh temporary folder: a cold first run,
 compilation included), then again with that cache filled (a warm run: the machine code loaded from disk). Wall
 time and the child's CPU time (user + system) are printed, with the load average: on a shared machine the wall
-time of the cold run follows the load, the CPU time much less. Prints a Markdown table.
+time of the cold run follows the load, the CPU time much less. Prints a Markdown table. The CPU time includes the
+helper process that compiles the aerodynamic loads on the second core (``parallel_compile``).
+
+``--compare`` instead alternates, per repeat, a cold run compiling on two processes and one compiling everything in
+its process (``BLADEFEM_COMPILE_HELPER=1`` and ``0``; unset, a helper starts only where a core looks free), their order swapped every repeat, so that both
+see the same load.
 
 ``--profile`` instead runs one cold run in a subprocess that listens to numba's compile events and prints, per
 compiled function, the compile time spent in it but not in the functions it calls (numba typing and lowering, and
@@ -30,10 +35,15 @@ ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
 
 
-def run(cache: str, seconds: float, output: str) -> tuple[float, float]:
-    """(wall, CPU) seconds of one ``--simulate`` in a subprocess with the numba cache in ``cache``."""
+def run(cache: str, seconds: float, output: str, serial: bool | None = None) -> tuple[float, float]:
+    """(wall, CPU) seconds of one ``--simulate`` in a subprocess with the numba cache in ``cache`` (its helper
+    process included); ``serial``: every kernel compiled in that process (True) or a helper always started (False),
+    else as a user's run (a helper where a core looks free)."""
     env = {**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)}
     env.pop("BLADEFEM_NO_NUMBA", None)
+    env.pop("BLADEFEM_COMPILE_HELPER", None)
+    if serial is not None:
+        env["BLADEFEM_COMPILE_HELPER"] = "0" if serial else "1"
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run([sys.executable, "-m", "bladefem", "turbine", str(DECK), "--simulate", f"{seconds:g}",
@@ -83,12 +93,29 @@ def profile(seconds: float) -> None:
         print("\n".join(line for line in child.stdout.splitlines() if not line.startswith("#")))
 
 
+def compare(repeat: int, seconds: float) -> None:
+    """Cold runs on two processes and in one, alternated: wall and CPU of each, with the load average."""
+    print(f"`--simulate {seconds:g} --wind-speed 11.4`, NREL 5MW deck, {os.cpu_count()} CPUs, cold runs\n")
+    print("| run | compiled | wall [s] | CPU [s] | load average |\n|---|---|---|---|---|")
+    for i in range(repeat):
+        for serial in ((False, True) if i % 2 == 0 else (True, False)):
+            with tempfile.TemporaryDirectory() as folder:
+                load = os.getloadavg()[0]
+                wall, cpu = run(os.path.join(folder, "numba"), seconds, os.path.join(folder, "out.csv"), serial)
+            print(f"| {i + 1} | {'in one process' if serial else 'on two processes'} | {wall:.1f} | {cpu:.1f} | "
+                  f"{load:.1f} |", flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--seconds", type=float, default=20.0, help="simulated time, s")
     parser.add_argument("--profile", action="store_true", help="compile time per function of one cold run")
+    parser.add_argument("--compare", action="store_true", help="cold runs on two processes and in one, alternated")
     args = parser.parse_args()
+    if args.compare:
+        compare(args.repeat, args.seconds)
+        return
     if args.profile:
         profile(args.seconds)
         return

@@ -20,6 +20,7 @@ SCRIPT = """
 import json, sys
 from pathlib import Path
 from bladefem.models.turbine import parallel_compile
+parallel_compile.spare_core = lambda: True    # whatever the machine's load
 if sys.argv[3] == "broken":                   # the helper imports another bladefem than this one: it refuses
     parallel_compile.PACKAGE = Path(sys.argv[1]).parent / "elsewhere"
 from bladefem.cli import main
@@ -37,7 +38,7 @@ print(json.dumps({"code": code, "helpers": len(parallel_compile.STARTED),
 def simulate(folder: Path, cache: Path, mode: str = "") -> tuple[dict, bytes, str]:
     """One ``--simulate 0.05`` in a subprocess with numba's cache in ``cache``: its report, output file, stderr."""
     env = {**os.environ, "PYTHONPATH": str(ROOT), "NUMBA_CACHE_DIR": str(cache)}
-    for name in ("BLADEFEM_NO_NUMBA", "BLADEFEM_SERIAL_COMPILE"):
+    for name in ("BLADEFEM_NO_NUMBA", "BLADEFEM_COMPILE_HELPER"):
         env.pop(name, None)
     output = folder / f"out{len(list(folder.glob('out*')))}.csv"
     run = subprocess.run([sys.executable, "-c", SCRIPT, str(DECK), str(output), mode], cwd=folder, env=env,
@@ -62,3 +63,19 @@ def test_cold_run_compiles_on_two_processes_with_the_same_result(tmp_path):
     assert (alone["code"], alone["helpers"], alone["hits"], alone["misses"]) == (0, 1, 0, 1)
     assert alone["signatures"] == 1
     assert serial == parallel
+
+
+def test_helper_only_where_a_core_looks_free(monkeypatch):
+    from bladefem.models.turbine import parallel_compile
+    monkeypatch.setenv("BLADEFEM_COMPILE_HELPER", "0")
+    assert not parallel_compile.spare_core()
+    monkeypatch.setenv("BLADEFEM_COMPILE_HELPER", "1")
+    assert parallel_compile.spare_core()
+    monkeypatch.delenv("BLADEFEM_COMPILE_HELPER")
+    monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (1.5, 0.0, 0.0))
+    assert not parallel_compile.spare_core()
+    monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (0.9, 0.0, 0.0))
+    assert parallel_compile.spare_core()
+    monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0}, raising=False)
+    assert not parallel_compile.spare_core()

@@ -142,12 +142,9 @@ class CompiledEquations:
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
 
-    def _parallel(self, entry: str) -> Callable[[], None] | None:
-        """Before a cold first call of ``entry``: its kernels compiled on two processes
-        (:func:`.parallel_compile.compile_in_parallel`); None with the environment variable
-        BLADEFEM_SERIAL_COMPILE set (all compiled in this process)."""
-        if os.environ.get("BLADEFEM_SERIAL_COMPILE"):
-            return None
+    def _parallel(self, entry: str) -> Callable[[], None]:
+        """Before a cold first call of ``entry``: its kernels compiled on two processes where a core is free
+        (:func:`.parallel_compile.compile_in_parallel`)."""
         from .parallel_compile import compile_in_parallel
         return lambda: compile_in_parallel(entry, self.loaded, self.all_work)
 

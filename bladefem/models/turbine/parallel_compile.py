@@ -11,8 +11,9 @@ Measured compile CPU of one cold ``--simulate`` (quiet machine, callees included
 process); then the loaded equations, the rate function and the integrator 11 s, in this process, which the split
 cannot shorten (each needs the one below it compiled).
 
-Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper; a warm run
-never does. Both processes write numba's cache: numba writes each file to a temporary name and renames it, and the
+Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper, and only
+when a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of
+CPU); a warm run never does. The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both processes write numba's cache: numba writes each file to a temporary name and renames it, and the
 two compile different kernels except shared leaves (vector helpers, the beam node), which they compile for the
 same argument types, so for the same index entry with equivalent machine code. If the helper fails (it cannot
 start, import this same bladefem, or write the cache) this process compiles the aerodynamic loads itself, as
@@ -101,9 +102,26 @@ def stop(helper: subprocess.Popen) -> None:
     helper.wait()
 
 
+def spare_core() -> bool:
+    """Whether a helper process would find a core of its own: BLADEFEM_COMPILE_HELPER=1 (yes) or 0 (no), else at
+    least two cores for this process and the last minute's load average at least one below their number."""
+    chosen = os.environ.get("BLADEFEM_COMPILE_HELPER", "")
+    if chosen in ("0", "1"):
+        return chosen == "1"
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except OSError:                                   # no load average on this system
+        load = 0.0
+    return cores >= 2 and load <= cores - 1
+
+
 def compile_in_parallel(entry: str, loaded: tuple, work: tuple) -> None:
-    """:data:`HELPER` in a second process while this one compiles ``ENTRIES[entry]``; returns when both are done
-    (or the helper failed or ran past :data:`PATIENCE`: the caller's compilation then does what it left)."""
+    """:data:`HELPER` in a second process while this one compiles ``ENTRIES[entry]`` if :func:`spare_core`; returns
+    when both are done (or the helper failed or ran past :data:`PATIENCE`: the caller's compilation then does what
+    it left). Without a spare core, nothing (the caller compiles everything)."""
+    if not spare_core():
+        return
     kinds = signatures(loaded, work)
     helper = start_helper([(module, name, kinds[kind]) for module, name, kind in HELPER])
     try:
