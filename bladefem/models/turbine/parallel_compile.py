@@ -8,8 +8,9 @@ loads them from there instead of compiling them.
 
 Measured compile CPU of one cold ``--simulate`` (quiet machine, callees included): the aerodynamic loads 9.4 s
 (:data:`HELPER`); the structural equations 3.7 s, the output row 4.5 s, the state rate 0.9 s (:data:`ENTRIES`, this
-process); then the loaded equations, the rate function and the integrator 11 s, in this process, which the split
-cannot shorten (each needs the one below it compiled).
+process); then the integrator, which needs all of them compiled, 8.4 s in this process (numba inlines the rate
+function and the loaded equations into it: 12.4 s as three libraries, each optimizing and generating machine code
+again for the whole tree linked into it).
 
 Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper, and only
 when a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of
