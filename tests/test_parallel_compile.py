@@ -79,3 +79,21 @@ def test_helper_only_where_a_core_looks_free(monkeypatch):
     assert parallel_compile.spare_core()
     monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0}, raising=False)
     assert not parallel_compile.spare_core()
+
+
+def test_a_kernel_failing_ahead_is_left_to_the_call(monkeypatch):
+    """Compiling ahead only saves time: a kernel that fails there (or types it cannot name) raises nothing; the call
+    that follows compiles it and reports its error as it would without the helper."""
+    from bladefem.models.turbine import parallel_compile
+
+    def fail(jobs):
+        raise TypeError("cannot type")
+
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
+    monkeypatch.setattr(parallel_compile, "start_helper", lambda jobs: None)
+    monkeypatch.setattr(parallel_compile, "signatures", lambda loaded, work: dict.fromkeys(("aero", "structure",
+                                                                                            "state", "row"), ()))
+    monkeypatch.setattr(parallel_compile, "compile_kernels", fail)
+    assert parallel_compile.compile_in_parallel("integrator", (), ()) is None
+    monkeypatch.setattr(parallel_compile, "signatures", fail)
+    assert parallel_compile.compile_in_parallel("integrator", (), ()) is None

@@ -120,17 +120,21 @@ def spare_core() -> bool:
 def compile_in_parallel(entry: str, loaded: tuple, work: tuple) -> None:
     """:data:`HELPER` in a second process while this one compiles ``ENTRIES[entry]`` if :func:`spare_core`; returns
     when both are done (or the helper failed or ran past :data:`PATIENCE`: the caller's compilation then does what
-    it left). Without a spare core, nothing (the caller compiles everything)."""
+    it left). Without a spare core, nothing (the caller compiles everything). A kernel that fails to compile here
+    is left to the caller's compilation, which then reports the error as without this."""
     if not spare_core():
         return
-    kinds = signatures(loaded, work)
+    try:
+        kinds = signatures(loaded, work)
+    except Exception:                                 # compiled ahead only to save time: the call compiles it all
+        return
     helper = start_helper([(module, name, kinds[kind]) for module, name, kind in HELPER])
     try:
         compile_kernels([(module, name, kinds[kind]) for module, name, kind in ENTRIES[entry]])
         if helper is not None:
             helper.wait(timeout=PATIENCE)
-    except subprocess.TimeoutExpired:
-        pass
+    except Exception:                                 # a helper past PATIENCE, a kernel that fails here: the call
+        pass                                          # compiles what is left (and reports its error)
     finally:
         if helper is not None:
             stop(helper)
