@@ -112,7 +112,7 @@ def spare_core() -> bool:
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     try:
         load = os.getloadavg()[0]
-    except OSError:                                   # no load average on this system
+    except (AttributeError, OSError):                 # no load average on this system (Windows)
         load = 0.0
     return cores >= 2 and load <= cores - 1
 
