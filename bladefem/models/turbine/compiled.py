@@ -32,14 +32,16 @@ except ImportError:                                    # pragma: no cover - numb
 _READY: set[str] = set()
 
 
-def first_call(kernel: str, what: str, dispatcher, args: tuple, stream=None):
+def first_call(kernel: str, what: str, dispatcher, args: tuple, stream=None,
+               prepare: Callable[[], None] | None = None):
     """:func:`compile_notice` around the first call of ``kernel`` in this process when numba will compile it (no
-    machine code for these argument types in this process or in numba's disk cache); nothing otherwise, and nothing
-    on later calls (a check per call would cost more than a right-hand side)."""
+    machine code for these argument types in this process or in numba's disk cache), after which ``prepare`` (if
+    given) runs; nothing otherwise, and nothing on later calls (a check per call would cost more than a right-hand
+    side)."""
     if kernel in _READY:
         return nullcontext()
     _READY.add(kernel)
-    return compile_notice(what, stream) if will_compile(dispatcher, args) else nullcontext()
+    return compile_notice(what, stream, prepare) if will_compile(dispatcher, args) else nullcontext()
 
 
 def will_compile(dispatcher, args: tuple) -> bool:
@@ -58,13 +60,15 @@ def will_compile(dispatcher, args: tuple) -> bool:
 
 
 @contextmanager
-def compile_notice(what: str, stream=None):
-    """Tell the user on stderr that a kernel is being compiled, and how long it took."""
+def compile_notice(what: str, stream=None, prepare: Callable[[], None] | None = None):
+    """Tell the user on stderr that a kernel is being compiled (then run ``prepare``), and how long it took."""
     stream = stream or sys.stderr
     start = time.perf_counter()
     print(f"bladefem: compiling the {what} with numba (first run only, cached afterwards)...", file=stream,
           flush=True)
     try:
+        if prepare is not None:
+            prepare()
         yield
     finally:
         print(f"bladefem: compiled in {time.perf_counter() - start:.0f} s", file=stream, flush=True)
@@ -138,6 +142,12 @@ class CompiledEquations:
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
 
+    def _parallel(self, entry: str) -> Callable[[], None]:
+        """Before a cold first call of ``entry``: its kernels compiled on two processes where a core is free
+        (:func:`.parallel_compile.compile_in_parallel`)."""
+        from .parallel_compile import compile_in_parallel
+        return lambda: compile_in_parallel(entry, self.loaded, self.all_work)
+
     def __call__(self, q: NDArray, u: NDArray, t: float = 0.0, wake: NDArray | None = None
                  ) -> tuple[NDArray, NDArray]:
         """(M, f) at (q, u) and time t, with the dynamic wake's states ``wake`` (B, Na, 4), else quasi-steady."""
@@ -148,13 +158,14 @@ class CompiledEquations:
             self.state[10][...] = wake
         args = (np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(u, dtype=float), self.loaded,
                 self.all_work, float(t))
-        with first_call("equations", "turbine equations", equations, args):
+        with first_call("equations", "turbine equations", equations, args, prepare=self._parallel("equations")):
             return equations(*args)
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
         from .compiled_loads import derivative
         args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work)
-        with first_call("derivative", "turbine equations", derivative, args):
+        with first_call("derivative", "turbine equations", derivative, args,
+                        prepare=self._parallel("derivative")):
             return derivative(*args)
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
@@ -188,7 +199,8 @@ class CompiledEquations:
         def step(start: bool) -> tuple:
             args = (t, x, f, h, end, budget, start, times, out, loads, rows, float(rtol), float(atol), limit,
                     tableau, q0, u0, index, self.loaded, self.all_work, float(self.hub_radius))
-            with first_call(f"integrator {order}", "turbine simulation kernels", kernel, args):
+            with first_call(f"integrator {order}", "turbine simulation kernels", kernel, args,
+                            prepare=self._parallel("integrator")):
                 return kernel(*args)
 
         t_before, rows_before = t, 0
@@ -219,7 +231,7 @@ class CompiledEquations:
                 np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
                 np.ascontiguousarray(index, dtype=np.int64), self.loaded, self.all_work, float(self.hub_radius),
                 blade)
-        with first_call("outputs", "turbine outputs", load_outputs, args):
+        with first_call("outputs", "turbine outputs", load_outputs, args, prepare=self._parallel("outputs")):
             return load_outputs(*args)
 
     def root_moments(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,

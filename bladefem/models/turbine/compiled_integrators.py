@@ -28,10 +28,12 @@ if njit is not None:
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
-    @njit(cache=True)
+    @njit(cache=True, inline="always")
     def rate(t, x, q0, u0, index, data, work, hub_radius, row):
         """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
-        same evaluation of the equations) if it is not empty."""
+        same evaluation of the equations) if it is not empty. Inlined by numba into its callers: as a library of
+        its own it would optimize and generate machine code again for the whole tree below it (3 s of a cold run's
+        compilation on the integrator's critical path)."""
         q, u = full_state(t, x, q0, u0, index)
         load_wake(x, index.shape[0], work[1])
         M, f = equations(q, u, data, work, t)

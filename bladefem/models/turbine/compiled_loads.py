@@ -358,9 +358,10 @@ if njit is not None:                                   # module-level kernels: n
             f[i] -= torque * generator_angle[i]
         return torque
 
-    @njit(cache=True)
+    @njit(cache=True, inline="always")
     def equations(q, u, data, work, t):
-        """Mass matrix and forcing with the aerodynamic loads (wind at time t) and the generator torque."""
+        """Mass matrix and forcing with the aerodynamic loads (wind at time t) and the generator torque. Inlined by
+        numba into its callers, as :func:`.compiled_integrators.rate`."""
         structure, aero, law = data
         M, f = structural_equations(q, u, structure, work[0])
         add_aero(f, q, u, structure, aero, work[0], work[1], t)

@@ -1,0 +1,99 @@
+"""A cold first --simulate compiles the aerodynamic loads in a helper process
+(:mod:`bladefem.models.turbine.parallel_compile`) while this one compiles the structural equations: this process
+then loads them from numba's cache instead of compiling them; the output is the same to the bit as with everything
+compiled in one process (the helper failing, which falls back to that); a warm run starts no helper; every kernel is
+compiled for one argument-type signature (what lets the two processes write the cache without clashing)."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("numba")
+
+ROOT = Path(__file__).resolve().parents[1]
+DECK = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
+SCRIPT = """
+import json, sys
+from pathlib import Path
+from bladefem.models.turbine import parallel_compile
+parallel_compile.spare_core = lambda: True    # whatever the machine's load
+if sys.argv[3] == "broken":                   # the helper imports another bladefem than this one: it refuses
+    parallel_compile.PACKAGE = Path(sys.argv[1]).parent / "elsewhere"
+from bladefem.cli import main
+code = main(["turbine", sys.argv[1], "--simulate", "0.05", "--wind-speed", "11.4", "--quiet", "--output", sys.argv[2]])
+from numba.core.registry import CPUDispatcher
+kernels = [value for name, module in list(sys.modules.items()) if name.startswith("bladefem")
+           for value in vars(module).values() if isinstance(value, CPUDispatcher)]
+from bladefem.models.turbine.compiled_loads import add_aero
+print(json.dumps({"code": code, "helpers": len(parallel_compile.STARTED),
+                  "hits": sum(add_aero.stats.cache_hits.values()), "misses": sum(add_aero.stats.cache_misses.values()),
+                  "signatures": max(len(kernel.signatures) for kernel in kernels)}))
+"""
+
+
+def simulate(folder: Path, cache: Path, mode: str = "") -> tuple[dict, bytes, str]:
+    """One ``--simulate 0.05`` in a subprocess with numba's cache in ``cache``: its report, output file, stderr."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "NUMBA_CACHE_DIR": str(cache)}
+    for name in ("BLADEFEM_NO_NUMBA", "BLADEFEM_COMPILE_HELPER"):
+        env.pop(name, None)
+    output = folder / f"out{len(list(folder.glob('out*')))}.csv"
+    run = subprocess.run([sys.executable, "-c", SCRIPT, str(DECK), str(output), mode], cwd=folder, env=env,
+                         capture_output=True, text=True, timeout=900)
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout.splitlines()[-1]), output.read_bytes(), run.stderr
+
+
+@pytest.mark.slow
+def test_cold_run_compiles_on_two_processes_with_the_same_result(tmp_path):
+    cold, parallel, stderr = simulate(tmp_path, tmp_path / "cache")
+    assert "compiling the turbine simulation kernels" in stderr
+    # the helper compiled the aerodynamic loads; this process loaded them from the cache
+    assert (cold["code"], cold["helpers"], cold["hits"], cold["misses"]) == (0, 1, 1, 0)
+    assert cold["signatures"] == 1
+    warm, again, stderr = simulate(tmp_path, tmp_path / "cache")
+    assert "compiling" not in stderr
+    assert (warm["code"], warm["helpers"], warm["hits"], warm["misses"]) == (0, 0, 0, 0)
+    assert again == parallel
+    # a helper that fails: this process compiles the aerodynamic loads itself, with the same result
+    alone, serial, stderr = simulate(tmp_path, tmp_path / "other", "broken")
+    assert (alone["code"], alone["helpers"], alone["hits"], alone["misses"]) == (0, 1, 0, 1)
+    assert alone["signatures"] == 1
+    assert serial == parallel
+
+
+def test_helper_only_where_a_core_looks_free(monkeypatch):
+    from bladefem.models.turbine import parallel_compile
+    monkeypatch.setenv("BLADEFEM_COMPILE_HELPER", "0")
+    assert not parallel_compile.spare_core()
+    monkeypatch.setenv("BLADEFEM_COMPILE_HELPER", "1")
+    assert parallel_compile.spare_core()
+    monkeypatch.delenv("BLADEFEM_COMPILE_HELPER")
+    monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (1.5, 0.0, 0.0))
+    assert not parallel_compile.spare_core()
+    monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (0.9, 0.0, 0.0))
+    assert parallel_compile.spare_core()
+    monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0}, raising=False)
+    assert not parallel_compile.spare_core()
+
+
+def test_a_kernel_failing_ahead_is_left_to_the_call(monkeypatch):
+    """Compiling ahead only saves time: a kernel that fails there (or types it cannot name) raises nothing; the call
+    that follows compiles it and reports its error as it would without the helper."""
+    from bladefem.models.turbine import parallel_compile
+
+    def fail(jobs):
+        raise TypeError("cannot type")
+
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
+    monkeypatch.setattr(parallel_compile, "start_helper", lambda jobs: None)
+    monkeypatch.setattr(parallel_compile, "signatures", lambda loaded, work: dict.fromkeys(("aero", "structure",
+                                                                                            "state", "row"), ()))
+    monkeypatch.setattr(parallel_compile, "compile_kernels", fail)
+    assert parallel_compile.compile_in_parallel("integrator", (), ()) is None
+    monkeypatch.setattr(parallel_compile, "signatures", fail)
+    assert parallel_compile.compile_in_parallel("integrator", (), ()) is None
