@@ -97,3 +97,21 @@ def test_a_kernel_failing_ahead_is_left_to_the_call(monkeypatch):
     assert parallel_compile.compile_in_parallel("integrator", (), ()) is None
     monkeypatch.setattr(parallel_compile, "signatures", fail)
     assert parallel_compile.compile_in_parallel("integrator", (), ()) is None
+
+
+def test_no_second_helper_for_kernels_this_process_holds(monkeypatch):
+    """A later entry point (the outputs after the integrator, the derivative after the outputs) starts no helper
+    for kernels an earlier one already compiled or loaded in this process."""
+    from bladefem.models.turbine import parallel_compile
+    started = []
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
+    monkeypatch.setattr(parallel_compile, "start_helper", lambda jobs: started.append(jobs))
+    monkeypatch.setattr(parallel_compile, "signatures", lambda loaded, work: dict.fromkeys(("aero", "structure",
+                                                                                            "state", "row"), ()))
+    monkeypatch.setattr(parallel_compile, "compile_kernels", lambda jobs: None)
+    monkeypatch.setattr(parallel_compile, "ready", lambda module, name, types: True)
+    parallel_compile.compile_in_parallel("derivative", (), ())
+    assert started == []
+    monkeypatch.setattr(parallel_compile, "ready", lambda module, name, types: False)
+    parallel_compile.compile_in_parallel("derivative", (), ())
+    assert [[name for _, name, _ in jobs] for jobs in started] == [["add_aero"]]

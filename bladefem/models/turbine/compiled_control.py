@@ -35,7 +35,8 @@ RK4 = np.array([[0.5, 0.0, 0.0, 0.0], [0.0, 0.5, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]
 RK4_C = np.array([0.0, 0.5, 0.5, 1.0])
 
 if njit is not None:
-    from .compiled_integrators import check_state, combination, dense_output, error_norm, rate
+    from .compiled_integrators import check_state, combination, dense_output, error_norm
+    from .compiled_integrators import rate_call as rate       # one library, not inlined at each call site
     from .compiled_kernels import store_row
     from .compiled_state import full_state
     from .pitching import set_pitch

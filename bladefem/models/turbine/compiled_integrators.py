@@ -44,6 +44,12 @@ if njit is not None:                                   # module-level kernels: n
         return out
 
     @njit(cache=True)
+    def rate_call(t, x, q0, u0, index, data, work, hub_radius, row):
+        """:func:`rate` as a library of its own, for callers with many call sites (the controlled loop's eight:
+        there inlining each copy costs more to compile than the library it saves, 3.5 s of 53 s measured)."""
+        return rate(t, x, q0, u0, index, data, work, hub_radius, row)
+
+    @njit(cache=True)
     def check_state(x, limit):
         """-1 if every |x_i| <= limit_i and finite, else the first offending index (status via sign of the
         value: not finite or beyond the limit)."""

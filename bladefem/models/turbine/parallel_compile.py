@@ -77,6 +77,13 @@ def compile_kernels(jobs) -> None:
         getattr(importlib.import_module(module), name).compile(tuple(argument_types))
 
 
+def ready(module: str, name: str, argument_types: tuple) -> bool:
+    """Whether this process already holds the kernel for these argument types (compiled or loaded by an earlier
+    entry point: a second helper would only load it again)."""
+    import importlib
+    return tuple(argument_types) in getattr(importlib.import_module(module), name).signatures
+
+
 def start_helper(jobs) -> subprocess.Popen | None:
     """The helper process compiling ``jobs``, or None if it cannot start."""
     environment = {**os.environ, "PYTHONPATH": os.pathsep.join(
@@ -128,7 +135,8 @@ def compile_in_parallel(entry: str, loaded: tuple, work: tuple) -> None:
         kinds = signatures(loaded, work)
     except Exception:                                 # compiled ahead only to save time: the call compiles it all
         return
-    helper = start_helper([(module, name, kinds[kind]) for module, name, kind in HELPER])
+    jobs = [(module, name, kinds[kind]) for module, name, kind in HELPER if not ready(module, name, kinds[kind])]
+    helper = start_helper(jobs) if jobs else None
     try:
         compile_kernels([(module, name, kinds[kind]) for module, name, kind in ENTRIES[entry]])
         if helper is not None:
