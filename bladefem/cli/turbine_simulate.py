@@ -32,6 +32,7 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
     from ..models.turbine.simulate import (
+        ABSOLUTE_TOLERANCE,
         SimulationStopped,
         UnstableStep,
         output_times,
@@ -59,7 +60,7 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
                 result = controlled_run(FreeSystem(model, free, q0, u0), controller, args, dt, rtol, progress)
             else:
                 result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
-                                  atol=rtol * 1e-2, method=method, step=0.01 if args.step is None else args.step,
+                                  atol=rtol * ABSOLUTE_TOLERANCE, method=method, step=0.01 if args.step is None else args.step,
                                   progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
@@ -81,6 +82,7 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     """The simulation with the deck's controller library (:mod:`bladefem.models.turbine.controlled`)."""
     from ..models.turbine.controlled import simulate_controlled
     from ..models.turbine.discon import DisconController
+    from ..models.turbine.simulate import ABSOLUTE_TOLERANCE
 
     if args.method not in (None, "auto", "DP54", "RK4"):
         raise InputError("a run with the controller library integrates with DP54 (or RK4) between controller "
@@ -95,7 +97,7 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     efficiency = model.generator.efficiency if model.generator is not None else 1.0
     print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s", file=sys.stderr)
     with DisconController(setup, Path(args.main).stem) as controller:
-        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * 1e-2,
+        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * ABSOLUTE_TOLERANCE,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,
                                    method=args.method if args.method in ("RK4", "DP54") else
                                    "DP54" if args.rtol is not None else "auto",
