@@ -152,7 +152,8 @@ def main_aero(seconds: float = 100.0) -> str:
     speed = ["| model | integrator | RHS per simulated s | simulated s per CPU s | tip error [m] | power error [kW] |",
              "|---|---|---|---|---|---|"]
     rhs = ["| model | compiled RHS [ms] | numpy RHS [ms] |", "|---|---|---|"]
-    share = ["| model | DP54 rtol 1e-6 atol 1e-7, outputs every 0.05 s [CPU s] | without output rows [CPU s] | channels' share |",
+    share = ["| model | DP54 rtol 1e-6 atol 1e-7, outputs every 0.05 s [CPU s] | without output rows [CPU s] "
+             "| channels' share |",
              "|---|---|---|---|"]
     for label, model in aero_models().items():
         q, u = np.zeros(model.n), np.zeros(model.n)

@@ -60,8 +60,8 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
                 result = controlled_run(FreeSystem(model, free, q0, u0), controller, args, dt, rtol, progress)
             else:
                 result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
-                                  atol=rtol * ABSOLUTE_TOLERANCE, method=method, step=0.01 if args.step is None else args.step,
-                                  progress=progress)
+                                  atol=rtol * ABSOLUTE_TOLERANCE, method=method,
+                                  step=0.01 if args.step is None else args.step, progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
     except SimulationStopped as stop:
@@ -97,7 +97,8 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     efficiency = model.generator.efficiency if model.generator is not None else 1.0
     print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s", file=sys.stderr)
     with DisconController(setup, Path(args.main).stem) as controller:
-        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * ABSOLUTE_TOLERANCE,
+        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol,
+                                   atol=rtol * ABSOLUTE_TOLERANCE,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,
                                    method=args.method if args.method in ("RK4", "DP54") else
                                    "DP54" if args.rtol is not None else "auto",

@@ -20,8 +20,8 @@ from .parameters import coordinate_label
 from .system import FreeSystem
 from .watch import Interrupted, Monitor, SimulationStopped
 
-__all__ = ["ABSOLUTE_TOLERANCE", "CHANNELS", "METHODS", "DivergenceError", "Interrupted", "SimulationResult", "SimulationStopped",
-           "UnstableStep", "plot_outputs", "simulate", "table_text", "write_table"]
+__all__ = ["ABSOLUTE_TOLERANCE", "CHANNELS", "METHODS", "DivergenceError", "Interrupted", "SimulationResult",
+           "SimulationStopped", "UnstableStep", "plot_outputs", "simulate", "table_text", "write_table"]
 
 #: largest |lambda| h for which classical RK4 stays stable on an undamped mode (2 sqrt(2) on the imaginary axis)
 RK4_STABILITY = 2.8
