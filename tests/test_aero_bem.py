@@ -157,3 +157,40 @@ def test_pure_python_path_matches_compiled(deck):
     reference = rotor_performance(deck, 11.4, 12.1, 0.0, azimuths=2)
     assert thrust == pytest.approx(reference.thrust, rel=1e-12)
     assert torque == pytest.approx(reference.torque, rel=1e-12)
+
+
+@pytest.mark.parametrize("formulation", [1, 2])
+def test_first_trial_finds_the_same_root(deck, formulation):
+    """Brent's method started at the Betz rotor's inflow angle (the solve's first trial in the momentum region) and
+    from the bracket's ends alone find the same root of every NREL 5MW node, to the residual tolerance, from
+    cut-in to cut-out at the pitch of the operating schedule, with the blade moving in and against the flow (vx
+    and vy of +-20 %) and canted and toed sections (BEM_Mod 2): the first trial is a point computed from the node's
+    inputs alone, so the solution stays independent of the path."""
+    from bladefem.aero.bem import EDGE, PREDICTED_FACTOR, brent, framed_residual, section_frame
+    rotor = deck.rotor()
+    options = BEMOptions(formulation=formulation).vector()
+    z = rotor.hub_radius + rotor.span
+    tip_c, hub_c = 3 * (z[-1] - z) / (2 * z), 3 * (z - rotor.hub_radius) / (2 * rotor.hub_radius)
+    table = pack_polars(rotor.polars).arrays
+    checked = 0
+    for speed, rpm, pitch in ((4.0, 7.2, 0.0), (8.0, 9.2, 0.0), (11.4, 12.1, 0.0), (16.0, 12.1, 12.06),
+                              (25.0, 12.1, 23.47)):
+        for scale_x, scale_y, cant, toe in ((1.0, 1.0, 0.0, 0.0), (1.2, 0.8, 0.05, -0.03), (0.8, 1.2, -0.04, 0.02)):
+            for i in range(1, len(z) - 1):
+                vx, vy = speed * scale_x, rpm * math.pi / 30 * z[i] * scale_y
+                theta = rotor.twist[i] + math.radians(pitch)
+                frame = section_frame(theta, 0.0, (cant, toe, 1.0) if formulation == 2 else (0.0, 0.0, 1.0))
+                args = (vx, vy, 3 * rotor.chord[i] / (2 * math.pi * z[i]), theta, tip_c[i], hub_c[i], 0.0,
+                        int(rotor.airfoil[i]), *table, options, frame)
+                lo, hi = EDGE, math.pi / 2 - EDGE
+                f_lo, f_hi = framed_residual(lo, *args)[0], framed_residual(hi, *args)[0]
+                first = math.atan2(vx * frame[3] * PREDICTED_FACTOR, vy)
+                assert lo < first < hi
+                if (f_lo > 0) == (f_hi > 0):
+                    continue
+                ends = brent(lo, hi, f_lo, f_hi, *args, math.nan)
+                started = brent(lo, hi, f_lo, f_hi, *args, first)
+                assert started[0] == pytest.approx(ends[0], abs=1e-8), (speed, i)
+                assert abs(framed_residual(started[0], *args)[0]) <= 5e-10
+                checked += 1
+    assert checked >= 5 * 3 * 14

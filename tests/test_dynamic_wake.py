@@ -132,7 +132,9 @@ def test_compiled_equals_numpy_with_the_dynamic_wake(tmp_path, monkeypatch, dbem
     a previous call leaks. Then 0.2 s simulated in both paths from this state (loads falling by half: the wake's
     states move) with the same adaptive integrator (rtol 1e-9) agree within 1e-5: once rounding differs the two
     runs take other steps, and the loads of this violent start amplify the states' 1e-9 (measured 5e-7 without
-    the wake); a path that left the wake's states out, or froze them, differs by percents."""
+    the wake), each channel within 1e-5 of its largest magnitude over the run (the tip deflection passes through
+    zero: 8e-8 m on 0.0065 m is 1.2e-5 of that row, 1e-6 of the channel); a path that left the wake's states out,
+    or froze them, differs by percents."""
     if os.environ.get("BLADEFEM_NO_NUMBA"):
         pytest.skip("compiled kernels switched off")
     from bladefem.models.turbine import compiled as compiled_module
@@ -165,7 +167,8 @@ def test_compiled_equals_numpy_with_the_dynamic_wake(tmp_path, monkeypatch, dbem
     compiled_run = simulate(system, 0.2, dt_output=0.1, method="RK45", rtol=1e-9, atol=1e-9)
     numpy_run = simulate(numpy_system, 0.2, dt_output=0.1, method="RK45", rtol=1e-9, atol=1e-9)
     for name in ("RtAeroFxh", "RtAeroMxh", "OoPDefl1"):
-        np.testing.assert_allclose(compiled_run.outputs[name], numpy_run.outputs[name], rtol=1e-5)
+        expected = numpy_run.outputs[name]
+        np.testing.assert_allclose(compiled_run.outputs[name], expected, rtol=0, atol=1e-5 * np.abs(expected).max())
 
 
 def test_the_command_line_runs_the_dynamic_wake(tmp_path, capsys):

@@ -138,3 +138,12 @@ def test_divergence_stops_the_run(model):
     with pytest.raises(DivergenceError) as error:
         simulate(FreeSystem(model, np.ones(model.n, dtype=bool), q, u), 1.0)
     assert error.value.coordinate == "blade1_flap1" and "diverged" in str(error.value)
+
+
+def test_dormand_prince_tableau_is_scipys():
+    """The Dormand-Prince 5(4) coefficients written in bladefem (to spare the run scipy.integrate's import) are
+    scipy's RK45 ones, to the bit."""
+    from scipy.integrate._ivp.rk import RK45
+    from bladefem.models.turbine.compiled import _dp54_tableau
+    for ours, theirs in zip(_dp54_tableau(), (RK45.A, RK45.B, RK45.C, RK45.E, RK45.P)):
+        np.testing.assert_array_equal(ours, theirs)

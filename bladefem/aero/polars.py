@@ -16,7 +16,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import CubicSpline
 
 from ._jit import kernel
 
@@ -101,6 +100,7 @@ def _interval_coefficients(x: NDArray, y: NDArray, order: int) -> NDArray:
         c[:, :, 0] = y
         return c
     if order == CUBIC and len(x) >= 3:
+        from scipy.interpolate import CubicSpline      # imported here: a linear table (the usual) needs no scipy
         spline = CubicSpline(x, y, axis=0, bc_type="natural")
         c[:-1] = np.transpose(spline.c[::-1], (1, 2, 0))          # scipy: (power descending, interval, quantity)
     else:

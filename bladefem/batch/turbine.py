@@ -57,7 +57,7 @@ def simulate_rows(case: Any) -> list[dict[str, Any]]:
     from ..models.turbine import FreeSystem, TurbineModel, select_dofs
     from ..models.turbine.initial import free_from_switches, initial_state
     from ..models.turbine.outputs import CHANNELS
-    from ..models.turbine.simulate import simulate
+    from ..models.turbine.simulate import ABSOLUTE_TOLERANCE, simulate
 
     analysis = case.analysis
     deck = turbine_deck(case)
@@ -72,7 +72,7 @@ def simulate_rows(case: Any) -> list[dict[str, Any]]:
     free = select_dofs(model.dofs, [], base=free_from_switches(model.dofs, switches))
     q0, u0, _ = initial_state(model, free, conditions)
     result = simulate(FreeSystem(model, free, q0, u0), analysis.seconds, dt_output=analysis.dt, rtol=analysis.rtol,
-                      atol=analysis.rtol * 1e-2)
+                      atol=analysis.rtol * ABSOLUTE_TOLERANCE)
     window = result.time >= analysis.statistics_from - 1e-9
     head = {"wind_speed_m_s": None if model.aero is None else float(model.aero.inflow.speed),
             "rpm": None if rpm is None else rpm, "pitch_deg": None if pitch_deg is None else pitch_deg}

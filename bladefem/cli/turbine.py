@@ -119,7 +119,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
                         help="nacelle-yaw damper (default: ServoDyn's YawDamp, else the NREL 5MW's 1.916e7)")
     parser.add_argument("--json", action="store_true", help="--linearize or --campbell results as JSON")
     parser.add_argument("--dt", type=float, default=None, help="output interval of --simulate, s (default 0.05)")
-    parser.add_argument("--rtol", type=float, default=None, help="relative tolerance of --simulate (default 1e-6)")
+    parser.add_argument("--rtol", type=float, default=None,
+                        help="relative tolerance of --simulate (default 1e-6; the absolute tolerance is 0.1 times it)")
     parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default=None,
                         help="time integrator: auto (with numba the compiled Dormand-Prince 8(5,3), or 5(4) with "
                              "aerodynamics; else scipy DOP853; with the controller library one RK4 step per "

@@ -33,6 +33,7 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     from ..files import write_atomic
     from ..models.turbine import FreeSystem
     from ..models.turbine.simulate import (
+        ABSOLUTE_TOLERANCE,
         SimulationStopped,
         UnstableStep,
         output_times,
@@ -60,8 +61,8 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
                 result = controlled_run(FreeSystem(model, free, q0, u0), controller, args, dt, rtol, progress)
             else:
                 result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
-                                  atol=rtol * 1e-2, method=method, step=0.01 if args.step is None else args.step,
-                                  progress=progress)
+                                  atol=rtol * ABSOLUTE_TOLERANCE, method=method,
+                                  step=0.01 if args.step is None else args.step, progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
     except SimulationStopped as stop:
@@ -82,6 +83,7 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     """The simulation with the deck's controller library (:mod:`bladefem.models.turbine.controlled`)."""
     from ..models.turbine.controlled import simulate_controlled
     from ..models.turbine.discon import DisconController
+    from ..models.turbine.simulate import ABSOLUTE_TOLERANCE
 
     if args.method not in (None, "auto", "DP54", "RK4"):
         raise InputError("a run with the controller library integrates with DP54 (or RK4) between controller "
@@ -97,7 +99,8 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s "
           f"({setup.time_step_from}{'' if args.controller_dt else '; --controller-dt sets it'})", file=sys.stderr)
     with DisconController(setup, Path(args.main).stem) as controller:
-        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=rtol * 1e-2,
+        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol,
+                                   atol=rtol * ABSOLUTE_TOLERANCE,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,
                                    method=args.method if args.method in ("RK4", "DP54") else
                                    "DP54" if args.rtol is not None else "auto",

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 POWERS = np.arange(2, 7)
 #: Gauss points per finite element: (sextic - cubic)^2 is a polynomial of degree 12, integrated exactly by 7.
@@ -121,6 +120,7 @@ def fit_sextic_at_frequency(points: NDArray, weights: NDArray, target: NDArray, 
     mu = 0.0
     for trial in trials:
         if np.sign(g(trial)) != np.sign(start):
+            from scipy.optimize import brentq           # imported here: scipy.optimize takes 0.1 s to import
             mu = brentq(g, mu, trial, xtol=1e-15 * abs(trial), rtol=1e-14)
             return quality(coefficients(mu), points, weights, target, tip_slope, float(np.linalg.cond(design)),
                            True)
