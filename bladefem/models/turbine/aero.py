@@ -249,23 +249,28 @@ def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) ->
 
 
 def turned_arms(aero: TurbineAero, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """The second-order motion across the blade axis of the nodes' rigid arms (the aerodynamic-centre offsets o_a,
-    a in-plane and out-of-plane) turned by the section's slope theta_a: o_a (cos theta_a - 1) ~ -o_a theta_a^2 / 2
-    (the first-order motion, along the axis, is :attr:`TurbineAero.along`). A prebent blade's node, upwind of the
-    axis, moves downwind as the blade bends, and its thrust does work on the bending: o_a theta_a dtheta_a/dq, 3 %
-    of the IEA-22MW's tip deflection (6 m prebend, the tip section turned 0.36 rad), as OpenFAST maps AeroDyn's
-    loads onto ElastoDyn's nodes with the moments of the turned arms. Offsets (..., Na, 3), partials
-    (..., Na, 3, k), velocities and bias accelerations (..., Na, 3) for amplitudes q and rates u (..., k)."""
-    theta = np.einsum("...k,kpa->...pa", q, aero.slope)
-    rate = np.einsum("...k,kpa->...pa", u, aero.slope)
+    """The second-order motion across the blade axis of the nodes' rigid arms, the aerodynamic-centre offsets o
+    (in-plane o_v, out-of-plane o_w) turned by the bent section (:func:`bladefem.aero.polar.bent_axes` of the slopes
+    v', w'): with a = o_v v' + o_w w' (the arm's first-order motion along the axis is -a, :attr:`TurbineAero.along`),
+    -a v' / 2 in-plane and -a w' / 2 out-of-plane. A prebent blade's node, upwind of the axis, moves downwind as the
+    blade bends and its thrust works on the bending through this motion: 3.9 % of the IEA-22MW's tip deflection
+    (6 m prebend, the tip section turned 0.36 rad), as OpenFAST maps AeroDyn's loads onto ElastoDyn's nodes with the
+    moments of the turned arms. Offsets (..., Na, 3), partials (..., Na, 3, k), velocities and bias accelerations
+    (..., Na, 3) for amplitudes q and rates u (..., k)."""
+    slope = aero.slope                                               # (k, Na, 2)
+    theta = np.einsum("...k,kpa->...pa", q, slope)
+    rate = np.einsum("...k,kpa->...pa", u, slope)
     arm = aero.offset[:, 1:]
+    a = np.sum(arm * theta, axis=-1)[..., None]                      # (..., Na, 1)
+    a_rate = np.sum(arm * rate, axis=-1)[..., None]
     lead = theta.shape[:-1]
     offset, velocity, bias = np.zeros(lead + (3,)), np.zeros(lead + (3,)), np.zeros(lead + (3,))
-    offset[..., 1:] = -0.5 * arm * theta**2
-    velocity[..., 1:] = -arm * theta * rate
-    bias[..., 1:] = -arm * rate**2
-    partials = np.zeros(lead + (3, aero.slope.shape[0]))
-    partials[..., 1:, :] = -(arm * theta)[..., None] * np.moveaxis(aero.slope, 0, -1)
+    offset[..., 1:] = -0.5 * a * theta
+    velocity[..., 1:] = -0.5 * (a_rate * theta + a * rate)
+    bias[..., 1:] = -a_rate * rate
+    a_q = np.einsum("kpa,pa->pk", slope, arm)                          # (Na, k): da / dq
+    partials = np.zeros(lead + (3, slope.shape[0]))
+    partials[..., 1:, :] = -0.5 * (theta[..., None] * a_q[:, None, :] + a[..., None] * np.moveaxis(slope, 0, -1))
     return offset, partials, velocity, bias
 
 
