@@ -4,8 +4,8 @@ Each AeroDyn node (``BlSpn``) is a point of the flexible blade: its modal shapes
 are linear interpolations of the structural beam's (root, span nodes, tip), as OpenFAST maps ElastoDyn's blade
 motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
 rotation) ride on rigid arms turned with the bent section to second order in its slopes (along the axis:
-:attr:`TurbineAero.along`; across it: :func:`turned_arms`), each section canted by ``BlCrvAng``. At every state the node's absolute velocity (tower, nacelle, rotor and
-blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
+:attr:`TurbineAero.along`; across it: :func:`turned_arms`), each section canted by ``BlCrvAng``. At every
+state the node's absolute velocity (tower, nacelle, rotor and blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
 the node solver (:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and
 out-of-plane slopes v', w' (:func:`bladefem.aero.polar.bent_axes`), with BEM_Mod 1 in AeroDyn's legacy projection
 (``NoSweepPitchTwist``):
@@ -249,14 +249,12 @@ def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) ->
 
 
 def turned_arms(aero: TurbineAero, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """The second-order motion across the blade axis of the nodes' rigid arms, the aerodynamic-centre offsets o
-    (in-plane o_v, out-of-plane o_w) turned by the bent section (:func:`bladefem.aero.polar.bent_axes` of the slopes
-    v', w'): with a = o_v v' + o_w w' (the arm's first-order motion along the axis is -a, :attr:`TurbineAero.along`),
-    -a v' / 2 in-plane and -a w' / 2 out-of-plane. A prebent blade's node, upwind of the axis, moves downwind as the
-    blade bends and its thrust works on the bending through this motion: 3.9 % of the IEA-22MW's tip deflection
-    (6 m prebend, the tip section turned 0.36 rad), as OpenFAST maps AeroDyn's loads onto ElastoDyn's nodes with the
-    moments of the turned arms. Offsets (..., Na, 3), partials (..., Na, 3, k), velocities and bias accelerations
-    (..., Na, 3) for amplitudes q and rates u (..., k)."""
+    """The second-order motion across the blade axis of the nodes' arms (offsets o_v in-plane, o_w out-of-plane)
+    turned by the bent section (:func:`bladefem.aero.polar.bent_axes` of the slopes v', w'): with a = o_v v' + o_w w'
+    (-a along the axis: :attr:`TurbineAero.along`), -a v'/2 in-plane and -a w'/2 out-of-plane. The thrust of a node
+    upwind of the axis works on the bending through it (3.9 % of the IEA-22MW's tip deflection), as OpenFAST maps
+    AeroDyn's loads onto ElastoDyn's nodes with the turned arms' moments. Offsets (..., Na, 3), partials
+    (..., Na, 3, k), velocities and bias accelerations (..., Na, 3) for amplitudes q and rates u (..., k)."""
     slope = aero.slope                                               # (k, Na, 2)
     theta = np.einsum("...k,kpa->...pa", q, slope)
     rate = np.einsum("...k,kpa->...pa", u, slope)
