@@ -5,8 +5,8 @@ are linear interpolations of the structural beam's (root, span nodes, tip), as O
 motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
 rotation) ride on rigid arms turned with the bent section to second order in its slopes (along the axis:
 :attr:`TurbineAero.along`; across it: :func:`turned_arms`), each section canted by ``BlCrvAng``. At every
-state the node's absolute velocity (tower, nacelle, rotor and blade motion) is subtracted from the wind, so aerodynamic damping and stiffness come out of the loads. The inputs of
-the node solver (:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and
+state the node's absolute velocity (tower, nacelle, rotor and blade motion) is subtracted from the wind, so
+aerodynamic damping and stiffness come out of the loads. The inputs of the node solver (:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and
 out-of-plane slopes v', w' (:func:`bladefem.aero.polar.bent_axes`), with BEM_Mod 1 in AeroDyn's legacy projection
 (``NoSweepPitchTwist``):
 
