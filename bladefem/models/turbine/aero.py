@@ -7,8 +7,8 @@ rotation) ride on rigid arms turned with the bent section to second order in its
 :attr:`TurbineAero.along`; across it: :func:`turned_arms`), each section canted by ``BlCrvAng``. At every
 state the node's absolute velocity (tower, nacelle, rotor and blade motion) is subtracted from the wind, so
 aerodynamic damping and stiffness come out of the loads. The inputs of the node solver
-(:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and out-of-plane slopes v', w' (:func:`bladefem.aero.polar.bent_axes`), with BEM_Mod 1 in AeroDyn's legacy projection
-(``NoSweepPitchTwist``):
+(:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and out-of-plane slopes
+v', w' (:func:`bladefem.aero.polar.bent_axes`), with BEM_Mod 1 in AeroDyn's legacy projection (``NoSweepPitchTwist``):
 
     n = cos(cant) i1 - sin(cant) i3       the coned blade's downwind normal turned by the bent section's cant
     vx = (V_wind - v) . n,   vy = -(V_wind - v) . e_t      e_t the direction of rotation (toward the leading edge)
