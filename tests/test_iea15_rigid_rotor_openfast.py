@@ -124,8 +124,6 @@ def test_prebent_rigid_rotor_loads_in_the_turbine_are_openfasts(tmp_path, wind):
 #: channel -> (bladefem channel, relative tolerance) of the flexible turbine held at its speed
 FLEXIBLE = {"RtAeroFxh": ("RtAeroFxh", 2e-3), "RtAeroMxh": ("RtAeroMxh", 2e-3), "RootMyc1": ("RootMOoP1", 2e-3),
             "TTDspFA": ("TTDspFA", 5e-3), "OoPDefl1": ("OoPDefl1", 5e-3)}
-#: outside the acceptance today, with the measured difference: an open defect, not a tolerance (none)
-FLEXIBLE_KNOWN: dict[str, str] = {}
 
 
 @pytest.fixture(scope="module")
@@ -146,15 +144,13 @@ def flexible_run(tmp_path_factory):
 @pytest.mark.slow
 @pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="the fixed-step run needs numba")
 @pytest.mark.parametrize("channel", list(FLEXIBLE))
-def test_flexible_prebent_turbine_at_fixed_speed_against_openfast(flexible_run, channel, request):
+def test_flexible_prebent_turbine_at_fixed_speed_against_openfast(flexible_run, channel):
     """The flexible turbine (ElastoDyn's structure) held at 5.68 rpm in 8 m/s, means over the last three of 60 s:
     aerodynamic thrust, torque and the blade-root out-of-plane moment within 0.2 % (measured +0.11 %, +0.12 %,
     +0.09 %), the tower-top fore-aft displacement and the tip deflection within 0.5 % (measured -0.45 %, +0.25 %).
     The nodes' rigid arms turn with the bent sections: carried without turning (the prebend's 4 m arm held along
     the undeflected normal) the root moment was 0.47 % low and the tower top 1.4 %; without the sections' cant
-    as well, 1.3 % and 4.3 %; turned to first order only (along the axis), the tip deflection was 1.09 % low. The pairs in :data:`FLEXIBLE_KNOWN` fail today and are marked so (strict)."""
-    if channel in FLEXIBLE_KNOWN:
-        request.applymarker(pytest.mark.xfail(strict=True, reason=FLEXIBLE_KNOWN[channel]))
+    as well, 1.3 % and 4.3 %; turned to first order only (along the axis), the tip deflection was 1.09 % low."""
     name, tolerance = FLEXIBLE[channel]
     theirs = REFERENCE["flexible"]["means"][channel]
     assert flexible_run[name] == pytest.approx(theirs, rel=tolerance)
