@@ -1,10 +1,10 @@
 """Complete copies of the OpenFAST decks kept in tests/data (IEA-15MW, IEA-22MW, openfast_toolbox's NREL 5MW).
 
-To keep the repository small only a few of some decks' airfoil polar files are stored (the IEA-15MW's are all
-there: tests/data/iea15/README.md). :func:`deck_copy` copies a deck's folder tree into a temporary folder and gives
-every airfoil file that the AeroDyn files name but that is not stored the contents of the stored polar nearest to it
-in the AFNames list. Every other file is the repository's own, unchanged. Results that depend on the filled-in
-polars (aerodynamic loads of the IEA-22MW copies) are therefore not the reference turbine's; tests on those copies
+To keep the repository small only a few of some decks' airfoil polar files are stored (the IEA-15MW's and the
+IEA-22MW's are all there: tests/data/iea15/README.md, tests/data/iea22/README.md). :func:`deck_copy` copies a
+deck's folder tree into a temporary folder and gives every airfoil file that the AeroDyn files name but that is not
+stored the contents of the stored polar nearest to it in the AFNames list. Every other file is the repository's own,
+unchanged. Results that depend on filled-in polars are therefore not the reference turbine's; tests on such copies
 check how the decks are read, refused and run, not aerodynamic values.
 """
 

@@ -86,16 +86,19 @@ def test_node_partial_velocities_are_position_derivatives(deck, model, prebent):
     np.testing.assert_allclose(nodes.velocity(u), np.einsum("bpkn,n->bpk", J, u), atol=1e-12)
 
 
-def test_offset_nodes_turn_with_the_bent_section(deck, model):
+@pytest.mark.parametrize("amplitudes, order", [([0.2, -0.05, 0.03], 2), ([2.0, -0.5, 0.3], 3)])
+def test_offset_nodes_turn_with_the_bent_section(deck, model, amplitudes, order):
     """A node off the blade axis (a prebent blade's aerodynamic centre, 3 m upwind at the tip, and the 5MW's sweep)
     rides on a rigid arm turned with its section, as OpenFAST carries AeroDyn's nodes on ElastoDyn's: its place
     relative to the node without the offset is the offset turned by the bent section's rotation
-    (:func:`bladefem.aero.polar.bent_axes` of the two slopes), to second order in the slopes."""
+    (:func:`bladefem.aero.polar.bent_axes` of the two slopes), to second order in the slopes: the error is of the
+    third (within |o| s^3 with slopes s up to 0.11 rad; the arm turned to first order only missed by 2.3 |o| s^3,
+    the thrust's work through it 3.9 % of the IEA-22MW's tip deflection, tests/test_iea22_rosco_openfast.py)."""
     from bladefem.aero.polar import bent_axes
     aero = canted(TurbineAero.from_deck(deck, model.params), model.params, 2, True)
     bare = replace(aero, offset=0 * aero.offset)
     q, u = spinning(model, 0.4)
-    q[model.blade_columns[1]] = [0.2, -0.05, 0.03]
+    q[model.blade_columns[1]] = amplitudes
     R = model.motion(q, u).blade_frames.R[1]                   # columns i3, e_t, i1
     v_slope, w_slope = np.einsum("k,kpa->ap", q[model.blade_columns[1]], aero.slope)
     arm = aero_nodes(model, aero, q, u).r[1] - aero_nodes(model, bare, q, u).r[1]
@@ -103,7 +106,8 @@ def test_offset_nodes_turn_with_the_bent_section(deck, model):
         c = np.array(bent_axes(v_slope[p], w_slope[p]))
         turned = aero.offset[p, 1] * c[3:6] + aero.offset[p, 2] * c[0:3]      # (i3, e_t, i1) components
         slope2 = v_slope[p] ** 2 + w_slope[p] ** 2
-        np.testing.assert_allclose(arm[p], R @ turned, rtol=0, atol=np.abs(aero.offset[p]).max() * slope2 + 1e-12)
+        np.testing.assert_allclose(arm[p], R @ turned, rtol=0,
+                                   atol=np.abs(aero.offset[p]).max() * slope2 ** (order / 2) + 1e-12)
     assert np.abs(arm[-1] - R @ aero.offset[-1][[0, 1, 2]]).max() > 1e-3           # the turn is seen
 
 

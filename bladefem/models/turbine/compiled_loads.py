@@ -75,10 +75,23 @@ if njit is not None:                                   # module-level kernels: n
                 ub[i] = u[b_columns[b, i]]
             for p in range(axial.shape[0]):
                 beam_node(across, short, axial, p, qb, ub, 0, D, d, rate, bias)
-                v, w = 0.0, 0.0
+                v, w, v_rate, w_rate = 0.0, 0.0, 0.0, 0.0
                 for i in range(k):
                     v += slope[i, p, 0] * qb[i]
                     w += slope[i, p, 1] * qb[i]
+                    v_rate += slope[i, p, 0] * ub[i]
+                    w_rate += slope[i, p, 1] * ub[i]
+                # the arms turned by the bent section, to second order across the axis (aero.turned_arms)
+                a = offset[p, 1] * v + offset[p, 2] * w
+                a_rate = offset[p, 1] * v_rate + offset[p, 2] * w_rate
+                d[1] -= 0.5 * a * v
+                d[2] -= 0.5 * a * w
+                rate[1] -= 0.5 * (a_rate * v + a * v_rate)
+                rate[2] -= 0.5 * (a_rate * w + a * w_rate)
+                for i in range(k):
+                    a_i = offset[p, 1] * slope[i, p, 0] + offset[p, 2] * slope[i, p, 1]
+                    D[1, i] -= 0.5 * (a_i * v + a * slope[i, p, 0])
+                    D[2, i] -= 0.5 * (a_i * w + a * slope[i, p, 1])
                 n3, nt, n1, t3, tt, t1, s3, st, s1 = curved_axes(v, w, curve[p, 0], curve[p, 1])
                 for r in range(3):
                     rho_w[b, p, r] = (R[r, 0] * (d[0] + offset[p, 0]) + R[r, 1] * (d[1] + offset[p, 1])
