@@ -38,20 +38,26 @@ def bladefem_modes(rpm: float, capsys) -> list[dict]:
     return json.loads(capsys.readouterr().out)["modes"]
 
 
-def matched(rpm: float, capsys) -> list[tuple[dict, dict, float]]:
-    """Each of OpenFAST's lowest oscillating modes with its bladefem mode and that mode's frequency (Hz, with the
-    spin softening added back to an edge mode): the one-to-one pairing of least total relative frequency and
-    damping difference (two modes cross in frequency near the coalescence; their damping tells them apart)."""
+def paired(theirs: list[dict], ours: list[dict], rpm: float) -> list[tuple[dict, dict, float]]:
+    """Each of OpenFAST's modes ``theirs`` with its bladefem mode (of ``ours``, `bladefem modes --json`) and that
+    mode's frequency (Hz, with the spin softening added back to an edge mode): the one-to-one pairing of least total
+    relative frequency and damping difference (two modes cross in frequency near the coalescence; their damping
+    tells them apart)."""
     from scipy.optimize import linear_sum_assignment
 
     spin = rpm * math.pi / 30 / (2 * math.pi)
-    ours = [m for m in bladefem_modes(rpm, capsys) if m["damping_ratio"] < 1]           # overdamped: no frequency
+    ours = [m for m in ours if m["damping_ratio"] < 1]                                   # overdamped: no frequency
     shifted = [math.hypot(m["frequency_hz"], spin) if m["kind"] == "edge" else m["frequency_hz"] for m in ours]
-    theirs = next(p for p in REFERENCE["points"] if p["rpm"] == rpm)["modes"][:COMPARED]
     cost = np.array([[abs(f / t["natural_frequency_hz"] - 1) + abs(m["damping_ratio"] - t["damping_ratio"])
                       for m, f in zip(ours, shifted)] for t in theirs])
     rows, columns = linear_sum_assignment(cost)
     return [(theirs[i], ours[j], shifted[j]) for i, j in zip(rows, columns)]
+
+
+def matched(rpm: float, capsys) -> list[tuple[dict, dict, float]]:
+    """OpenFAST's :data:`COMPARED` lowest oscillating modes at ``rpm`` :func:`paired` with bladefem's."""
+    theirs = next(p for p in REFERENCE["points"] if p["rpm"] == rpm)["modes"][:COMPARED]
+    return paired(theirs, bladefem_modes(rpm, capsys), rpm)
 
 
 #: frequency tolerances: an edge mode (spin softening added back) within BeamDyn's order_elem 14 convergence and

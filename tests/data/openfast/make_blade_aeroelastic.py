@@ -79,9 +79,25 @@ def blade1_modes(names: list[str], A: np.ndarray) -> list[dict]:
     return sorted(modes, key=lambda mode: mode.get("natural_frequency_hz", 0.0))
 
 
-def main() -> None:
+def linearized(openfast: str, fst: Path, rpm: float, count: int = 10) -> dict:
+    """Run OpenFAST on ``fst`` (its log beside it as log.txt) and give the point: blade 1's ``count`` lowest
+    oscillating modes and its six largest real roots (per s)."""
     from make_standstill import read_lin
 
+    done = subprocess.run([openfast, fst.name], cwd=fst.parent, capture_output=True, text=True)
+    (fst.parent / "log.txt").write_text(done.stdout + done.stderr)
+    if done.returncode:
+        raise SystemExit(f"{fst}: exit {done.returncode}\n{(done.stdout + done.stderr)[-2000:]}")
+    names, A = read_lin(next(fst.parent.glob("*.lin")))
+    modes = blade1_modes(names, A)
+    oscillating = [m for m in modes if "natural_frequency_hz" in m][:count]
+    print(rpm, [(round(m["natural_frequency_hz"], 4), round(100 * m["damping_ratio"], 3)) for m in oscillating[:8]],
+          flush=True)
+    return {"rpm": rpm, "modes": oscillating,
+            "real_roots_per_s": sorted(m["real_root_per_s"] for m in modes if "real_root_per_s" in m)[-6:]}
+
+
+def main() -> None:
     openfast, runs = sys.argv[1], Path(sys.argv[2])
     aero, coned = "--structural" not in sys.argv[3:], "--coned" in sys.argv[3:]
     rpms = tuple(float(r) for r in sys.argv[3:] if not r.startswith("--")) or RPMS
@@ -90,18 +106,7 @@ def main() -> None:
         folder = runs / f"rpm{rpm:g}{'' if aero else '_structural'}{'_coned' if coned else ''}"
         if folder.exists():
             shutil.rmtree(folder)
-        fst = write_case(folder, rpm, aero, coned)
-        done = subprocess.run([openfast, fst.name], cwd=fst.parent, capture_output=True, text=True)
-        (folder / "log.txt").write_text(done.stdout + done.stderr)
-        if done.returncode:
-            raise SystemExit(f"{fst}: exit {done.returncode}\n{(done.stdout + done.stderr)[-2000:]}")
-        names, A = read_lin(next(folder.glob("*.lin")))
-        modes = blade1_modes(names, A)
-        oscillating = [m for m in modes if "natural_frequency_hz" in m][:10]
-        points.append({"rpm": rpm, "modes": oscillating,
-                       "real_roots_per_s": sorted(m["real_root_per_s"] for m in modes if "real_root_per_s" in m)[-6:]})
-        print(rpm, [(round(m["natural_frequency_hz"], 4), round(100 * m["damping_ratio"], 3)) for m in oscillating[:6]],
-              flush=True)
+        points.append(linearized(openfast, write_case(folder, rpm, aero, coned), rpm))
     path = HERE / "blade_aeroelastic_linearization.json"
     old = json.loads(path.read_text()) if path.exists() else {}
     key = "coned_points" if coned else "points" if aero else "structural_points"
