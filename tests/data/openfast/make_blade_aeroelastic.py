@@ -79,15 +79,16 @@ def blade1_modes(names: list[str], A: np.ndarray) -> list[dict]:
     return sorted(modes, key=lambda mode: mode.get("natural_frequency_hz", 0.0))
 
 
-def linearized(openfast: str, fst: Path, rpm: float, count: int = 10) -> dict:
-    """Run OpenFAST on ``fst`` (its log beside it as log.txt) and give the point: blade 1's ``count`` lowest
-    oscillating modes and its six largest real roots (per s)."""
+def linearized(openfast: str | None, fst: Path, rpm: float, count: int = 10) -> dict:
+    """Run OpenFAST on ``fst`` (its log beside it as log.txt; ``openfast`` None: read the run already there) and
+    give the point: blade 1's ``count`` lowest oscillating modes and its six largest real roots (per s)."""
     from make_standstill import read_lin
 
-    done = subprocess.run([openfast, fst.name], cwd=fst.parent, capture_output=True, text=True)
-    (fst.parent / "log.txt").write_text(done.stdout + done.stderr)
-    if done.returncode:
-        raise SystemExit(f"{fst}: exit {done.returncode}\n{(done.stdout + done.stderr)[-2000:]}")
+    if openfast is not None:
+        done = subprocess.run([openfast, fst.name], cwd=fst.parent, capture_output=True, text=True)
+        (fst.parent / "log.txt").write_text(done.stdout + done.stderr)
+        if done.returncode:
+            raise SystemExit(f"{fst}: exit {done.returncode}\n{(done.stdout + done.stderr)[-2000:]}")
     names, A = read_lin(next(fst.parent.glob("*.lin")))
     modes = blade1_modes(names, A)
     oscillating = [m for m in modes if "natural_frequency_hz" in m][:count]
