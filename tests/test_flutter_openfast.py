@@ -69,8 +69,9 @@ EDGE_FREQUENCY, FREQUENCY = 5e-3, 0.02
 #: loads, AeroDyn's 19 nodes against bladefem's quadrature (measured at most 5.8 % and 0.09 percentage point)
 DAMPING, DAMPING_FLOOR = 0.08, 1.5e-3
 #: the edge modes' damping (a small difference of the drag's damping and the twist coupling's) agrees to 20 rpm;
-#: above, bladefem's first edge mode loses its damping faster than OpenFAST's (24 rpm: -0.21 % against -0.04 %),
-#: a difference not explained here (docs/flutter.md shows it): there the sign alone is held
+#: above, bladefem's first edge mode loses its damping faster than OpenFAST's linearized at 0.02 s (24 rpm: -0.21 %
+#: against -0.04 %), when the blade has started to twist under the suddenly applied pitching moment: there the sign
+#: alone is held (linearized at 0 s they agree: :func:`test_linearized_at_0_s_the_first_edge_mode_agrees`)
 EDGE_AGREES_TO = 20.0
 #: rotor speeds below the coalescence of the torsion-carrying mode with the flap modes
 BELOW = [p["rpm"] for p in REFERENCE["points"] if p["rpm"] <= 24]
@@ -126,3 +127,21 @@ def test_a_coned_blade_loses_its_edge_damping():
                 or 3.7 < m["natural_frequency_hz"] < 3.9]
     assert len(edges(coned)) == len(edges(straight)) == 2
     assert max(edges(coned)) < 0 < min(edges(straight))
+
+
+def test_linearized_at_0_s_the_first_edge_mode_agrees(capsys):
+    """Linearized at 0 s (``lin_time_0_points``: the undeflected blade, before the aerodynamic loads act, as bladefem
+    models it) OpenFAST's first edge mode's damping agrees with bladefem's at 20, 24 and 28 rpm within the tolerance
+    of the other modes (8 % plus 0.15 percentage point; measured 0.064 % against 0.054 %, -0.164 % against -0.210 %,
+    -0.449 % against -0.564 %), where at 0.02 s it does not above 20 rpm (-0.042 % and -0.123 % at 24 and 28 rpm):
+    the first edge mode's difference is OpenFAST's later operating point, the blade twisting under the airfoils'
+    pitching moment (the IEA-15MW's tip has turned -3.3 deg at 0.02 s at 13.5 rpm,
+    tests/test_flutter_openfast_iea15.py)."""
+    points = REFERENCE["lin_time_0_points"]
+    assert sorted(p["rpm"] for p in points) == [20.0, 24.0, 28.0]
+    for point in points:
+        (pair,) = [(t, o) for t, o, f in paired(point["modes"][:COMPARED], bladefem_modes(point["rpm"], capsys),
+                                                 point["rpm"]) if o["kind"] == "edge" and f < 1.5]
+        theirs, ours = pair
+        assert abs(ours["damping_ratio"] - theirs["damping_ratio"]) <= (DAMPING * abs(theirs["damping_ratio"])
+                                                                          + DAMPING_FLOOR), point["rpm"]

@@ -17,8 +17,11 @@ The named differences:
 - BeamDyn's order_elem 10 (the file's own; :func:`test_openfast_reference_converged_in_order_elem`).
 - The first edge mode's damping above rated speed: bladefem's falls faster with the rotor speed than OpenFAST's
   (0.23 % against 0.61 % at 11 rpm, -0.80 % against -0.21 % at 13.5 rpm), its onset 10 % earlier (11.6 against
-  12.9 rpm), a difference that comes with the airfoils' pitching moment: without it (UseBlCm False in both) that
-  damping agrees (:func:`test_without_the_pitching_moment_the_edge_damping_agrees`). The cause is not found.
+  12.9 rpm). Part of it is a damping OpenFAST's BeamDyn linearization gives this blade without any aerodynamics
+  (0.32 % on the first edge mode at 13.5 rpm: :func:`test_openfast_blade_without_aerodynamics_is_slightly_damped`);
+  the rest (0.26 percentage point at 13.5 rpm) comes with the airfoils' pitching moment: without it (UseBlCm False
+  in both) the edge modes' damping agrees (:func:`test_without_the_pitching_moment_the_edge_damping_agrees`). Its
+  cause is not found.
 - Near the coalescence (16 and 18.5 rpm) the modes between 2 and 3.5 Hz, reshaped by the aerodynamic stiffness,
   differ by up to 2.9 % in frequency.
 """
@@ -126,7 +129,8 @@ def test_the_first_edge_mode_damping_to_rated_speed(aerodyn, rpm, capsys):
 
 @pytest.mark.xfail(strict=True, reason="above rated speed bladefem's first edge mode loses its damping faster than "
                    "OpenFAST's: 0.23 % against 0.61 % at 11 rpm, -0.80 % against -0.21 % at 13.5 rpm (0.39 and 0.59 "
-                   "percentage point, growing to 1.46 at 18.5 rpm); with the pitching moment off they agree")
+                   "percentage point, growing to 1.46 at 18.5 rpm; at 13.5 rpm 0.32 of it the damping OpenFAST's "
+                   "blade has without aerodynamics); with the pitching moment off they agree")
 @pytest.mark.parametrize("rpm", [rpm for rpm in BELOW if rpm > RATED])
 def test_the_first_edge_mode_damping_above_rated_speed(aerodyn, rpm, capsys):
     """Above rated speed, the first edge mode's damping within the other modes' tolerance: not so (the reason)."""
@@ -199,10 +203,18 @@ def test_the_first_edge_mode_onset(aerodyn, capsys):
     assert f_ours == pytest.approx(f_theirs, rel=FREQUENCY)
 
 
-def test_the_damping_is_aerodynamic():
-    """OpenFAST's blade without AeroDyn at 13.5 rpm is undamped (BeamDyn's damping off)."""
-    (structural,) = REFERENCE["structural_points"]
-    assert max(abs(m["damping_ratio"]) for m in structural["modes"]) < 1e-6
+def test_openfast_blade_without_aerodynamics_is_slightly_damped():
+    """OpenFAST's IEA-15MW blade without AeroDyn (BeamDyn's damping off, damp_type 0) at 13.5 rpm is not undamped:
+    its linearization gives every mode a small positive damping ratio, largest on the first edge mode (measured
+    0.32 %, the first flap mode 0.21 %, the second edge mode 0.11 %; the same at 0 s and 0.002 s), where bladefem's
+    gyroscopic blade without aerodynamics has none (an undamped rotating beam: purely imaginary eigenvalues), and
+    the NREL 5MW's diagonal-section blade in OpenFAST neither (below 1e-6). Part of OpenFAST's higher first edge mode
+    damping above rated speed is this: at 13.5 rpm it is 0.32 of the 0.59 percentage point. Held: below 0.5 % and
+    positive, the compared damping (aerodynamic, percents) far larger for the flap modes."""
+    (structural,) = [p for p in REFERENCE["structural_points"] if p["rpm"] == 13.5]
+    damping = [m["damping_ratio"] for m in structural["modes"][:COMPARED]]
+    assert max(damping) < 5e-3 and min(damping) > -1e-5
+    assert max(damping) > 2e-3
 
 
 def test_openfast_reference_converged_in_order_elem():
@@ -217,9 +229,10 @@ def test_openfast_reference_converged_in_order_elem():
 
 
 def test_without_the_pitching_moment_the_edge_damping_agrees(aerodyn, tmp_path, capsys):
-    """Without the airfoils' pitching moment (AeroDyn's UseBlCm False in both), at 13.5 rpm, the edge modes' damping
-    agrees within the other modes' tolerance (8 % plus 0.15 percentage point), where with it bladefem's is lower
-    (the module docstring): the difference lies in how the pitching moment enters."""
+    """Without the airfoils' pitching moment (AeroDyn's UseBlCm False in both), at 13.5 rpm, the three edge modes'
+    damping agrees within the other modes' tolerance (8 % plus 0.15 percentage point; measured the first edge mode's
+    2.31 % against 2.49 %), where with it bladefem's first is lower (-0.80 % against -0.21 %): the difference
+    comes with the pitching moment."""
     import re
     import shutil
 
@@ -233,7 +246,7 @@ def test_without_the_pitching_moment_the_edge_damping_agrees(aerodyn, tmp_path, 
     pairs = paired(theirs["modes"][:COMPARED], bladefem_modes(primary, theirs["rpm"], capsys), theirs["rpm"])
     edges = [(t, o) for t, o, _ in pairs if o["kind"] == "edge"]
     assert len(edges) == 3
-    for t, o in edges[:1]:
+    for t, o in edges:
         assert abs(o["damping_ratio"] - t["damping_ratio"]) <= DAMPING * abs(t["damping_ratio"]) + DAMPING_FLOOR
 
 
