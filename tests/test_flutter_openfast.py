@@ -9,8 +9,10 @@ frozen, on the undeflected blade). The named differences:
 
 - BeamDyn's rotating-frame linearization does not show the in-plane spin softening (-Omega^2 on the edge modes;
   tests/test_beamdyn_reference.py): an edge mode's OpenFAST frequency is bladefem's with Omega^2 added back.
-- BeamDyn's order_elem 14 (its edge 1 moves 0.2 % from 14 to 18) and its linearization about the state at 0.02 s
-  (centrifugally deflected by QuasiStaticInit), bladefem's about the undeflected blade.
+- BeamDyn's order_elem 14 (its edge 1 moves 0.2 % from 14 to 18) and its linearization about the state at 0.02 s,
+  the blade started twisting under the aerodynamic loads applied at 0 s, bladefem's about the undeflected blade:
+  above 20 rpm it moves the first edge mode's damping (linearized at 0 s the two agree:
+  :func:`test_linearized_at_0_s_the_first_edge_mode_agrees`).
 """
 
 from __future__ import annotations
