@@ -202,6 +202,7 @@ has {100 * without_edge["damping_ratio"] if without_edge else math.nan:.2f} % at
 same (tests/test_flutter_openfast_iea15.py); its cause is not found here. From 16 rpm on, as
 the torsion-carrying mode falls toward the flap modes, the modes between 2 and 3.5 Hz differ by up to 3 % in
 frequency.
+
 With Theodorsen's unsteady lift and the pitch-rate damping (`bladefem flutter` on the same straight blade) the
 torsion-carrying mode stays damped and the edge mode is the first to lose its damping; on the prebent blade (the
 IEA-15MW sweep above) the first onset is a flap mode with twist.

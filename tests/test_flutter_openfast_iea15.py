@@ -8,7 +8,8 @@ AeroDyn's aerodynamic-centre offsets and cant (BlCrvAC, BlSwpAC, BlCrvAng) zero 
 under its centrifugal load and BeamDyn linearizes about that bent blade, bladefem's quasi-steady modes about the
 undeflected one; straight and without precone, both linearize about the same blade. OpenFAST linearizes at 0 s,
 before the aerodynamic loads have moved the blade (at 0.02 s, the 5MW comparison's time, the blade has started to
-twist under the airfoils' pitching moment: ``lin_time_0.02_points``, :func:`test_linearizing_later_catches_the_blade_twisting`).
+twist under the airfoils' pitching moment: ``lin_time_0.02_points``,
+:func:`test_linearizing_later_catches_the_blade_twisting`).
 
 The named differences:
 
@@ -30,7 +31,6 @@ from __future__ import annotations
 
 import importlib.util
 import json
-import math
 from pathlib import Path
 
 import numpy as np
@@ -158,7 +158,8 @@ def crossing(rpms: list[float], dampings: list[float], frequencies: list[float])
     for k in range(1, len(rpms)):
         if dampings[k - 1] >= 0 > dampings[k]:
             t = dampings[k - 1] / (dampings[k - 1] - dampings[k])
-            return rpms[k - 1] + t * (rpms[k] - rpms[k - 1]), frequencies[k - 1] + t * (frequencies[k] - frequencies[k - 1])
+            return (rpms[k - 1] + t * (rpms[k] - rpms[k - 1]),
+                    frequencies[k - 1] + t * (frequencies[k] - frequencies[k - 1]))
     raise AssertionError("the damping does not turn negative")
 
 
