@@ -329,6 +329,7 @@ from {classical(fifteen)[0]:.1f} rpm ({classical(fifteen)[0] / IEA15_RATED_RPM:.
 
 {published(five, fifteen)}
 {flutter_openfast.section()}
+{flutter_openfast.iea15_section()}
 ## Stall-induced vibration at standstill: the yaw maps
 
 A parked or idling blade is not safe from negative damping either: in stall, the polars' negative lift slopes feed
