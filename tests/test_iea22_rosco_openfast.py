@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from bladefem.cli import main
+from simulation_table import table
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data" / "iea22"
@@ -28,13 +29,6 @@ REFERENCE = ROOT / "tests" / "data" / "openfast" / "iea22_rosco" / "steady.json"
 
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="controlled runs need numba")]
-
-
-def table(path: Path) -> dict[str, np.ndarray]:
-    lines = path.read_text().splitlines()
-    names = [name.rsplit("_", 1)[0] for name in lines[0].split(",")]
-    data = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
-    return {name: data[:, i] for i, name in enumerate(names)}
 
 
 @pytest.fixture(scope="module")

@@ -21,6 +21,7 @@ from bladefem.cli import main
 from bladefem.models.turbine import TurbineModel
 from bladefem.models.turbine.pitching import CompiledPitch
 from deck_copies import deck_copy as iea_copy
+from simulation_table import table
 
 ROOT = Path(__file__).resolve().parents[1]
 CASE = ROOT / "cases" / "nrel5mw"
@@ -35,13 +36,6 @@ def run(capsys, *argv: object) -> tuple[int, str, str]:
     code = main([str(a) for a in argv])
     captured = capsys.readouterr()
     return code, captured.out, captured.err
-
-
-def table(path: Path) -> dict[str, np.ndarray]:
-    lines = path.read_text().splitlines()
-    names = [name.rsplit("_", 1)[0] for name in lines[0].split(",")]
-    data = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
-    return {name: data[:, i] for i, name in enumerate(names)}
 
 
 def deck_copy(tmp_path: Path) -> Path:
