@@ -262,13 +262,42 @@ def test_controller_interval_needs_a_controller(capsys):
 
 def test_the_first_call_check_is_silent_unless_it_fails(capfd, tmp_path):
     """The first call is made first in an isolated twin of the library (a crash there is reported, not suffered):
-    what that twin prints is shown only when it fails. A good run shows the library's banner once; a run whose
-    DISCON.IN names a missing performance table shows the twin's Fortran runtime error naming that file."""
-    code = main(["turbine", str(DECK), "--simulate", "0.1", "--quiet", "-o", str(tmp_path / "out.csv")])
-    err = capfd.readouterr().err
-    assert code == 0 and err.count("Running ROSCO") == 1
+    what that twin prints is held back (``echo`` False) and shown only when it fails. The twin's process prints
+    ROSCO's banner with echo, nothing without; a run whose DISCON.IN names a missing performance table shows the
+    twin's Fortran runtime error naming that file, exit 2."""
+    from bladefem.builders.controller import controller_setup
+    from bladefem.models.turbine.discon import DisconController, Measurements
+
+    setup = controller_setup(read_turbine_deck(DECK, controller=True), None)
+    state = Measurements(pitch=np.zeros(3), rotor_speed=1.27, generator_speed=122.9, wind_speed=11.4, azimuth=0.0,
+                         shaft_power=5.3e6, generator_torque=4.3e4, electrical_power=5.0e6, root_oop=np.zeros(3),
+                         root_ip=np.zeros(3))
+    printed = {}
+    for echo in (True, False):
+        with DisconController(setup, isolated=True, echo=echo) as twin:
+            twin.call(0.0, state)
+        printed[echo] = capfd.readouterr().err                    # the twin's process has ended: all flushed
+    assert printed[True].strip() and not printed[False].strip()
     fst = deck_copy(tmp_path)
     (fst.parent / "Cp_Ct_Cq.NREL5MW.txt").unlink()
     code = main(["turbine", str(fst), "--simulate", "1", "--quiet"])
     err = capfd.readouterr().err
     assert code == 2 and "Cp_Ct_Cq.NREL5MW.txt" in err and "Traceback" not in err
+
+
+def test_the_table_on_stdout_is_the_table_alone(tmp_path):
+    """A run writing its table to stdout: what the library prints (ROSCO's banner, through gfortran's buffered
+    units and C's stdio) goes to stderr while it is loaded and is flushed there before stdout is given back, so the
+    table is whole and alone; before, the buffered prints were written at the process's end, onto the table."""
+    import subprocess
+    import sys
+    redirected = tmp_path / "table.csv"                    # stdout to a file, as `> table.csv` does
+    with redirected.open("w") as stdout:
+        done = subprocess.run([sys.executable, "-m", "bladefem", "turbine", str(DECK), "--simulate", "0.2",
+                               "--wind-speed", "11.4", "--quiet"], stdout=stdout, stderr=subprocess.PIPE,
+                              text=True, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    lines = [line for line in redirected.read_text().splitlines() if not line.startswith("#")]  # notes aside
+    columns = lines[0].count(",")
+    assert len(lines) == 6 and all(line.count(",") == columns for line in lines)   # header and rows 0-0.2 s
+    assert len(done.stderr.splitlines()) > 3                                      # the library's prints are there

@@ -38,6 +38,18 @@ TABLE_START, LOGGING_CHANNELS = 85, 300
 _ORIGINALS: dict[str, ctypes.CDLL] = {}
 
 
+def flush_prints(library: ctypes.CDLL) -> None:
+    """What a loaded library printed and its runtime still buffers, written out now (while fd 1 is stderr): a
+    gfortran runtime's units (``_gfortran_flush_i4(NULL)``, Fortran's FLUSH of every unit; ROSCO's) and every C
+    stdio stream (``fflush(NULL)``). Otherwise they are written when the process ends, to the program's own output
+    (a table written to stdout would end with them)."""
+    for flush in (lambda: library._gfortran_flush_i4(None), lambda: ctypes.CDLL(None).fflush(None)):
+        try:
+            flush()
+        except (OSError, AttributeError):             # not a gfortran library, or no C library to ask
+            pass
+
+
 class ControllerError(RuntimeError):
     """The controller library failed (aviFAIL < 0, a crash, or a command bladefem does not model) at ``time``."""
 
@@ -211,6 +223,8 @@ class DisconController:
                     raise
         self.fill(time, measurements)
         records, fail, message = self.exchange(time)
+        if self.status == 0 and self.library is not None:
+            flush_prints(_ORIGINALS[self.setup.library])          # the first call's prints shown now
         if fail < 0:
             raise ControllerError(f"the controller ({Path(self.setup.library).name} with "
                                   f"{self.setup.infile}) failed at t = {time:.4g} s: {message or 'no message'}",
@@ -265,6 +279,7 @@ class DisconController:
             self.status = 0
             self.library = None
             if self.stdout is not None:
+                flush_prints(_ORIGINALS[self.setup.library])
                 os.dup2(self.stdout, 1)
                 os.close(self.stdout)
                 self.stdout = None
