@@ -23,7 +23,7 @@ The flexible turbine held at its speed at 8 m/s carries OpenFAST's loads (thrust
 0.13 %) and its tip deflection (+0.25 %). The tip deflection was 1.09 % low while the nodes' arms were turned to
 first order only (their motion along the blade axis): OpenFAST maps AeroDyn's loads onto ElastoDyn's nodes with the
 moments of the arms as turned, so the thrust at a node upwind of the axis also works through the arm's motion
-downwind, -o (1 - cos theta), second order in the slope (bladefem.models.turbine.aero.turned_arms)."""
+downwind, -o (1 - cos theta), second order in the slope (bladefem.models.turbine.kinematics.turned_arms)."""
 
 from __future__ import annotations
 

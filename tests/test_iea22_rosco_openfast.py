@@ -71,7 +71,7 @@ def test_iea22_rosco_steady_operation_against_openfast(reference, case, channel)
     comparisons). Measured (docs/turbine-aero.md): power, speed and thrust within 0.09 %, pitch within 0.05 deg, the
     tip deflection +0.24 %, -0.44 %, -1.03 % at 8, 12, 16 m/s. With the nodes' arms turned to first order only the
     tip deflection of the turbine held at 7.06 rpm in 11 m/s was 3.86 % below OpenFAST's (the loads within
-    0.25 %): bladefem.models.turbine.aero.turned_arms."""
+    0.25 %): bladefem.models.turbine.kinematics.turned_arms."""
     wind, ours = case
     theirs = reference["cases"][wind][channel]["mean"]
     window = (ours["Time"] >= reference["window_s"][0] - 1e-9) & (ours["Time"] <= reference["window_s"][1] + 1e-9)

@@ -189,8 +189,10 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
         return 0.0, True, 0.0, 0.0
     if abs(vy) < ZERO_VELOCITY:
         return math.copysign(math.pi / 2.0, vx), True, 0.0, 0.0
+    frame = section_frame(theta, chi0, geometry)
+    cos_cant = frame[3]
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
-            options, section_frame(theta, chi0, geometry))
+            options, frame)
     tolerance = options[TOLERANCE]
     if math.isfinite(guess) and abs(guess) > EDGE and abs(abs(guess) - math.pi / 2.0) > EDGE:
         f_guess, a, ap, valid = framed_residual(guess, *args)
@@ -211,13 +213,13 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
         elif abs(f_hi) < tolerance and valid_hi:
             return hi, True, a_hi, ap_hi
         if (f_lo > 0.0) != (f_hi > 0.0):
-            first = math.atan2(vx * args[14][3] * PREDICTED_FACTOR, vy) if i == 0 else math.nan
+            first = math.atan2(vx * cos_cant * PREDICTED_FACTOR, vy) if i == 0 else math.nan
             if not min(lo, hi) < first < max(lo, hi):
                 first = math.nan
             phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args, first)
             if valid:
                 return phi, True, a, ap
-    return math.atan2(vx * math.cos(geometry[0]), vy), False, 0.0, 0.0
+    return math.atan2(vx * cos_cant, vy), False, 0.0, 0.0
 
 
 @kernel

@@ -50,6 +50,7 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
         raise InputError(f"{method} needs numba (pip install numba); use auto, RK45, DOP853 or RK4",
                          field="--method")
     rtol = 1e-6 if args.rtol is None else args.rtol
+    atol = rtol * ABSOLUTE_TOLERANCE
     dt = 0.05 if args.dt is None else args.dt
     try:
         output_times(args.simulate, dt)
@@ -58,11 +59,12 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     try:
         with SimulationProgress(args.simulate, args.quiet) as progress:
             if controller is not None:
-                result = controlled_run(FreeSystem(model, free, q0, u0), controller, args, dt, rtol, progress)
+                result = controlled_run(FreeSystem(model, free, q0, u0), controller, args, dt, rtol, atol,
+                                        progress)
             else:
                 result = simulate(FreeSystem(model, free, q0, u0), args.simulate, dt_output=dt, rtol=rtol,
-                                  atol=rtol * ABSOLUTE_TOLERANCE, method=method,
-                                  step=0.01 if args.step is None else args.step, progress=progress)
+                                  atol=atol, method=method, step=0.01 if args.step is None else args.step,
+                                  progress=progress)
     except UnstableStep as error:
         raise InputError(str(error), field="--step") from None
     except SimulationStopped as stop:
@@ -79,11 +81,10 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     return 0
 
 
-def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: float, progress):
+def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: float, atol: float, progress):
     """The simulation with the deck's controller library (:mod:`bladefem.models.turbine.controlled`)."""
     from ..models.turbine.controlled import simulate_controlled
     from ..models.turbine.discon import DisconController
-    from ..models.turbine.simulate import ABSOLUTE_TOLERANCE
 
     if args.method not in (None, "auto", "DP54", "RK4"):
         raise InputError("a run with the controller library integrates with DP54 (or RK4) between controller "
@@ -99,8 +100,7 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     print(f"# controller: {setup.library} with {setup.infile}, called every {setup.time_step:g} s "
           f"({setup.time_step_from}{'' if args.controller_dt else '; --controller-dt sets it'})", file=sys.stderr)
     with DisconController(setup, Path(args.main).stem) as controller:
-        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol,
-                                   atol=rtol * ABSOLUTE_TOLERANCE,
+        return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=atol,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,
                                    method=args.method if args.method in ("RK4", "DP54") else
                                    "DP54" if args.rtol is not None else "auto",

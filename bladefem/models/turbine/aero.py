@@ -4,7 +4,7 @@ Each AeroDyn node (``BlSpn``) is a point of the flexible blade: its modal shapes
 are linear interpolations of the structural beam's (root, span nodes, tip), as OpenFAST maps ElastoDyn's blade
 motion onto AeroDyn's nodes; the aerodynamic centre offsets (``BlCrvAC`` downwind, ``BlSwpAC`` against the
 rotation) ride on rigid arms turned with the bent section to second order in its slopes (along the axis:
-:attr:`TurbineAero.along`; across it: :func:`turned_arms`), each section canted by ``BlCrvAng``. At every
+:attr:`TurbineAero.along`; across it: :func:`.kinematics.turned_arms`), each section canted by ``BlCrvAng``. At every
 state the node's absolute velocity (tower, nacelle, rotor and blade motion) is subtracted from the wind, so
 aerodynamic damping and stiffness come out of the loads. The inputs of the node solver
 (:func:`bladefem.aero.bem.node_loads`) follow the section turned by the blade's in-plane and out-of-plane slopes
@@ -41,7 +41,7 @@ from ...aero.polars import pack_polars
 from ...aero.rotor import Inflow, Rotor
 from ...errors import InputError
 from ...aero.polar import Projection, projection
-from .kinematics import BeamNodes, NodeGroup, carry_nodes
+from .kinematics import BeamNodes, NodeGroup, carry_nodes, turned_arms
 from .shapes import ModalBeam
 
 
@@ -243,33 +243,9 @@ def aero_nodes(model, aero: TurbineAero, q: NDArray, u: NDArray, motion=None) ->
                       aero.along)
     qb, ub = q[model.blade_columns], u[model.blade_columns]
     span = nodes.deflect(qb, ub)
-    offset, partials, velocity, bias = turned_arms(aero, qb, ub)
+    offset, partials, velocity, bias = turned_arms(aero.slope, aero.offset, qb, ub)
     return carry_nodes(motion.apex, motion.blade_frames, span.offset + aero.offset + offset,
                        span.partials + partials, nodes.selection, span.velocity + velocity, span.bias + bias)
-
-
-def turned_arms(aero: TurbineAero, q: NDArray, u: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """The second-order motion across the blade axis of the nodes' arms (offsets o_v in-plane, o_w out-of-plane)
-    turned by the bent section (:func:`bladefem.aero.polar.bent_axes` of the slopes v', w'): with a = o_v v' + o_w w'
-    (-a along the axis: :attr:`TurbineAero.along`), -a v'/2 in-plane and -a w'/2 out-of-plane. The thrust of a node
-    upwind of the axis works on the bending through it (3.9 % of the IEA-22MW's tip deflection), as OpenFAST maps
-    AeroDyn's loads onto ElastoDyn's nodes with the turned arms' moments. Offsets (..., Na, 3), partials
-    (..., Na, 3, k), velocities and bias accelerations (..., Na, 3) for amplitudes q and rates u (..., k)."""
-    slope = aero.slope                                               # (k, Na, 2)
-    theta = np.einsum("...k,kpa->...pa", q, slope)
-    rate = np.einsum("...k,kpa->...pa", u, slope)
-    arm = aero.offset[:, 1:]
-    a = np.sum(arm * theta, axis=-1)[..., None]                      # (..., Na, 1)
-    a_rate = np.sum(arm * rate, axis=-1)[..., None]
-    lead = theta.shape[:-1]
-    offset, velocity, bias = np.zeros(lead + (3,)), np.zeros(lead + (3,)), np.zeros(lead + (3,))
-    offset[..., 1:] = -0.5 * a * theta
-    velocity[..., 1:] = -0.5 * (a_rate * theta + a * rate)
-    bias[..., 1:] = -a_rate * rate
-    a_q = np.einsum("kpa,pa->pk", slope, arm)                          # (Na, k): da / dq
-    partials = np.zeros(lead + (3, slope.shape[0]))
-    partials[..., 1:, :] = -0.5 * (theta[..., None] * a_q[:, None, :] + a[..., None] * np.moveaxis(slope, 0, -1))
-    return offset, partials, velocity, bias
 
 
 def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,

@@ -81,7 +81,7 @@ if njit is not None:                                   # module-level kernels: n
                     w += slope[i, p, 1] * qb[i]
                     v_rate += slope[i, p, 0] * ub[i]
                     w_rate += slope[i, p, 1] * ub[i]
-                # the arms turned by the bent section, to second order across the axis (aero.turned_arms)
+                # the arms turned by the bent section, to second order across the axis (kinematics.turned_arms)
                 a = offset[p, 1] * v + offset[p, 2] * w
                 a_rate = offset[p, 1] * v_rate + offset[p, 2] * w_rate
                 d[1] -= 0.5 * a * v
