@@ -26,7 +26,9 @@ DECK = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ROSCO.fst"
 CHANNELS = ("OoPDefl1_m", "GenPwr_kW", "BldPitch1_deg", "RotSpeed_rpm", "RootMOoP1_kNm", "TwrBsMyt_kNm")
 RUNS = {"DP54 rtol 1e-9 (reference)": ["--method", "DP54", "--rtol", "1e-9"],
         "DP54 rtol 1e-6 (before)": ["--method", "DP54"],
-        "RK4, one step per interval, induction held over its stages (auto, now)": []}
+        "RK4, one step per interval, induction held over its stages (auto, before)": ["--method", "RK4", "--step",
+                                                                                      "0.00625"],
+        "ABM4, one step per interval, induction held at the predicted end (auto, now)": []}
 
 
 def run(seconds: float, options: list[str]) -> tuple[dict[str, np.ndarray], float, int]:

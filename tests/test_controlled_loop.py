@@ -33,7 +33,7 @@ def run(isolated: bool, wind: float, pitch_deg: float, rpm: float, shapes: str, 
                                    efficiency=model.generator.efficiency, method=method, rk4_step=0.004)
 
 
-@pytest.mark.parametrize("method", ["DP54", "RK4"])
+@pytest.mark.parametrize("method", ["DP54", "RK4", "ABM4"])
 @pytest.mark.parametrize("wind, pitch_deg, rpm, shapes", [(16.0, 10.0, 12.1, "fe"), (8.0, 0.0, 9.16, "polynomial")])
 def test_compiled_loop_equals_the_python_loop(wind, pitch_deg, rpm, shapes, method):
     """Above rated (pitch and constant power) and below (torque law), each blade model, each integrator (RK4 at

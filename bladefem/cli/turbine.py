@@ -121,12 +121,14 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--dt", type=float, default=None, help="output interval of --simulate, s (default 0.05)")
     parser.add_argument("--rtol", type=float, default=None,
                         help="relative tolerance of --simulate (default 1e-6; the absolute tolerance is 0.1 times it)")
-    parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4"), default=None,
+    parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4", "ABM4"),
+                        default=None,
                         help="time integrator: auto (with numba the compiled Dormand-Prince 8(5,3), or 5(4) with "
-                             "aerodynamics; else scipy DOP853; with the controller library one RK4 step per "
-                             "controller interval where stable, the BEM solved once per step, else DP54; DP54 with "
-                             "--rtol), DP853 or DP54 (compiled, need numba), "
-                             "scipy RK45 or DOP853, or fixed-step RK4 (--step)")
+                             "aerodynamics; else scipy DOP853; with the controller library one ABM4 step per "
+                             "controller interval where stable, else one RK4 step, the BEM solved once per step, "
+                             "else DP54; DP54 with --rtol), DP853 or DP54 (compiled, need numba), "
+                             "scipy RK45 or DOP853, fixed-step RK4 (--step), or ABM4 (with the controller library: "
+                             "ElastoDyn's Adams-Bashforth-Moulton, one step per controller interval)")
     parser.add_argument("--discon-library", metavar="PATH", default=None,
                         help="the Bladed-style controller library (DISCON entry point) a deck with PCMode and "
                              "VSContrl 5 runs (default: ServoDyn's DLL_FileName, else an installed ROSCO's "

@@ -43,6 +43,9 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     )
 
     method = args.method or "auto"
+    if method == "ABM4" and controller is None:
+        raise InputError("ABM4 steps once per controller interval: it needs the controller library (ServoDyn "
+                         "PCMode and VSContrl 5); use auto, DP54 or RK4", field="--method")
     if not hasattr(model.fast_equations(), "integrate"):
         print("# numba is switched off (BLADEFEM_NO_NUMBA) or not installed: the numpy equations, about 100 times "
               "slower", file=sys.stderr)
@@ -66,14 +69,14 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
                                   atol=atol, method=method, step=0.01 if args.step is None else args.step,
                                   progress=progress)
     except UnstableStep as error:
-        raise InputError(str(error), field="--step") from None
+        raise InputError(str(error), field=error.option) from None
     except SimulationStopped as stop:
         return stopped(stop, args)
     text = table_text(result)
     if args.output:
         write_atomic(args.output, text)
-        print(f"# {len(result.time)} rows written to {Path(args.output)}; {result.evaluations} right-hand sides",
-              file=sys.stderr)
+        print(f"# {len(result.time)} rows written to {Path(args.output)}; {result.evaluations} right-hand sides"
+              + (f" ({result.integrator} between controller calls)" if result.integrator else ""), file=sys.stderr)
     else:
         sys.stdout.write(text)
     if args.plot:
@@ -86,8 +89,8 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     from ..models.turbine.controlled import simulate_controlled
     from ..models.turbine.discon import DisconController
 
-    if args.method not in (None, "auto", "DP54", "RK4"):
-        raise InputError("a run with the controller library integrates with DP54 (or RK4) between controller "
+    if args.method not in (None, "auto", "DP54", "RK4", "ABM4"):
+        raise InputError("a run with the controller library integrates with DP54, RK4 or ABM4 between controller "
                          "calls", field="--method")
     if not hasattr(system.model.fast_equations(), "integrate"):
         raise InputError("a run with the controller library needs numba (unset BLADEFEM_NO_NUMBA); or hold the "
@@ -102,7 +105,7 @@ def controlled_run(system, setup, args: argparse.Namespace, dt: float, rtol: flo
     with DisconController(setup, Path(args.main).stem) as controller:
         return simulate_controlled(system, controller, args.simulate, dt_output=dt, rtol=rtol, atol=atol,
                                    hub_wind=hub_wind, efficiency=efficiency, progress=progress,
-                                   method=args.method if args.method in ("RK4", "DP54") else
+                                   method=args.method if args.method in ("RK4", "DP54", "ABM4") else
                                    "DP54" if args.rtol is not None else "auto",
                                    rk4_step=0.01 if args.step is None else args.step)
 

@@ -8,8 +8,12 @@ from call to call are written (those that do not are the Python loop's first cal
 collective pitch (record 45) and torque (47) held over the interval, the pitch set on the kernels' arrays as
 :class:`.pitching.CompiledPitch` sets it (one definition), and the equations integrated with Dormand-Prince 5(4) (the steps and the
 error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval) or with classical
-RK4 at fixed steps (one per interval where the interval is no longer than the step, as ElastoDyn steps at DT) with
-the BEM solved at each step's start and its induction held over the step's other stages. The load channels and
+RK4 at fixed steps (one per interval where the interval is no longer than the step) with the BEM solved at each
+step's start and its induction held over the step's other stages, or with Adams-Bashforth-Moulton, one step per
+interval, as ElastoDyn steps at DT with its default ``Method`` 3 (ED_ABM4: RK4 for the first three intervals, then
+the predictor from the derivatives at the last four boundaries, one right-hand side at the predicted end with the
+BEM's induction of the step's start held, the corrector; the derivative at the next boundary, with the next
+interval's commands, starts the next step). The load channels and
 the derivative at an interval's end, which the next call measures, come from the last stage of the step that ends
 there (evaluated with its output row), not from one more right-hand side. The kernel returns after ``budget``
 right-hand sides (the caller watches the rows, polls Ctrl-C) or with a status.
@@ -33,6 +37,12 @@ FAILED, OVERRIDE, NOT_FINITE = 6, 7, 8
 #: stages' times as fractions of the step
 RK4 = np.array([[0.5, 0.0, 0.0, 0.0], [0.0, 0.5, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [1 / 6, 1 / 3, 1 / 3, 1 / 6]])
 RK4_C = np.array([0.0, 0.5, 0.5, 1.0])
+#: Adams-Bashforth-Moulton (ElastoDyn's ED_ABM4), per step h: the predictor's weights of the derivatives at t, t - h,
+#: t - 2h, t - 3h, and the corrector's of the derivatives at the predicted t + h, at t, t - h, t - 2h
+ABM4_PREDICTOR = np.array([55.0, -59.0, 37.0, -9.0]) / 24.0
+ABM4_CORRECTOR = np.array([9.0, 19.0, -5.0, 1.0]) / 24.0
+#: the derivatives an ABM4 step needs from before its start (RK4 steps the intervals until they are known)
+ABM4_HISTORY = 3
 
 if njit is not None:
     from .compiled_integrators import check_state, combination, dense_output, error_norm
@@ -186,15 +196,52 @@ if njit is not None:                                   # module-level kernels: n
         return x, f_end, next_out, count, 0, -1
 
     @njit(cache=True)
+    def abm4_interval(t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, history, limit, q0, u0, index,
+                      data, work, hub_radius):
+        """One step of Adams-Bashforth-Moulton from t to t_end (ElastoDyn's ED_ABM4): the predictor from the
+        derivatives at t (``f0``, with the interval's commands) and at the three boundaries before (``history``),
+        the rate at the predicted end with the BEM's induction of ``f0``'s solve held (its load channels in
+        ``end_row``: what the next call measures), the corrector. The rows within 1e-9 ``spacing`` of t_end take
+        the corrected state and its load channels (one more right-hand side). Returns as :func:`dp54_interval`."""
+        h = t_end - t
+        n = x.shape[0]
+        P, C = ABM4_PREDICTOR, ABM4_CORRECTOR
+        predicted = np.empty(n)
+        for i in range(n):
+            predicted[i] = x[i] + h * (P[0] * f0[i] + P[1] * history[0, i] + P[2] * history[1, i]
+                                       + P[3] * history[2, i])
+        hold = work[1][13]
+        hold[2] = 1.0
+        f_end = rate(t_end, predicted, q0, u0, index, data, work, hub_radius, end_row)
+        hold[2] = 0.0
+        new = np.empty(n)
+        for i in range(n):
+            new[i] = x[i] + h * (C[0] * f_end[i] + C[1] * f0[i] + C[2] * history[0, i] + C[3] * history[1, i])
+        count = 1
+        bad = check_state(new, limit)
+        if bad >= 0:
+            return new, f_end, next_out, count, 1 if not np.isfinite(new[bad]) else 2, bad
+        near = 1e-9 * spacing
+        while next_out < times.shape[0] and times[next_out] <= t_end + near:
+            store_row(out, next_out, new)
+            rate(t_end, new, q0, u0, index, data, work, hub_radius, loads[next_out])
+            count += 1
+            next_out += 1
+        return new, f_end, next_out, count, 0, -1
+
+    @njit(cache=True)
     def controlled_chunk(k, boundaries, x, rate_x, row, commands, call_first, times, out, loads, held, next_out,
                          budget, rtol, atol, step, limit, tableau, K, q0, u0, index, data, work, hub_radius,
-                         pitching, function, records, buffers, turbine, constants):
+                         pitching, function, records, buffers, turbine, constants, history, taken):
         """Controller intervals from ``k`` on until ``budget`` right-hand sides are spent or the run ends: at each,
         the controller called (but for the first interval of a call without ``call_first``: its commands set
         already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place to
         the interval's end), its demands held (``commands`` = pitch, torque, updated), the interval integrated
-        (:func:`dp54_interval`), the pitch of each output row in ``held``. ``pitching`` = (base pitch, reference
-        arrays) of :func:`.pitching.pitch_arrays`. Returns (next interval, its start time, next output row, right-hand sides,
+        (:func:`dp54_interval`; :func:`rk4_interval` where ``step`` is positive; :func:`abm4_interval` where
+        ``taken[0]``, the boundaries whose derivatives ``history`` holds, newest first, is at least
+        :data:`ABM4_HISTORY`, the interval whole and no output row inside it; ``taken[0]`` negative: no ABM4), the
+        pitch of each output row in ``held``. ``pitching`` = (base pitch, reference arrays) of
+        :func:`.pitching.pitch_arrays`. Returns (next interval, its start time, next output row, right-hand sides,
         status, offending index)."""
         structure, aero, law = data
         count = 0
@@ -217,7 +264,13 @@ if njit is not None:                                   # module-level kernels: n
             call_first = True
             f0 = rate(t, x, q0, u0, index, data, work, hub_radius, row[:0])
             first = next_out
-            if step > 0.0:
+            spacing = boundaries[1] - boundaries[0]
+            inner = next_out < times.shape[0] and times[next_out] < end - 1e-9 * spacing
+            if taken[0] >= ABM4_HISTORY and not inner and abs(end - t - spacing) <= 1e-9 * spacing:
+                new, f_end, next_out, used, status, bad = abm4_interval(
+                    t, x, f0, end, spacing, times, out, loads, next_out, row, history, limit, q0, u0, index, data,
+                    work, hub_radius)
+            elif step > 0.0:
                 new, f_end, next_out, used, status, bad = rk4_interval(
                     t, x, f0, end, boundaries[1] - boundaries[0], step, times, out, loads, next_out, row, K, limit,
                     q0, u0, index, data, work, hub_radius)
@@ -226,6 +279,10 @@ if njit is not None:                                   # module-level kernels: n
                     t, x, f0, end, boundaries[1] - boundaries[0], times, out, loads, next_out, row, K, rtol, atol,
                     limit, tableau, q0, u0, index, data, work, hub_radius)
             count += used + 1
+            if taken[0] >= 0:                          # ABM4: the derivatives at the boundaries, newest first
+                for i in range(x.shape[0]):
+                    history[2, i], history[1, i], history[0, i] = history[1, i], history[0, i], f0[i]
+                taken[0] += 1
             for j in range(first, next_out):
                 held[j] = commands[0]
             if status:

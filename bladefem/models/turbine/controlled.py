@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -22,17 +23,18 @@ from ...errors import InputError
 from .discon import ControllerError, DisconController, Measurements
 from .outputs import LOAD_COLUMNS
 from .pitching import CompiledPitch
-from .compiled import Integration
+from .compiled_control import ABM4_HISTORY
+from .interval_steps import abm4_grows_none, abm4_interval, abm4_stable, rk4_interval
 from .simulate import (
     SimulationResult,
     UnstableStep,
     diverged,
     divergence_limits,
     generator_free,
+    initial_modes,
     output_times,
     result_of,
     rk4_stable_step,
-    rk4_step,
 )
 from .system import FreeSystem
 from .watch import Interrupted, Monitor, SimulationStopped
@@ -117,19 +119,27 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     """Integrate from 0 to ``duration`` (s) with the controller called every ``controller.setup.time_step``
     seconds (zero-order hold between calls); outputs every ``dt_output`` s. ``hub_wind``: the horizontal wind speed
     at the hub sent to the controller, m/s; ``efficiency``: ServoDyn's GenEff (the electrical power sent back);
-    ``method``: "DP54" (adaptive), "RK4" (fixed steps no longer than ``rk4_step`` s, ElastoDyn's, through a
-    start-up transient whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit) or
-    "auto" (one RK4 step per controller interval where the interval is within ``RK4_MARGIN`` of that limit, as
-    ElastoDyn steps once per DT; DP54 otherwise).
+    ``method``: "DP54" (adaptive), "RK4" (fixed steps no longer than ``rk4_step`` s, through a start-up transient
+    whose loads jump; refused with :class:`UnstableStep` beyond the fastest mode's limit), "ABM4" (one
+    Adams-Bashforth-Moulton step per controller interval, ElastoDyn's default; refused where a decaying mode would
+    grow, :func:`.interval_steps.abm4_stable`) or "auto" (ABM4 where it is stable with a margin, else one RK4 step
+    per interval where the interval is within ``RK4_MARGIN`` of RK4's limit, else DP54).
     Stops with :class:`SimulationStopped` (and the rows so far) on a physical bound, a divergence, a controller
     failure or Ctrl-C; a controller that fails on its first call (its library or input file) is an
     :class:`InputError`."""
     run = Controlled(system, hub_wind, efficiency)
     compiled, step = run.compiled, controller.setup.time_step
-    if method in ("auto", "RK4"):
-        stable, dof = rk4_stable_step(system)
+    if method in ("auto", "RK4", "ABM4"):
+        modes = initial_modes(system)
+        stable, dof = rk4_stable_step(system, modes)
         if method == "auto":
-            method, rk4_step = ("RK4", step) if step <= RK4_MARGIN * stable else ("DP54", rk4_step)
+            method, rk4_step = ("ABM4", step) if abm4_stable(modes[0], step) else (
+                ("RK4", step) if step <= RK4_MARGIN * stable else ("DP54", rk4_step))
+        if method == "ABM4":
+            if not abm4_grows_none(step, modes[0]):
+                raise UnstableStep(f"ABM4 with the controller's interval of {step:g} s as its step lets a damped mode "
+                                   "grow: use --method RK4 or DP54, or a shorter --controller-dt", "--method")
+            rk4_step = step                            # its first three intervals: one RK4 step each
         if method == "RK4" and rk4_step > stable:
             raise UnstableStep(f"RK4 with a step of {rk4_step:g} s is unstable for the fastest mode ({dof}): the "
                                f"step must be below {stable:.3g} s")
@@ -141,13 +151,15 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
         np.arange(calls + 1) * step)
     if controller.library is not None and not controller.setup.individual:
         try:
-            return compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress,
-                                 rk4_step if method == "RK4" else 0.0)
+            return replace(compiled_loop(run, controller, times, boundaries, rtol, atol, limit, monitor, progress,
+                                         rk4_step if method in ("RK4", "ABM4") else 0.0, method == "ABM4"),
+                           integrator=method)
         finally:
             controller.close(run.last_call)
     x = system.initial_state()
     states, loads, pitch = [x], [], []
     end_loads = end_rate = None
+    history, known = np.zeros((ABM4_HISTORY, len(x))), 0
     evaluations, row = 0, 1
     t = 0.0
 
@@ -172,12 +184,21 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
                 last += 1
             inner = times[row:last]
             chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
-            if method == "RK4":
+            measured = None
+            if method == "ABM4":
+                first = compiled.derivative(t, x, system.q0, system.u0, system.index)
+                if known >= ABM4_HISTORY and len(chunk) == 2 and abs(end - t - step) <= 1e-9 * step:
+                    out, measured = abm4_interval(system, compiled, t, end, x, first, history, limit, last - row)
+                else:
+                    out = rk4_interval(system, compiled, chunk, x, rk4_step, limit, last - row, first)
+                history, known = np.concatenate([first[None], history[:-1]]), known + 1
+                evaluations += 1
+            elif method == "RK4":
                 out = rk4_interval(system, compiled, chunk, x, rk4_step, limit, last - row)
             else:
                 out = compiled.integrate(chunk, x, rtol, atol, system.q0, system.u0, system.index, order=5,
                                          limit=limit, first_step=end - t, watch=steps)
-            evaluations += out.evaluations + (method == "RK4")      # RK4: the end's rate, measured afresh
+            evaluations += out.evaluations + (method != "DP54" and measured is None)  # RK4: the end measured afresh
             if out.status == 4:
                 raise stop(SimulationStopped(*out.reason))
             if out.status:
@@ -187,7 +208,9 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
                 pitch.extend([run.pitcher.pitch] * (len(states) - len(pitch)))
                 raise stop(diverged(system, out.offending, out.time, out.status, method))
             x, end_loads, end_rate = out.states[-1], out.loads[len(chunk) - 1], out.rate
-            if not np.all(np.isfinite(end_loads)):            # RK4 between output rows: measured afresh
+            if measured is not None:                          # ABM4: at the predicted end
+                end_loads = measured
+            elif not np.all(np.isfinite(end_loads)):          # RK4 between output rows: measured afresh
                 end_loads = None
             taken = out.states[1:1 + (last - row)]
             states.extend(taken)
@@ -210,15 +233,16 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
         raise stop(Interrupted(f"interrupted (Ctrl-C) at t = {t:.4g} s", t)) from None
     finally:
         controller.close(t)
-    return finish(run, system, times, states, loads, pitch, evaluations)
+    return replace(finish(run, system, times, states, loads, pitch, evaluations), integrator=method)
 
 
 def compiled_loop(run: Controlled, controller: DisconController, times: NDArray, boundaries: NDArray, rtol: float,
                   atol: float, limit: NDArray, monitor: Monitor, progress: Callable[[float], None] | None,
-                  rk4_step: float = 0.0) -> SimulationResult:
+                  rk4_step: float = 0.0, multistep: bool = False) -> SimulationResult:
     """The loop of :func:`simulate_controlled` compiled (:mod:`.compiled_control`: the library called from the
     kernel) for a library loaded in this process and collective pitch (DP54, or RK4 with steps up to ``rk4_step``
-    s where it is positive); its first call made here (a library or
+    s where it is positive, or with ``multistep`` ABM4 after RK4's first three intervals); its first call made here
+    (a library or
     input file that fails there is an :class:`InputError`). Between kernel calls (about ``BUDGET`` right-hand
     sides) the new rows are watched, progress told and Ctrl-C looked for."""
     from .compiled import _dp54_tableau, first_call
@@ -252,6 +276,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     K, tableau = np.zeros((7, len(x))), _dp54_tableau()
     index, q0, u0 = (np.ascontiguousarray(a) for a in (system.index, system.q0, system.u0))
     k, t, rows, evaluations, call_first = 0, 0.0, 1, 0, False
+    history, known = np.zeros((ABM4_HISTORY, len(x))), np.array([0 if multistep else -1], dtype=np.int64)
 
     def result(count: int) -> SimulationResult:
         return finish(run, system, times[:count], states[:count], loads[:count], held[:count], evaluations)
@@ -262,7 +287,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
             args = (k, boundaries, x, rate, row, held_commands, call_first, times, states, loads, held, rows, BUDGET,
                     float(rtol), float(atol), float(rk4_step), limit, tableau, K, q0, u0, index, compiled.loaded,
                     compiled.all_work, float(compiled.hub_radius), pitching, function, controller.records, buffers,
-                    turbine, constants)
+                    turbine, constants, history, known)
             with first_call("controlled loop", "controlled simulation kernels", controlled_chunk, args):
                 k, t, rows, count, status, bad = controlled_chunk(*args)
             call_first, evaluations = True, evaluations + count
@@ -270,7 +295,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
             controller.pitch_command[:] = held_commands[0]
             run.last_call = float(boundaries[max(k - 1, 0)]) if not status else float(t)
             if status in (1, 2, 3):
-                error = diverged(system, int(bad), t, status, "RK4" if rk4_step > 0 else "DP54")
+                error = diverged(system, int(bad), t, status, "ABM4" if multistep else "RK4" if rk4_step > 0 else "DP54")
                 error.result = result(rows)
                 raise error
             if status:
@@ -292,38 +317,6 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
             if interrupted():
                 raise Interrupted(f"interrupted (Ctrl-C) at t = {t:.4g} s", float(t), result(rows))
     return result(rows)
-
-
-def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step: float, limit: NDArray,
-                 rows: int) -> Integration:
-    """Classical RK4 over the times ``chunk`` (steps no longer than ``step``, landing on each), the compiled
-    right-hand side, the BEM's induction of each step's first stage held over the other three; the load channels at
-    the first ``rows`` times after the start (the output rows). Stops at a state beyond ``limit`` or not finite
-    (status 1, 2), as the adaptive kernel does."""
-    q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
-
-    def rate(t: float, x: NDArray) -> NDArray:
-        return compiled.derivative(t, x, q0, u0, index)
-
-    states, count = np.full((len(chunk), len(x)), np.nan), 0
-    states[0] = x
-    for i, (a, b) in enumerate(zip(chunk[:-1], chunk[1:])):
-        n = max(1, int(math.ceil((b - a) / step - 1e-9)))
-        h, t = (b - a) / n, a
-        for _ in range(n):
-            x = rk4_step(rate, t, x, h, hold)              # the induction of the first stage's solve held
-            t += h
-        count += 4 * n
-        bad = np.flatnonzero(~np.isfinite(x) | (np.abs(x) > limit))
-        if bad.size:
-            status = 1 if not np.isfinite(x[bad[0]]) else 2
-            loads = np.full((len(chunk), len(LOAD_COLUMNS)), np.nan)
-            return Integration(states, loads, i + 1, count, status, float(b), int(bad[0]))
-        states[i + 1] = x
-    loads = np.full((len(chunk), len(LOAD_COLUMNS)), np.nan)
-    if rows:
-        loads[1:1 + rows] = compiled.outputs(chunk[1:1 + rows], states[1:1 + rows], q0, u0, index)
-    return Integration(states, loads, len(chunk), count)
 
 
 def finish(run: Controlled, system: FreeSystem, times: NDArray, states: list, loads: list, pitch: list,

@@ -35,7 +35,12 @@ METHODS = ("auto", "DP853", "DP54", "RK45", "DOP853", "RK4")
 
 
 class UnstableStep(ValueError):
-    """A fixed step beyond the stability limit of the fastest mode."""
+    """A fixed step beyond the stability limit of the fastest mode; ``option``: the command-line option that sets
+    the step."""
+
+    def __init__(self, message: str, option: str = "--step") -> None:
+        super().__init__(message)
+        self.option = option
 
 
 class DivergenceError(SimulationStopped):
@@ -50,7 +55,7 @@ class DivergenceError(SimulationStopped):
 class SimulationResult:
     """Time histories: time (T,) s, coordinates q and rates u (T, n), output channels (T,) each, the load columns
     (T, len(outputs.LOAD_COLUMNS)) in SI, and the dynamic wake's states (T, B, Na, 4), m/s (None without it:
-    :mod:`bladefem.aero.dynamic_wake`)."""
+    :mod:`bladefem.aero.dynamic_wake`); ``integrator``: the method a controlled run chose (empty otherwise)."""
 
     time: NDArray
     q: NDArray
@@ -61,6 +66,7 @@ class SimulationResult:
     evaluations: int
     loads: NDArray | None = None
     wake: NDArray | None = None
+    integrator: str = ""
 
 
 def output_times(duration: float, dt_output: float) -> NDArray:
@@ -106,14 +112,21 @@ def auto_method(model) -> str:
     return "DP54" if model.aero is not None else "DP853"
 
 
-def rk4_stable_step(system: FreeSystem) -> tuple[float, str]:
-    """Largest stable RK4 step (s) for the free system linearized at its initial state, and the coordinate that
-    dominates (by energy share) the mode with the largest |eigenvalue|, which sets it."""
+def initial_modes(system: FreeSystem) -> tuple[NDArray, NDArray]:
+    """Eigenvalues (rad/s) and eigenvectors of the free system's state matrix at its initial state."""
     from .linearize import state_matrix
+    q, u = system.full(0.0, system.initial_state())
+    return np.linalg.eig(state_matrix(system, q, u))
+
+
+def rk4_stable_step(system: FreeSystem, modes: tuple[NDArray, NDArray] | None = None) -> tuple[float, str]:
+    """Largest stable RK4 step (s) for the free system linearized at its initial state (``modes``: its
+    :func:`initial_modes` if computed already), and the coordinate that dominates (by energy share) the mode with
+    the largest |eigenvalue|, which sets it."""
     from .mode_names import participation
     model, ix = system.model, system.index
     q, u = system.full(0.0, system.initial_state())
-    values, vectors = np.linalg.eig(state_matrix(system, q, u))
+    values, vectors = initial_modes(system) if modes is None else modes
     fastest = int(np.argmax(np.abs(values)))
     share = participation(vectors[:system.size, fastest], np.diag(model.K)[ix],
                           np.diag(model.equations(q, u)[0])[ix], abs(values[fastest]))
@@ -121,11 +134,12 @@ def rk4_stable_step(system: FreeSystem) -> tuple[float, str]:
     return RK4_STABILITY / abs(values[fastest]), f"{coordinate_label(dof)}, {abs(values[fastest]) / 2 / np.pi:.3g} Hz"
 
 
-def rk4_step(rhs, t: float, x: NDArray, h: float, hold: NDArray | None = None) -> NDArray:
+def rk4_step(rhs, t: float, x: NDArray, h: float, hold: NDArray | None = None, first: NDArray | None = None
+             ) -> NDArray:
     """One classical RK4 step of ``h`` s from ``(t, x)``; with ``hold`` (the aerodynamic state's flags) its third
     flag is set over the stages after the first, whose right-hand sides then take the induction of the first's BEM
-    solve (:mod:`.compiled_loads`)."""
-    k1 = rhs(t, x)
+    solve (:mod:`.compiled_loads`); ``first``: the derivative at ``(t, x)`` if evaluated already (with that solve)."""
+    k1 = rhs(t, x) if first is None else first
     if hold is not None:
         hold[2] = 1.0
     k2 = rhs(t + h / 2, x + h / 2 * k1)
