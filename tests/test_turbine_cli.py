@@ -134,6 +134,14 @@ def test_rk4_beyond_its_stability_limit_is_refused():
         assert error.value.field == "--step" and "unstable" in str(error.value) and "yaw" in str(error.value)
 
 
+@pytest.mark.parametrize("method", [(), ("--method", "DP54"), ("--method", "auto")])
+def test_step_without_rk4_is_refused(method):
+    """--step sets only RK4's step: with another method (or none, auto) it would be ignored, so it is refused."""
+    with pytest.raises(InputError) as error:
+        run(MAIN, *ED, "--simulate", "1", *method, "--step", "0.01")
+    assert error.value.field == "--step" and "--method RK4" in str(error.value)
+
+
 @pytest.mark.parametrize("argv, field", [
     (["--simulate", "-1"], "--simulate"),
     (["--simulate", "1", "--initial", "nonsense=1"], "--initial"),

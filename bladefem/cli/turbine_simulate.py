@@ -43,6 +43,9 @@ def simulate_command(model, free, q0: np.ndarray, u0: np.ndarray, args: argparse
     )
 
     method = args.method or "auto"
+    if args.step is not None and method != "RK4":
+        raise InputError("--step sets the step of --method RK4 (the other methods choose theirs): add --method RK4 "
+                         "or leave --step out", field="--step")
     if method == "ABM4" and controller is None:
         raise InputError("ABM4 steps once per controller interval: it needs the controller library (ServoDyn "
                          "PCMode and VSContrl 5); use auto, DP54 or RK4", field="--method")
