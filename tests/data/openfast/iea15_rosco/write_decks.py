@@ -18,11 +18,14 @@ Not run by the tests (OpenFAST is not needed to use ``steady.json``); rerun with
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
-from iea_rosco import IEADeck, main  # noqa: E402
+import iea_rosco  # noqa: E402
+# OPENFAST, edit, outputs: for the scripts built on these decks (make_blade_aeroelastic_iea15.py, iea15_rigid_rotor)
+from iea_rosco import OPENFAST, IEADeck, edit, main, outputs  # noqa: E402, F401
 
 MONO, SHARED = "IEA-15-240-RWT-Monopile", "IEA-15-240-RWT"
 #: wind speed (m/s) -> initial rotor speed (rpm), pitch (deg), near the operating point (ROSCO's steady schedule)
@@ -31,6 +34,17 @@ DECK = IEADeck(name="iea15", title="IEA-15MW", tree="iea15", mono=MONO, shared=S
                ed=f"{MONO}_ElastoDyn.dat", ad=f"{MONO}_AeroDyn15.dat", sd=f"{MONO}_ServoDyn.dat",
                iw=f"{SHARED}_InflowFile.dat", blade=f"{SHARED}_ElastoDyn_blade.dat", cases=CASES,
                out=HERE / "steady.json", tmax=200.0, window=(70.0, 120.0), late=(150.0, 200.0))
+
+#: the deck's files, as the scripts that build on these decks name them
+FST, ED, AD = DECK.fst, DECK.ed, DECK.ad
+
+
+def write_case(folder: Path, wind: float, library: str, seconds: float | None = None) -> Path:
+    """The v5 deck of one case in ``folder`` for the scripts that build on it (the blade linearizations of
+    ``make_blade_aeroelastic_iea15.py``, the rigid rotor of ``iea15_rigid_rotor``): a wind speed outside
+    :data:`CASES` starts at rated speed, 7.56 rpm, pitch 0; its .fst."""
+    deck = DECK if wind in CASES else replace(DECK, cases={**CASES, wind: (7.56, 0.0)})
+    return iea_rosco.write_case(deck, folder, wind, library, seconds)
 
 
 if __name__ == "__main__":
