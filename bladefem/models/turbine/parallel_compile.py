@@ -36,8 +36,8 @@ HELPER = (("bladefem.models.turbine.compiled_loads", "add_aero", "aero"),)
 #: the kernels this process compiles meanwhile, per entry point that calls the loaded equations
 ENTRIES = {
     "integrator": (("bladefem.models.turbine.compiled_kernels", "equations", "structure"),
-                   ("bladefem.models.turbine.compiled_state", "state_rate", "state"),
-                   ("bladefem.models.turbine.compiled_outputs", "output_row", "row")),
+                   ("bladefem.models.turbine.compiled_outputs", "output_row", "row"),
+                   ("bladefem.models.turbine.compiled_integrators", "rate_function", "rate")),
     "outputs": (("bladefem.models.turbine.compiled_kernels", "equations", "structure"),
                 ("bladefem.models.turbine.compiled_outputs", "output_row", "row")),
     "derivative": (("bladefem.models.turbine.compiled_kernels", "equations", "structure"),
@@ -53,6 +53,12 @@ STARTED: list[int] = []
 
 
 def signatures(loaded: tuple, work: tuple) -> dict:
+    """:func:`kernel_signatures` and the state rate's (``"rate"``, :func:`.compiled_calls.rate_types`)."""
+    from .compiled_calls import rate_types
+    return {**kernel_signatures(loaded, work), "rate": rate_types(loaded, work)}
+
+
+def kernel_signatures(loaded: tuple, work: tuple) -> dict:
     """numba argument types of the kernels above as the loaded equations and the rate function call them, for
     ``loaded`` (structure, aero, law) and ``work`` (structural work, aero state) of
     :class:`.compiled.CompiledEquations`: vectors and matrices made inside the kernels are C-contiguous float64,
@@ -124,8 +130,9 @@ def spare_core() -> bool:
     return cores >= 2 and load <= cores - 1
 
 
-def compile_in_parallel(entry: str, loaded: tuple, work: tuple) -> None:
-    """:data:`HELPER` in a second process while this one compiles ``ENTRIES[entry]`` if :func:`spare_core`; returns
+def compile_in_parallel(entry: str, loaded: tuple, work: tuple, extra: tuple = ()) -> None:
+    """:data:`HELPER` and the (module, function, argument types) of ``extra`` in a second process while this one
+    compiles ``ENTRIES[entry]`` if :func:`spare_core`; returns
     when both are done (or the helper failed or ran past :data:`PATIENCE`: the caller's compilation then does what
     it left). Without a spare core, nothing (the caller compiles everything). A kernel that fails to compile here
     is left to the caller's compilation, which then reports the error as without this."""
@@ -135,7 +142,9 @@ def compile_in_parallel(entry: str, loaded: tuple, work: tuple) -> None:
         kinds = signatures(loaded, work)
     except Exception:                                 # compiled ahead only to save time: the call compiles it all
         return
-    jobs = [(module, name, kinds[kind]) for module, name, kind in HELPER if not ready(module, name, kinds[kind])]
+    jobs = [(module, name, argument_types) for module, name, argument_types in
+            [(module, name, kinds[kind]) for module, name, kind in HELPER] + list(extra)
+            if not ready(module, name, argument_types)]
     helper = start_helper(jobs) if jobs else None
     try:
         compile_kernels([(module, name, kinds[kind]) for module, name, kind in ENTRIES[entry]])
