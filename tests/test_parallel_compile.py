@@ -1,6 +1,7 @@
-"""A cold first --simulate compiles the aerodynamic loads in a helper process
-(:mod:`bladefem.models.turbine.parallel_compile`) while this one compiles the structural equations: this process
-then loads them from numba's cache instead of compiling them; the output is the same to the bit as with everything
+"""A cold first --simulate compiles the aerodynamic loads and the integrator in a helper process
+(:mod:`bladefem.models.turbine.parallel_compile`) while this one compiles the structural equations, the output row and
+the state rate (the integrator calls them as first-class functions, :mod:`bladefem.models.turbine.compiled_calls`):
+this process then loads them from numba's cache instead of compiling them; the output is the same to the bit as with everything
 compiled in one process (the helper failing, which falls back to that); a warm run starts no helper; every kernel is
 compiled for one argument-type signature (what lets the two processes write the cache without clashing)."""
 
