@@ -63,15 +63,18 @@ def will_compile(dispatcher, args: tuple) -> bool:
 
 @contextmanager
 def compile_notice(what: str, stream=None, prepare: Callable[[], None] | None = None):
-    """Tell the user on stderr that a kernel is being compiled (then run ``prepare``), and how long it took."""
+    """Tell the user on stderr that a kernel is being compiled (then run ``prepare``), and how long it took
+    (numba's warning about its first-class function types silenced meanwhile, :func:`.compiled_calls.unwarned`)."""
     stream = stream or sys.stderr
     start = time.perf_counter()
     print(f"bladefem: compiling the {what} with numba (first run only, cached afterwards)...", file=stream,
           flush=True)
+    from .compiled_calls import unwarned
     try:
-        if prepare is not None:
-            prepare()
-        yield
+        with unwarned():
+            if prepare is not None:
+                prepare()
+            yield
     finally:
         print(f"bladefem: compiled in {time.perf_counter() - start:.0f} s", file=stream, flush=True)
 
@@ -200,7 +203,7 @@ class CompiledEquations:
         is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
         the output rows the call wrote may stop the run with a reason. ``first_step``: the first trial step, s
         (default 1e-3; a run restarted every controller interval starts with the interval)."""
-        from .compiled_calls import integrator, integrator_types, kernels
+        from .compiled_calls import integrator, integrator_types, kernels, unwarned
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
         from .watch import BUDGET, interruptible
@@ -218,18 +221,21 @@ class CompiledEquations:
         t, h, rows, evaluations = float(times[0]), min(first, max(times[-1] - times[0], 1e-12)), 1, 0
         f, end = np.zeros(len(x)), float(times[-1])
 
-        signature, functions = None, None
+        compiled = None
 
         def step(start: bool) -> tuple:
-            nonlocal signature, functions
+            nonlocal compiled
             args = (t, x, f, h, end, budget, start, times, out, loads, rows, float(rtol), float(atol), limit,
                     tableau, q0, u0, index, self.loaded, self.all_work, float(self.hub_radius))
-            signature = signature or integrator_types(kernel, self.loaded, self.all_work, args)
-            job = (kernel.py_func.__module__, kernel.py_func.__name__, signature)
-            with first_call(f"integrator {order}", "turbine simulation kernels", kernel, signature,
-                            prepare=self._parallel("integrator", (job,))):
-                functions = functions or kernels(self.loaded, self.all_work)
-                return integrator(kernel, signature)(*functions, *args)
+            with unwarned():                           # numba makes function types at each call too
+                if compiled is None:                   # the integrator for these types and the kernels it calls
+                    signature = integrator_types(kernel, self.loaded, self.all_work, args)
+                    job = (kernel.py_func.__module__, kernel.py_func.__name__, signature)
+                    with first_call(f"integrator {order}", "turbine simulation kernels", kernel, signature,
+                                    prepare=self._parallel("integrator", (job,))):
+                        compiled = (integrator(kernel, signature), *kernels(self.loaded, self.all_work))
+                        return compiled[0](*compiled[1:], *args)
+                return compiled[0](*compiled[1:], *args)
 
         t_before, rows_before = t, 0
         t, x, f, h, rows, count, status, bad = step(True)

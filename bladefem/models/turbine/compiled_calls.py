@@ -19,12 +19,20 @@ meets by converting the dispatchers passed to the function types.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from functools import cache
 
 import numpy as np
 
-#: numba marks its first-class function types experimental (numba 0.68); the warning would reach every user
-warnings.filterwarnings("ignore", message="First-class function type feature is experimental")
+
+@contextmanager
+def unwarned() -> Iterator[None]:
+    """numba's warning that its first-class function types are experimental (numba 0.68; raised as the types are
+    made and as kernels taking them compile) silenced: it is not the user's to act on."""
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="First-class function type feature is experimental")
+        yield
 
 
 def kernel_types(loaded: tuple, work: tuple):
@@ -50,10 +58,9 @@ def rate_types(loaded: tuple, work: tuple) -> tuple:
 
 def kernels(loaded: tuple, work: tuple) -> tuple:
     """The (rate, (structural equations, aerodynamic loads, output row)) dispatchers the integrators are given,
-    each compiled (or loaded from the disk cache) for its argument types. numba converts a dispatcher to a function
-    type by compiling it for the full signature, return type included, which is another entry of the disk cache
-    than the argument types' (those under which :mod:`.parallel_compile`'s helper leaves them) unless the
-    dispatcher already holds a version for these arguments."""
+    each compiled (or loaded from the disk cache) for its argument types first: numba converts a dispatcher without
+    that version to a function type by compiling it for the full signature, return type included, another entry of
+    the disk cache than the one :mod:`.parallel_compile`'s helper writes."""
     from .compiled_integrators import rate_function
     from .compiled_kernels import equations
     from .compiled_loads import add_aero
