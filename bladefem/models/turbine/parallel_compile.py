@@ -6,11 +6,12 @@ the aerodynamic loads (:func:`.compiled_loads.add_aero`, with the BEM below it) 
 cache (``dispatcher.compile(signature)`` with ``cache=True``); when this process then calls the integrator, numba
 loads them from there instead of compiling them.
 
-Measured compile CPU of one cold ``--simulate`` (quiet machine, callees included): in the helper the aerodynamic
-loads 9.4 s and the integrator 1.7 s (:data:`HELPER` and the caller's ``extra``); in this process the structural
-equations 3.7 s, the output row 4.5 s and the state rate 2.1 s (:data:`ENTRIES`). Before the first-class functions,
-the integrator, which then linked them all, took 8.4 s after both (numba optimizes and generates machine code again
-for the whole tree linked into a library).
+Measured compile CPU of one cold ``--simulate`` (all in one process at load average 1, callees included): for the
+helper the aerodynamic loads 10.4 s and the integrator 2.4 s (:data:`HELPER` and the caller's ``extra``; 13.4 s with
+the helper's start, on two free cores), for this process the structural equations 3.8 s, the output row 4.6 s and
+the state rate 2.7 s (:data:`ENTRIES`; 11.4 s). Before the first-class functions the integrator, which linked them
+all, compiled after both (8.4 s: numba optimizes and generates machine code again for the whole tree linked into a
+library).
 
 Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper, and only when
 a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of CPU); a
