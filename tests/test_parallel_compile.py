@@ -1,6 +1,7 @@
-"""A cold first --simulate compiles the aerodynamic loads in a helper process
-(:mod:`bladefem.models.turbine.parallel_compile`) while this one compiles the structural equations: this process
-then loads them from numba's cache instead of compiling them; the output is the same to the bit as with everything
+"""A cold first --simulate compiles the aerodynamic loads and the integrator in a helper process
+(:mod:`bladefem.models.turbine.parallel_compile`) while this one compiles the structural equations, the output row and
+the state rate (the integrator calls them as first-class functions, :mod:`bladefem.models.turbine.compiled_calls`):
+this process then loads them from numba's cache instead of compiling them; the output is the same to the bit as with everything
 compiled in one process (the helper failing, which falls back to that); a warm run starts no helper; every kernel is
 compiled for one argument-type signature (what lets the two processes write the cache without clashing)."""
 
@@ -56,7 +57,8 @@ def test_cold_run_compiles_on_two_processes_with_the_same_result(tmp_path):
     assert cold["signatures"] == 1
     warm, again, stderr = simulate(tmp_path, tmp_path / "cache")
     assert "compiling" not in stderr
-    assert (warm["code"], warm["helpers"], warm["hits"], warm["misses"]) == (0, 0, 0, 0)
+    # loaded from the cache on its own: the integrator calls it as a first-class function (compiled_calls)
+    assert (warm["code"], warm["helpers"], warm["hits"], warm["misses"]) == (0, 0, 1, 0)
     assert again == parallel
     # a helper that fails: this process compiles the aerodynamic loads itself, with the same result
     alone, serial, stderr = simulate(tmp_path, tmp_path / "other", "broken")
@@ -92,7 +94,8 @@ def test_a_kernel_failing_ahead_is_left_to_the_call(monkeypatch):
     monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
     monkeypatch.setattr(parallel_compile, "start_helper", lambda jobs: None)
     monkeypatch.setattr(parallel_compile, "signatures", lambda loaded, work: dict.fromkeys(("aero", "structure",
-                                                                                            "state", "row"), ()))
+                                                                                            "state", "row", "rate"),
+                                                                                           ()))
     monkeypatch.setattr(parallel_compile, "compile_kernels", fail)
     assert parallel_compile.compile_in_parallel("integrator", (), ()) is None
     monkeypatch.setattr(parallel_compile, "signatures", fail)
@@ -107,7 +110,8 @@ def test_no_second_helper_for_kernels_this_process_holds(monkeypatch):
     monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
     monkeypatch.setattr(parallel_compile, "start_helper", lambda jobs: started.append(jobs))
     monkeypatch.setattr(parallel_compile, "signatures", lambda loaded, work: dict.fromkeys(("aero", "structure",
-                                                                                            "state", "row"), ()))
+                                                                                            "state", "row", "rate"),
+                                                                                           ()))
     monkeypatch.setattr(parallel_compile, "compile_kernels", lambda jobs: None)
     monkeypatch.setattr(parallel_compile, "ready", lambda module, name, types: True)
     parallel_compile.compile_in_parallel("derivative", (), ())

@@ -45,11 +45,13 @@ def first_call(kernel: str, what: str, dispatcher, args: tuple, stream=None,
 
 
 def will_compile(dispatcher, args: tuple) -> bool:
-    """True when calling the numba ``dispatcher`` with ``args`` compiles: no overload for their types in this
-    process and none in the on-disk cache (the index entry numba's ``Dispatcher.compile`` looks up: signature,
-    CPU, bytecode hash, fresh source stamp). Reads numba internals; if they moved, says True (a notice too many)."""
+    """True when calling the numba ``dispatcher`` with ``args`` (or, all numba types, for these argument types)
+    compiles: no overload for their types in this process and none in the on-disk cache (the index entry numba's
+    ``Dispatcher.compile`` looks up: signature, CPU, bytecode hash, fresh source stamp). Reads numba internals; if
+    they moved, says True (a notice too many)."""
     try:
-        signature = tuple(dispatcher.typeof_pyval(a) for a in args)
+        typed = all(isinstance(a, numba.types.Type) for a in args)
+        signature = tuple(args) if typed else tuple(dispatcher.typeof_pyval(a) for a in args)
         if signature in dispatcher.overloads:
             return False
         cache = dispatcher._cache
@@ -61,15 +63,18 @@ def will_compile(dispatcher, args: tuple) -> bool:
 
 @contextmanager
 def compile_notice(what: str, stream=None, prepare: Callable[[], None] | None = None):
-    """Tell the user on stderr that a kernel is being compiled (then run ``prepare``), and how long it took."""
+    """Tell the user on stderr that a kernel is being compiled (then run ``prepare``), and how long it took
+    (numba's warning about its first-class function types silenced meanwhile, :func:`.compiled_calls.unwarned`)."""
     stream = stream or sys.stderr
     start = time.perf_counter()
     print(f"bladefem: compiling the {what} with numba (first run only, cached afterwards)...", file=stream,
           flush=True)
+    from .compiled_calls import unwarned
     try:
-        if prepare is not None:
-            prepare()
-        yield
+        with unwarned():
+            if prepare is not None:
+                prepare()
+            yield
     finally:
         print(f"bladefem: compiled in {time.perf_counter() - start:.0f} s", file=stream, flush=True)
 
@@ -161,11 +166,11 @@ class CompiledEquations:
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
 
-    def _parallel(self, entry: str) -> Callable[[], None]:
+    def _parallel(self, entry: str, helper: tuple = ()) -> Callable[[], None]:
         """Before a cold first call of ``entry``: its kernels compiled on two processes where a core is free
-        (:func:`.parallel_compile.compile_in_parallel`)."""
+        (:func:`.parallel_compile.compile_in_parallel`), ``helper``'s jobs too in the second one."""
         from .parallel_compile import compile_in_parallel
-        return lambda: compile_in_parallel(entry, self.loaded, self.all_work)
+        return lambda: compile_in_parallel(entry, self.loaded, self.all_work, helper)
 
     def __call__(self, q: NDArray, u: NDArray, t: float = 0.0, wake: NDArray | None = None
                  ) -> tuple[NDArray, NDArray]:
@@ -198,6 +203,7 @@ class CompiledEquations:
         is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
         the output rows the call wrote may stop the run with a reason. ``first_step``: the first trial step, s
         (default 1e-3; a run restarted every controller interval starts with the interval)."""
+        from .compiled_calls import integrator, integrator_types, kernels, unwarned
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
         from .watch import BUDGET, interruptible
@@ -215,12 +221,21 @@ class CompiledEquations:
         t, h, rows, evaluations = float(times[0]), min(first, max(times[-1] - times[0], 1e-12)), 1, 0
         f, end = np.zeros(len(x)), float(times[-1])
 
+        compiled = None
+
         def step(start: bool) -> tuple:
+            nonlocal compiled
             args = (t, x, f, h, end, budget, start, times, out, loads, rows, float(rtol), float(atol), limit,
                     tableau, q0, u0, index, self.loaded, self.all_work, float(self.hub_radius))
-            with first_call(f"integrator {order}", "turbine simulation kernels", kernel, args,
-                            prepare=self._parallel("integrator")):
-                return kernel(*args)
+            with unwarned():                           # numba makes function types at each call too
+                if compiled is None:                   # the integrator for these types and the kernels it calls
+                    signature = integrator_types(kernel, self.loaded, self.all_work, args)
+                    job = (kernel.py_func.__module__, kernel.py_func.__name__, signature)
+                    with first_call(f"integrator {order}", "turbine simulation kernels", kernel, signature,
+                                    prepare=self._parallel("integrator", (job,))):
+                        compiled = (integrator(kernel, signature), *kernels(self.loaded, self.all_work))
+                        return compiled[0](*compiled[1:], *args)
+                return compiled[0](*compiled[1:], *args)
 
         t_before, rows_before = t, 0
         t, x, f, h, rows, count, status, bad = step(True)

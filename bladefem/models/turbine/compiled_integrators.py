@@ -21,33 +21,39 @@ from ...numba_cache import cached_njit
 njit = cached_njit()
 
 if njit is not None:
-    from .compiled_kernels import store_row
+    from .compiled_kernels import equations, store_row
     from .compiled_state import full_state, state_rate
-    from .compiled_loads import equations, load_wake, store_wake_rate
+    from .compiled_loads import add_aero, load_wake, loaded_equations, store_wake_rate
     from .compiled_outputs import output_row
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
     @njit(cache=True, inline="always")
-    def rate(t, x, q0, u0, index, data, work, hub_radius, row):
+    def rate_with(kernels, t, x, q0, u0, index, data, work, hub_radius, row):
         """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
-        same evaluation of the equations) if it is not empty. Inlined by numba into its callers: as a library of
-        its own it would optimize and generate machine code again for the whole tree below it (3 s of a cold run's
-        compilation on the integrator's critical path)."""
+        same evaluation of the equations) if it is not empty, with ``kernels`` (structural equations, aerodynamic
+        loads, output row) called directly or as first-class functions. Inlined by numba into its callers."""
+        structural, aerodynamic, outputs = kernels
         q, u = full_state(t, x, q0, u0, index)
         load_wake(x, index.shape[0], work[1])
-        M, f = equations(q, u, data, work, t)
+        M, f = loaded_equations(q, u, data, work, t, structural, aerodynamic)
         out = state_rate(x, M, f, index)
         store_wake_rate(out, index.shape[0], work[1])
         if row.shape[0]:
-            output_row(q, u, M, f, index, data, work, hub_radius, 0, row)
+            outputs(q, u, M, f, index, data, work, hub_radius, 0, row)
         return out
 
     @njit(cache=True)
+    def rate_function(kernels, t, x, q0, u0, index, data, work, hub_radius, row):
+        """:func:`rate_with` as a library of its own, which the integrators call as a first-class function."""
+        return rate_with(kernels, t, x, q0, u0, index, data, work, hub_radius, row)
+
+    @njit(cache=True)
     def rate_call(t, x, q0, u0, index, data, work, hub_radius, row):
-        """:func:`rate` as a library of its own, for callers with many call sites (the controlled loop's eight:
-        there inlining each copy costs more to compile than the library it saves, 3.5 s of 53 s measured)."""
-        return rate(t, x, q0, u0, index, data, work, hub_radius, row)
+        """:func:`rate_with` calling the kernels directly, as a library of its own, for callers with many call sites
+        (the controlled loop's eight: there inlining each copy costs more to compile than the library it saves,
+        3.5 s of 53 s measured)."""
+        return rate_with((equations, add_aero, output_row), t, x, q0, u0, index, data, work, hub_radius, row)
 
     @njit(cache=True)
     def check_state(x, limit):
@@ -97,19 +103,20 @@ if njit is not None:                                   # module-level kernels: n
         return out
 
     @njit(cache=True)
-    def dop853_chunk(t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol, limit, tableau, q0,
-                     u0, index, data, work, hub_radius):
+    def dop853_chunk(rate, kernels, t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol,
+                     limit, tableau, q0, u0, index, data, work, hub_radius):
         """DOP853 (Hairer's 8(5,3) with scipy's tableau ``(A, B, C, E3, E5, D)``) from t to t_end (or ``budget``
         right-hand sides) with the first step h; fills ``out[k]`` and ``loads[k]`` for the output ``times[k] <=
-        t_end``, k from ``next_out``; ``start``: f0 and the first row are computed here. Returns ``(t, x, f, h,
-        next_out, evaluations, status, offending index)``."""
+        t_end``, k from ``next_out``; ``start``: f0 and the first row are computed here; ``rate``:
+        :func:`rate_function` given ``kernels``, as first-class functions (:mod:`.compiled_calls`). Returns ``(t, x,
+        f, h, next_out, evaluations, status, offending index)``."""
         A, B, C, E3, E5, D = tableau
         size = x.shape[0]
         stages = B.shape[0]
         K = np.zeros((A.shape[0], size))
         count = 0
         if start:
-            f0 = rate(t, x, q0, u0, index, data, work, hub_radius, loads[0])
+            f0 = rate(kernels, t, x, q0, u0, index, data, work, hub_radius, loads[0])
             count += 1
         store_row(K, 0, f0)
         while t < t_end and count < budget:
@@ -118,9 +125,9 @@ if njit is not None:                                   # module-level kernels: n
                 return t, x, K[0], h, next_out, count, 3, -1
             for s in range(1, stages):
                 stage = combination(x, h, A[s], K, s)
-                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+                store_row(K, s, rate(kernels, t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             new = combination(x, h, B, K, stages)
-            store_row(K, stages, rate(t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+            store_row(K, stages, rate(kernels, t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             count += stages
             e5, e3 = 0.0, 0.0
             for i in range(size):
@@ -137,7 +144,8 @@ if njit is not None:                                   # module-level kernels: n
                 if next_out < times.shape[0] and times[next_out] <= t_new:
                     for s in range(stages + 1, A.shape[0]):
                         stage = combination(x, h, A[s], K, s)
-                        store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+                        store_row(K, s, rate(kernels, t + C[s] * h, stage, q0, u0, index, data, work, hub_radius,
+                                             loads[0, :0]))
                         count += 1
                     F = np.zeros((7, size))
                     for i in range(size):
@@ -157,7 +165,7 @@ if njit is not None:                                   # module-level kernels: n
                             for r in range(7):
                                 y = (y + F[6 - r, i]) * (theta if r % 2 == 0 else 1.0 - theta)
                             out[next_out, i] = x[i] + y
-                        rate(times[next_out], out[next_out], q0, u0, index, data, work, hub_radius,
+                        rate(kernels, times[next_out], out[next_out], q0, u0, index, data, work, hub_radius,
                              loads[next_out])
                         next_out += 1
                 t = t_new
@@ -173,15 +181,15 @@ if njit is not None:                                   # module-level kernels: n
         return t, x, K[0], h, next_out, count, 0, -1
 
     @njit(cache=True)
-    def dp54_chunk(t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol, limit, tableau, q0,
-                   u0, index, data, work, hub_radius):
+    def dp54_chunk(rate, kernels, t, x, f0, h, t_end, budget, start, times, out, loads, next_out, rtol, atol,
+                   limit, tableau, q0, u0, index, data, work, hub_radius):
         """Dormand-Prince 5(4) (scipy's RK45 scheme, tableau ``(A, B, C, E, P)``), as :func:`dop853_chunk`."""
         A, B, C, E, P = tableau
         size = x.shape[0]
         K = np.zeros((7, size))
         count = 0
         if start:
-            f0 = rate(t, x, q0, u0, index, data, work, hub_radius, loads[0])
+            f0 = rate(kernels, t, x, q0, u0, index, data, work, hub_radius, loads[0])
             count += 1
         store_row(K, 0, f0)
         while t < t_end and count < budget:
@@ -190,9 +198,9 @@ if njit is not None:                                   # module-level kernels: n
                 return t, x, K[0], h, next_out, count, 3, -1
             for s in range(1, 6):
                 stage = combination(x, h, A[s], K, s)
-                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+                store_row(K, s, rate(kernels, t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             new = combination(x, h, B, K, 6)
-            store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+            store_row(K, 6, rate(kernels, t + h, new, q0, u0, index, data, work, hub_radius, loads[0, :0]))
             count += 6
             norm = error_norm(x, new, K, E, h, rtol, atol)
             if norm <= 1.0:
@@ -200,7 +208,7 @@ if njit is not None:                                   # module-level kernels: n
                 while next_out < times.shape[0] and times[next_out] <= t_new:
                     y = dense_output(x, K, P, h, (times[next_out] - t) / h)
                     store_row(out, next_out, y)
-                    rate(times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
+                    rate(kernels, times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
                     next_out += 1
                 t = t_new
                 x = new

@@ -372,14 +372,20 @@ if njit is not None:                                   # module-level kernels: n
         return torque
 
     @njit(cache=True, inline="always")
-    def equations(q, u, data, work, t):
-        """Mass matrix and forcing with the aerodynamic loads (wind at time t) and the generator torque. Inlined by
-        numba into its callers, as :func:`.compiled_integrators.rate`."""
+    def loaded_equations(q, u, data, work, t, structural, aerodynamic):
+        """Mass matrix and forcing with the aerodynamic loads (wind at time t) and the generator torque, from the
+        kernels ``structural`` (:func:`.compiled_kernels.equations`) and ``aerodynamic`` (:func:`add_aero`), called
+        directly or as first-class functions (:mod:`.compiled_calls`). Inlined by numba into its callers."""
         structure, aero, law = data
-        M, f = structural_equations(q, u, structure, work[0])
-        add_aero(f, q, u, structure, aero, work[0], work[1], t)
+        M, f = structural(q, u, structure, work[0])
+        aerodynamic(f, q, u, structure, aero, work[0], work[1], t)
         add_generator(f, u, structure[15], law)
         return M, f
+
+    @njit(cache=True, inline="always")
+    def equations(q, u, data, work, t):
+        """:func:`loaded_equations` calling the kernels directly."""
+        return loaded_equations(q, u, data, work, t, structural_equations, add_aero)
 
     @njit(cache=True)
     def derivative(t, x, q0, u0, index, data, work):

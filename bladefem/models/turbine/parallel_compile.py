@@ -1,24 +1,26 @@
-"""A cold run's kernels compiled on two cores. numba compiles in one thread; the loaded equations
-(:func:`.compiled_loads.equations`) call two subtrees that share only small leaves: the structural equations
-(:func:`.compiled_kernels.equations`) and the aerodynamic loads (:func:`.compiled_loads.add_aero`, with the BEM
-below it). While this process compiles the structural equations (and, for the integrators, the state rate and the
-output row), a second Python process compiles the aerodynamic loads into numba's disk cache
-(``dispatcher.compile(signature)`` with ``cache=True``); when this process then compiles the kernel it calls, numba
+"""A cold run's kernels compiled on two cores. numba compiles in one thread; the integrators call the kernels below
+them as first-class functions (:mod:`.compiled_calls`): each is compiled into a library of its own that no caller
+links in, and none needs another compiled first (only its signature). While this process compiles the structural
+equations (:func:`.compiled_kernels.equations`), the output row and the state rate, a second Python process compiles
+the aerodynamic loads (:func:`.compiled_loads.add_aero`, with the BEM below it) and the integrator into numba's disk
+cache (``dispatcher.compile(signature)`` with ``cache=True``); when this process then calls the integrator, numba
 loads them from there instead of compiling them.
 
-Measured compile CPU of one cold ``--simulate`` (quiet machine, callees included): the aerodynamic loads 9.4 s
-(:data:`HELPER`); the structural equations 3.7 s, the output row 4.5 s, the state rate 0.9 s (:data:`ENTRIES`, this
-process); then the integrator, which needs all of them compiled, 8.4 s in this process (numba inlines the rate
-function and the loaded equations into it: 12.4 s as three libraries, each optimizing and generating machine code
-again for the whole tree linked into it).
+Measured compile CPU of one cold ``--simulate`` (all in one process at load average 1, callees included): for the
+helper the aerodynamic loads 10.4 s and the integrator 2.4 s (:data:`HELPER` and the caller's ``extra``; 13.4 s with
+the helper's start, on two free cores), for this process the structural equations 3.8 s, the output row 4.6 s and
+the state rate 2.7 s (:data:`ENTRIES`; 11.4 s). Before the first-class functions the integrator, which linked them
+all, compiled after both (8.4 s: numba optimizes and generates machine code again for the whole tree linked into a
+library).
 
-Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper, and only
-when a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of
-CPU); a warm run never does. The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both processes write numba's cache: numba writes each file to a temporary name and renames it, and the
-two compile different kernels except shared leaves (vector helpers, the beam node), which they compile for the
-same argument types, so for the same index entry with equivalent machine code. If the helper fails (it cannot
-start, import this same bladefem, or write the cache) this process compiles the aerodynamic loads itself, as
-without it; a helper still running when this process needs its kernels is waited for at most :data:`PATIENCE` s.
+Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper, and only when
+a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of CPU); a
+warm run never does. The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both
+processes write numba's cache: numba writes each file to a temporary name and renames it, and the two compile
+different kernels except shared leaves (vector helpers, the beam node), which they compile for the same argument
+types, so for the same index entry with equivalent machine code. If the helper fails (it cannot start, import this
+same bladefem, or write the cache) this process compiles its kernels itself, as without it; a helper still running
+when this process needs its kernels is waited for at most :data:`PATIENCE` s.
 """
 
 from __future__ import annotations
@@ -36,8 +38,8 @@ HELPER = (("bladefem.models.turbine.compiled_loads", "add_aero", "aero"),)
 #: the kernels this process compiles meanwhile, per entry point that calls the loaded equations
 ENTRIES = {
     "integrator": (("bladefem.models.turbine.compiled_kernels", "equations", "structure"),
-                   ("bladefem.models.turbine.compiled_state", "state_rate", "state"),
-                   ("bladefem.models.turbine.compiled_outputs", "output_row", "row")),
+                   ("bladefem.models.turbine.compiled_outputs", "output_row", "row"),
+                   ("bladefem.models.turbine.compiled_integrators", "rate_function", "rate")),
     "outputs": (("bladefem.models.turbine.compiled_kernels", "equations", "structure"),
                 ("bladefem.models.turbine.compiled_outputs", "output_row", "row")),
     "derivative": (("bladefem.models.turbine.compiled_kernels", "equations", "structure"),
@@ -53,6 +55,12 @@ STARTED: list[int] = []
 
 
 def signatures(loaded: tuple, work: tuple) -> dict:
+    """:func:`kernel_signatures` and the state rate's (``"rate"``, :func:`.compiled_calls.rate_types`)."""
+    from .compiled_calls import rate_types
+    return {**kernel_signatures(loaded, work), "rate": rate_types(loaded, work)}
+
+
+def kernel_signatures(loaded: tuple, work: tuple) -> dict:
     """numba argument types of the kernels above as the loaded equations and the rate function call them, for
     ``loaded`` (structure, aero, law) and ``work`` (structural work, aero state) of
     :class:`.compiled.CompiledEquations`: vectors and matrices made inside the kernels are C-contiguous float64,
@@ -124,18 +132,20 @@ def spare_core() -> bool:
     return cores >= 2 and load <= cores - 1
 
 
-def compile_in_parallel(entry: str, loaded: tuple, work: tuple) -> None:
-    """:data:`HELPER` in a second process while this one compiles ``ENTRIES[entry]`` if :func:`spare_core`; returns
-    when both are done (or the helper failed or ran past :data:`PATIENCE`: the caller's compilation then does what
-    it left). Without a spare core, nothing (the caller compiles everything). A kernel that fails to compile here
-    is left to the caller's compilation, which then reports the error as without this."""
+def compile_in_parallel(entry: str, loaded: tuple, work: tuple, extra: tuple = ()) -> None:
+    """:data:`HELPER` and the (module, function, argument types) of ``extra`` in a second process while this one
+    compiles ``ENTRIES[entry]`` if :func:`spare_core`; returns when both are done (or the helper failed or ran past
+    :data:`PATIENCE`: the caller's compilation then does what it left). Without a spare core, nothing (the caller
+    compiles everything). A kernel that fails to compile here is left to the caller's compilation, which then
+    reports the error as without this."""
     if not spare_core():
         return
     try:
         kinds = signatures(loaded, work)
     except Exception:                                 # compiled ahead only to save time: the call compiles it all
         return
-    jobs = [(module, name, kinds[kind]) for module, name, kind in HELPER if not ready(module, name, kinds[kind])]
+    wanted = [(module, name, kinds[kind]) for module, name, kind in HELPER] + list(extra)
+    jobs = [job for job in wanted if not ready(*job)]
     helper = start_helper(jobs) if jobs else None
     try:
         compile_kernels([(module, name, kinds[kind]) for module, name, kind in ENTRIES[entry]])
