@@ -119,3 +119,34 @@ def test_no_second_helper_for_kernels_this_process_holds(monkeypatch):
     monkeypatch.setattr(parallel_compile, "ready", lambda module, name, types: False)
     parallel_compile.compile_in_parallel("derivative", (), ())
     assert [[name for _, name, _ in jobs] for jobs in started] == [["add_aero"]]
+
+
+@pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="the compiled path needs numba")
+@pytest.mark.parametrize("refusal", ["types", "compile"])
+def test_without_first_class_functions_the_kernels_are_linked(monkeypatch, tmp_path, capsys, refusal):
+    """numba marks its first-class function types experimental: where a numba cannot make them (``types``) or
+    compile an integrator taking them (``compile``), the integrator is compiled with its kernels linked in, as
+    before them, and the run's table is the same to the last digit."""
+    from numba.core.errors import TypingError
+
+    from bladefem.cli import main
+    from bladefem.models.turbine import compiled_calls
+
+    deck = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
+
+    def table(name: str) -> str:
+        out = tmp_path / f"{name}.csv"
+        assert main(["turbine", str(deck), "--simulate", "0.5", "--wind-speed", "11.4", "--quiet", "-o",
+                     str(out)]) == 0
+        return out.read_text()
+
+    joined = table("joined")
+
+    def refuse(*args, **kwargs):
+        raise TypingError("this numba has no first-class function types")
+
+    monkeypatch.setattr(compiled_calls, "integrator_types" if refusal == "types" else "integrator", refuse)
+    used = []
+    original = compiled_calls.linked
+    monkeypatch.setattr(compiled_calls, "linked", lambda kernel: used.append(kernel) or original(kernel))
+    assert table("linked") == joined and len(used) == 1

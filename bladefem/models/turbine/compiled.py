@@ -203,7 +203,7 @@ class CompiledEquations:
         is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
         the output rows the call wrote may stop the run with a reason. ``first_step``: the first trial step, s
         (default 1e-3; a run restarted every controller interval starts with the interval)."""
-        from .compiled_calls import integrator, integrator_types, kernels, unwarned
+        from .compiled_calls import function_types, join, unwarned
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
         from .watch import BUDGET, interruptible
@@ -229,12 +229,13 @@ class CompiledEquations:
                     tableau, q0, u0, index, self.loaded, self.all_work, float(self.hub_radius))
             with unwarned():                           # numba makes function types at each call too
                 if compiled is None:                   # the integrator for these types and the kernels it calls
-                    signature = integrator_types(kernel, self.loaded, self.all_work, args)
-                    job = (kernel.py_func.__module__, kernel.py_func.__name__, signature)
-                    with first_call(f"integrator {order}", "turbine simulation kernels", kernel, signature,
-                                    prepare=self._parallel("integrator", (job,))):
-                        compiled = (integrator(kernel, signature), *kernels(self.loaded, self.all_work))
-                        return compiled[0](*compiled[1:], *args)
+                    signature = function_types(kernel, self.loaded, self.all_work, args)
+                    jobs = () if signature is None else ((kernel.py_func.__module__, kernel.py_func.__name__,
+                                                          signature),)
+                    with first_call(f"integrator {order}", "turbine simulation kernels", kernel, signature or args,
+                                    prepare=self._parallel("integrator", jobs)):
+                        compiled, result = join(kernel, self.loaded, self.all_work, args, signature)
+                        return result
                 return compiled[0](*compiled[1:], *args)
 
         t_before, rows_before = t, 0

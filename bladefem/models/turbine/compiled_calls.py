@@ -86,3 +86,39 @@ def integrator(kernel, signature: tuple):
     :func:`kernels`, it converts them to its function types rather than compiling a version for them."""
     from ...numba_cache import cached_njit
     return cached_njit()([signature], cache=True)(kernel.py_func)
+
+
+def linked(kernel) -> tuple:
+    """``kernel`` with the state rate and the kernels it calls given as dispatchers: numba compiles a version of it
+    for them and links them in, as before first-class functions (a slower cold compilation, the same results). The
+    fallback of :func:`join` where this numba cannot make or call the function types (marked experimental)."""
+    from .compiled_integrators import rate_function
+    from .compiled_kernels import equations
+    from .compiled_loads import add_aero
+    from .compiled_outputs import output_row
+    return kernel, rate_function, (equations, add_aero, output_row)
+
+
+def function_types(kernel, loaded: tuple, work: tuple, args: tuple) -> tuple | None:
+    """:func:`integrator_types`, or None where this numba cannot make the function types."""
+    from numba.core.errors import NumbaError
+    try:
+        return integrator_types(kernel, loaded, work, args)
+    except (NumbaError, TypeError):
+        return None
+
+
+def join(kernel, loaded: tuple, work: tuple, args: tuple, signature: tuple | None) -> tuple[tuple, tuple]:
+    """(the integrator and the kernels it is called with, its first call's result) for ``kernel`` called with
+    ``args`` after the two function arguments: through first-class functions for ``signature``
+    (:func:`function_types`); where numba refuses them (None, or a numba error or a type mismatch while they are
+    compiled or first called, before the kernel has run) with the kernels linked in (:func:`linked`)."""
+    from numba.core.errors import NumbaError
+    if signature is not None:
+        try:
+            joined = (integrator(kernel, signature), *kernels(loaded, work))
+            return joined, joined[0](*joined[1:], *args)
+        except (NumbaError, TypeError):
+            pass
+    joined = linked(kernel)
+    return joined, joined[0](*joined[1:], *args)
