@@ -149,6 +149,10 @@ class Integration:
     rate: NDArray | None = None
 
 
+#: the empty output row: the state rate without its load channels
+_NO_ROW = np.zeros(0)
+
+
 class CompiledEquations:
     """The compiled kernels bound to one model's data: ``equations(q, u) -> (M, f)`` (structure, aerodynamic loads,
     generator torque), ``derivative(t, x, q0, u0, index)`` for :class:`FreeSystem`, :meth:`integrate` and
@@ -165,6 +169,7 @@ class CompiledEquations:
                      np.zeros(3), np.zeros((3, n)), np.zeros((4, 3)))
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
+        self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`_joined`
 
     def _parallel(self, entry: str, helper: tuple = ()) -> Callable[[], None]:
         """Before a cold first call of ``entry``: its kernels compiled on two processes where a core is free
@@ -186,11 +191,26 @@ class CompiledEquations:
             return equations(*args)
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
-        from .compiled_loads import derivative
-        args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work)
-        with first_call("derivative", "turbine equations", derivative, args,
-                        prepare=self._parallel("derivative")):
-            return derivative(*args)
+        """dx/dt of the free coordinates and the dynamic wake, x = (q_f, u_f, w): the integrators' state rate
+        (:func:`.compiled_integrators.rate_function`, without output row), its kernels as first-class functions."""
+        from .compiled_integrators import rate_function
+        args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work,
+                float(self.hub_radius), _NO_ROW)
+        return self._joined("derivative", "turbine equations", rate_function, args)
+
+    def _joined(self, name: str, what: str, kernel, args: tuple):
+        """``kernel``'s result for ``args`` after its kernels' tuple, the kernels given as first-class functions
+        (:func:`.compiled_calls.join`; compiled on two processes where a core is free on a cold first call)."""
+        from .compiled_calls import function_types, join, unwarned
+        with unwarned():
+            if name in self._calls:
+                joined = self._calls[name]
+                return joined[0](*joined[1:], *args)
+            signature = function_types(kernel, self.loaded, self.all_work, args, with_rate=False)
+            with first_call(name, what, kernel, signature or args, prepare=self._parallel("integrator")):
+                self._calls[name], result = join(kernel, self.loaded, self.all_work, args, signature,
+                                                 with_rate=False)
+                return result
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
                   index: NDArray, order: int = 8, limit: NDArray | None = None,
@@ -266,8 +286,7 @@ class CompiledEquations:
                 np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
                 np.ascontiguousarray(index, dtype=np.int64), self.loaded, self.all_work, float(self.hub_radius),
                 blade)
-        with first_call("outputs", "turbine outputs", load_outputs, args, prepare=self._parallel("outputs")):
-            return load_outputs(*args)
+        return self._joined("outputs", "turbine outputs", load_outputs, args)
 
     def root_moments(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
                      blade: int = 0) -> NDArray:

@@ -56,28 +56,31 @@ def rate_types(loaded: tuple, work: tuple) -> tuple:
             types.float64, vector)
 
 
-def kernels(loaded: tuple, work: tuple) -> tuple:
-    """The (rate, (structural equations, aerodynamic loads, output row)) dispatchers the integrators are given,
-    each compiled (or loaded from the disk cache) for its argument types first: numba converts a dispatcher without
-    that version to a function type by compiling it for the full signature, return type included, another entry of
-    the disk cache than the one :mod:`.parallel_compile`'s helper writes."""
+def kernels(loaded: tuple, work: tuple, with_rate: bool = True) -> tuple:
+    """The (rate, (structural equations, aerodynamic loads, output row)) dispatchers the integrators are given
+    (without ``with_rate``, the kernels' tuple alone, for the output rows and the derivative), each compiled (or
+    loaded from the disk cache) for its argument types first: numba converts a dispatcher without that version to a
+    function type by compiling it for the full signature, return type included, another entry of the disk cache
+    than the one :mod:`.parallel_compile`'s helper writes."""
     from .compiled_integrators import rate_function
     from .compiled_kernels import equations
     from .compiled_loads import add_aero
     from .compiled_outputs import output_row
     from .parallel_compile import kernel_signatures
     kinds = kernel_signatures(loaded, work)
-    for dispatcher, argument_types in ((equations, kinds["structure"]), (add_aero, kinds["aero"]),
-                                       (output_row, kinds["row"]), (rate_function, rate_types(loaded, work))):
+    jobs = [(equations, kinds["structure"]), (add_aero, kinds["aero"]), (output_row, kinds["row"])]
+    for dispatcher, argument_types in jobs + ([(rate_function, rate_types(loaded, work))] if with_rate else []):
         dispatcher.compile(argument_types)
-    return rate_function, (equations, add_aero, output_row)
+    called = (equations, add_aero, output_row)
+    return (rate_function, called) if with_rate else (called,)
 
 
-def integrator_types(kernel, loaded: tuple, work: tuple, args: tuple) -> tuple:
-    """Argument types of the integrator ``kernel`` for its arguments ``args`` after the two function ones."""
+def integrator_types(kernel, loaded: tuple, work: tuple, args: tuple, with_rate: bool = True) -> tuple:
+    """Argument types of the integrator ``kernel`` for its arguments ``args`` after the function ones (the state
+    rate and the kernels' tuple; the tuple alone without ``with_rate``)."""
     from numba import typeof, types
     rate = types.FunctionType(typeof(np.zeros(1))(*rate_types(loaded, work)))
-    return (rate, kernel_types(loaded, work), *(kernel.typeof_pyval(a) for a in args))
+    return (*((rate,) if with_rate else ()), kernel_types(loaded, work), *(kernel.typeof_pyval(a) for a in args))
 
 
 @cache
@@ -88,37 +91,41 @@ def integrator(kernel, signature: tuple):
     return cached_njit()([signature], cache=True)(kernel.py_func)
 
 
-def linked(kernel) -> tuple:
-    """``kernel`` with the state rate and the kernels it calls given as dispatchers: numba compiles a version of it
-    for them and links them in, as before first-class functions (a slower cold compilation, the same results). The
-    fallback of :func:`join` where this numba cannot make or call the function types (marked experimental)."""
+def linked(kernel, with_rate: bool = True) -> tuple:
+    """``kernel`` with the state rate (``with_rate``) and the kernels it calls given as dispatchers: numba compiles
+    a version of it for them and links them in, as before first-class functions (a slower cold compilation, the
+    same results). The fallback of :func:`join` where this numba cannot make or call the function types (marked
+    experimental)."""
     from .compiled_integrators import rate_function
     from .compiled_kernels import equations
     from .compiled_loads import add_aero
     from .compiled_outputs import output_row
-    return kernel, rate_function, (equations, add_aero, output_row)
+    called = (equations, add_aero, output_row)
+    return (kernel, rate_function, called) if with_rate else (kernel, called)
 
 
-def function_types(kernel, loaded: tuple, work: tuple, args: tuple) -> tuple | None:
+def function_types(kernel, loaded: tuple, work: tuple, args: tuple, with_rate: bool = True) -> tuple | None:
     """:func:`integrator_types`, or None where this numba cannot make the function types."""
     from numba.core.errors import NumbaError
     try:
-        return integrator_types(kernel, loaded, work, args)
+        return integrator_types(kernel, loaded, work, args, with_rate)
     except (NumbaError, TypeError):
         return None
 
 
-def join(kernel, loaded: tuple, work: tuple, args: tuple, signature: tuple | None) -> tuple[tuple, tuple]:
-    """(the integrator and the kernels it is called with, its first call's result) for ``kernel`` called with
-    ``args`` after the two function arguments: through first-class functions for ``signature``
-    (:func:`function_types`); where numba refuses them (None, or a numba error or a type mismatch while they are
-    compiled or first called, before the kernel has run) with the kernels linked in (:func:`linked`)."""
+def join(kernel, loaded: tuple, work: tuple, args: tuple, signature: tuple | None, with_rate: bool = True
+         ) -> tuple[tuple, tuple]:
+    """(the kernel and the functions it is called with, its first call's result) for ``kernel`` called with
+    ``args`` after the function arguments (the state rate if ``with_rate``, and the kernels' tuple): through
+    first-class functions for ``signature`` (:func:`function_types`); where numba refuses them (None, or a numba
+    error or a type mismatch while they are compiled or first called, before the kernel has run) with the kernels
+    linked in (:func:`linked`)."""
     from numba.core.errors import NumbaError
     if signature is not None:
         try:
-            joined = (integrator(kernel, signature), *kernels(loaded, work))
+            joined = (integrator(kernel, signature), *kernels(loaded, work, with_rate))
             return joined, joined[0](*joined[1:], *args)
         except (NumbaError, TypeError):
             pass
-    joined = linked(kernel)
+    joined = linked(kernel, with_rate)
     return joined, joined[0](*joined[1:], *args)

@@ -1,22 +1,22 @@
-"""The controlled run's loop compiled: the controller library called from the kernel (through its ``DISCON``
-function pointer), the integrator stepping on between its calls without a return to Python.
+"""The controlled run's loop compiled: the controller library called from the kernel (through its ``DISCON`` function
+pointer), the integrator stepping on between its calls without a return to Python.
 
 The twin of the Python loop of :mod:`.controlled` (which runs a controller in a process of its own, individual pitch
 and RK4): per controller interval ``[t_k, t_k + DLL_DT]``, the records ServoDyn's ``Fill_avrSWAP`` sets that change
 from call to call are written (those that do not are the Python loop's first call's,
 :meth:`.discon.DisconController.constant_records`, written again before each call), the library called, its
 collective pitch (record 45) and torque (47) held over the interval, the pitch set on the kernels' arrays as
-:class:`.pitching.CompiledPitch` sets it (one definition), and the equations integrated with Dormand-Prince 5(4) (the steps and the
-error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval) or with classical
-RK4 at fixed steps (one per interval where the interval is no longer than the step) with the BEM solved at each
-step's start and its induction held over the step's other stages, or with Adams-Bashforth-Moulton, one step per
-interval, as ElastoDyn steps at DT with its default ``Method`` 3 (ED_ABM4: RK4 for the first three intervals, then
-the predictor from the derivatives at the last four boundaries, one right-hand side at the predicted end with the
-BEM's induction of the step's start held, the corrector; the derivative at the next boundary, with the next
-interval's commands, starts the next step). The load channels and
-the derivative at an interval's end, which the next call measures, come from the last stage of the step that ends
-there (evaluated with its output row), not from one more right-hand side. The kernel returns after ``budget``
-right-hand sides (the caller watches the rows, polls Ctrl-C) or with a status.
+:class:`.pitching.CompiledPitch` sets it (one definition), and the equations integrated with Dormand-Prince 5(4)
+(the steps and the error control of :func:`.compiled_integrators.dp54_chunk`, the first step the whole interval) or
+with classical RK4 at fixed steps (one per interval where the interval is no longer than the step) with the BEM
+solved at each step's start and its induction held over the step's other stages, or with Adams-Bashforth-Moulton,
+one step per interval, as ElastoDyn steps at DT with its default ``Method`` 3 (ED_ABM4: RK4 for the first three
+intervals, then the predictor from the derivatives at the last four boundaries, one right-hand side at the predicted
+end with the BEM's induction of the step's start held, the corrector; the derivative at the next boundary, with the
+next interval's commands, starts the next step). The load channels and the derivative at an interval's end, which
+the next call measures, come from the last stage of the step that ends there (evaluated with its output row), not
+from one more right-hand side. The kernel returns after ``budget`` right-hand sides (the caller watches the rows,
+polls Ctrl-C) or with a status.
 """
 
 from __future__ import annotations
@@ -46,7 +46,6 @@ ABM4_HISTORY = 3
 
 if njit is not None:
     from .compiled_integrators import check_state, combination, dense_output, error_norm
-    from .compiled_integrators import rate_call as rate       # one library, not inlined at each call site
     from .compiled_kernels import store_row
     from .compiled_state import full_state
     from .pitching import set_pitch
@@ -96,8 +95,8 @@ if njit is not None:                                   # module-level kernels: n
         return fail[0]
 
     @njit(cache=True)
-    def dp54_interval(t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, K, rtol, atol, limit,
-                      tableau, q0, u0, index, data, work, hub_radius):
+    def dp54_interval(rate, kernels, t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, K, rtol, atol,
+                      limit, tableau, q0, u0, index, data, work, hub_radius):
         """Dormand-Prince 5(4) from t to t_end (first step the whole interval, the error control of
         :func:`.compiled_integrators.dp54_chunk`): the output rows ``times[next_out:]`` up to t_end (those within
         1e-9 ``spacing`` of t_end take the end state) from the dense output; the end's load channels in
@@ -113,10 +112,11 @@ if njit is not None:                                   # module-level kernels: n
                 return x, K[0], next_out, count, 3, -1
             for s in range(1, 6):
                 stage = combination(x, h, A[s], K, s)
-                store_row(K, s, rate(t + C[s] * h, stage, q0, u0, index, data, work, hub_radius, loads[0, :0]))
+                store_row(K, s, rate(kernels, t + C[s] * h, stage, q0, u0, index, data, work, hub_radius,
+                                     loads[0, :0]))
             new = combination(x, h, B, K, 6)
             last = t + h >= t_end
-            store_row(K, 6, rate(t + h, new, q0, u0, index, data, work, hub_radius, end_row if last else
+            store_row(K, 6, rate(kernels, t + h, new, q0, u0, index, data, work, hub_radius, end_row if last else
                                  end_row[:0]))
             count += 6
             norm = error_norm(x, new, K, E, h, rtol, atol)
@@ -129,7 +129,7 @@ if njit is not None:                                   # module-level kernels: n
                                                      times[next_out] <= t_new):
                     y = dense_output(x, K, P, h, (times[next_out] - t) / h)
                     store_row(out, next_out, y)
-                    rate(times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
+                    rate(kernels, times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
                     next_out += 1
                 if last:
                     while next_out < times.shape[0] and times[next_out] <= t_end + near:
@@ -146,8 +146,8 @@ if njit is not None:                                   # module-level kernels: n
         return x, K[0], next_out, count, 0, -1
 
     @njit(cache=True)
-    def rk4_interval(t, x, f0, t_end, spacing, step, times, out, loads, next_out, end_row, K, limit, q0, u0, index,
-                     data, work, hub_radius):
+    def rk4_interval(rate, kernels, t, x, f0, t_end, spacing, step, times, out, loads, next_out, end_row, K, limit,
+                     q0, u0, index, data, work, hub_radius):
         """Classical RK4 from t to t_end (ElastoDyn's fixed steps, the twin of :func:`.controlled.rk4_interval`):
         steps no longer than ``step`` landing on each output time ``times[next_out:]`` inside the interval, whose
         load row is the right-hand side that starts the next step; the BEM solved at each step's start (``f0`` for
@@ -167,12 +167,12 @@ if njit is not None:                                   # module-level kernels: n
             h = (target - t) / n
             for i in range(n):
                 if i > 0:
-                    store_row(K, 0, rate(t, x, q0, u0, index, data, work, hub_radius, end_row[:0]))
+                    store_row(K, 0, rate(kernels, t, x, q0, u0, index, data, work, hub_radius, end_row[:0]))
                     count += 1
                 hold[2] = 1.0                          # stages 2-4: the induction of the step's first
                 for s in range(1, 4):
                     stage = combination(x, h, RK4[s - 1], K, s)
-                    store_row(K, s, rate(t + RK4_C[s] * h, stage, q0, u0, index, data, work, hub_radius,
+                    store_row(K, s, rate(kernels, t + RK4_C[s] * h, stage, q0, u0, index, data, work, hub_radius,
                                          end_row[:0]))
                 hold[2] = 0.0
                 x = combination(x, h, RK4[3], K, 4)
@@ -184,10 +184,10 @@ if njit is not None:                                   # module-level kernels: n
             if not inner:
                 break
             store_row(out, next_out, x)
-            store_row(K, 0, rate(t, x, q0, u0, index, data, work, hub_radius, loads[next_out]))
+            store_row(K, 0, rate(kernels, t, x, q0, u0, index, data, work, hub_radius, loads[next_out]))
             count += 1
             next_out += 1
-        f_end = rate(t_end, x, q0, u0, index, data, work, hub_radius, end_row)
+        f_end = rate(kernels, t_end, x, q0, u0, index, data, work, hub_radius, end_row)
         count += 1
         while next_out < times.shape[0] and times[next_out] <= t_end + near:
             store_row(out, next_out, x)
@@ -196,8 +196,8 @@ if njit is not None:                                   # module-level kernels: n
         return x, f_end, next_out, count, 0, -1
 
     @njit(cache=True)
-    def abm4_interval(t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, history, limit, q0, u0, index,
-                      data, work, hub_radius):
+    def abm4_interval(rate, kernels, t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, history, limit,
+                      q0, u0, index, data, work, hub_radius):
         """One step of Adams-Bashforth-Moulton from t to t_end (ElastoDyn's ED_ABM4): the predictor from the
         derivatives at t (``f0``, with the interval's commands) and at the three boundaries before (``history``),
         the rate at the predicted end with the BEM's induction of ``f0``'s solve held (its load channels in
@@ -212,7 +212,7 @@ if njit is not None:                                   # module-level kernels: n
                                        + P[3] * history[2, i])
         hold = work[1][13]
         hold[2] = 1.0
-        f_end = rate(t_end, predicted, q0, u0, index, data, work, hub_radius, end_row)
+        f_end = rate(kernels, t_end, predicted, q0, u0, index, data, work, hub_radius, end_row)
         hold[2] = 0.0
         new = np.empty(n)
         for i in range(n):
@@ -224,25 +224,26 @@ if njit is not None:                                   # module-level kernels: n
         near = 1e-9 * spacing
         while next_out < times.shape[0] and times[next_out] <= t_end + near:
             store_row(out, next_out, new)
-            rate(t_end, new, q0, u0, index, data, work, hub_radius, loads[next_out])
+            rate(kernels, t_end, new, q0, u0, index, data, work, hub_radius, loads[next_out])
             count += 1
             next_out += 1
         return new, f_end, next_out, count, 0, -1
 
     @njit(cache=True)
-    def controlled_chunk(k, boundaries, x, rate_x, row, commands, call_first, times, out, loads, held, next_out,
-                         budget, rtol, atol, step, limit, tableau, K, q0, u0, index, data, work, hub_radius,
+    def controlled_chunk(rate, kernels, k, boundaries, x, rate_x, row, commands, call_first, times, out, loads, held,
+                         next_out, budget, rtol, atol, step, limit, tableau, K, q0, u0, index, data, work, hub_radius,
                          pitching, function, records, buffers, turbine, constants, history, taken):
-        """Controller intervals from ``k`` on until ``budget`` right-hand sides are spent or the run ends: at each,
-        the controller called (but for the first interval of a call without ``call_first``: its commands set
-        already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place to
-        the interval's end), its demands held (``commands`` = pitch, torque, updated), the interval integrated
-        (:func:`dp54_interval`; :func:`rk4_interval` where ``step`` is positive; :func:`abm4_interval` where
-        ``taken[0]``, the boundaries whose derivatives ``history`` holds, newest first, is at least
-        :data:`ABM4_HISTORY`, the interval whole and no output row inside it; ``taken[0]`` negative: no ABM4), the
-        pitch of each output row in ``held``. ``pitching`` = (base pitch, reference arrays) of
-        :func:`.pitching.pitch_arrays`. Returns (next interval, its start time, next output row, right-hand sides,
-        status, offending index)."""
+        """Controller intervals from ``k`` on until ``budget`` right-hand sides are spent or the run ends: at each, the
+        controller called (but for the first interval of a call without ``call_first``: its commands set
+        already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place
+        to the interval's end), its demands held (``commands`` = pitch, torque, updated), the interval
+        integrated (``rate``, given ``kernels``: the state rate and the kernels it calls, as first-class
+        functions or as dispatchers, :mod:`.compiled_calls`; :func:`dp54_interval`; :func:`rk4_interval`
+        where ``step`` is positive; :func:`abm4_interval` where ``taken[0]``, the boundaries whose
+        derivatives ``history`` holds, newest first, is at least :data:`ABM4_HISTORY`, the interval whole
+        and no output row inside it; ``taken[0]`` negative: no ABM4), the pitch of each output row in
+        ``held``. ``pitching`` = (base pitch, reference arrays) of :func:`.pitching.pitch_arrays`. Returns
+        (next interval, its start time, next output row, right-hand sides, status, offending index)."""
         structure, aero, law = data
         count = 0
         t = boundaries[k]
@@ -262,22 +263,22 @@ if njit is not None:                                   # module-level kernels: n
                 commands[0], commands[1] = pitch, torque
                 law[2] = torque
             call_first = True
-            f0 = rate(t, x, q0, u0, index, data, work, hub_radius, row[:0])
+            f0 = rate(kernels, t, x, q0, u0, index, data, work, hub_radius, row[:0])
             first = next_out
             spacing = boundaries[1] - boundaries[0]
             inner = next_out < times.shape[0] and times[next_out] < end - 1e-9 * spacing
             if taken[0] >= ABM4_HISTORY and not inner and abs(end - t - spacing) <= 1e-9 * spacing:
                 new, f_end, next_out, used, status, bad = abm4_interval(
-                    t, x, f0, end, spacing, times, out, loads, next_out, row, history, limit, q0, u0, index, data,
-                    work, hub_radius)
+                    rate, kernels, t, x, f0, end, spacing, times, out, loads, next_out, row, history, limit, q0, u0,
+                    index, data, work, hub_radius)
             elif step > 0.0:
                 new, f_end, next_out, used, status, bad = rk4_interval(
-                    t, x, f0, end, boundaries[1] - boundaries[0], step, times, out, loads, next_out, row, K, limit,
-                    q0, u0, index, data, work, hub_radius)
+                    rate, kernels, t, x, f0, end, spacing, step, times, out, loads, next_out, row, K, limit, q0, u0,
+                    index, data, work, hub_radius)
             else:
                 new, f_end, next_out, used, status, bad = dp54_interval(
-                    t, x, f0, end, boundaries[1] - boundaries[0], times, out, loads, next_out, row, K, rtol, atol,
-                    limit, tableau, q0, u0, index, data, work, hub_radius)
+                    rate, kernels, t, x, f0, end, spacing, times, out, loads, next_out, row, K, rtol, atol, limit,
+                    tableau, q0, u0, index, data, work, hub_radius)
             count += used + 1
             if taken[0] >= 0:                          # ABM4: the derivatives at the boundaries, newest first
                 for i in range(x.shape[0]):

@@ -30,7 +30,7 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True, inline="always")
     def rate_with(kernels, t, x, q0, u0, index, data, work, hub_radius, row):
-        """dx/dt at (t, x) as :func:`.compiled_loads.derivative`, and the load channels into ``row`` (from the
+        """dx/dt at (t, x) of the free coordinates and the dynamic wake, x = (q_f, u_f, w), and the load channels into ``row`` (from the
         same evaluation of the equations) if it is not empty, with ``kernels`` (structural equations, aerodynamic
         loads, output row) called directly or as first-class functions. Inlined by numba into its callers."""
         structural, aerodynamic, outputs = kernels
@@ -47,13 +47,6 @@ if njit is not None:                                   # module-level kernels: n
     def rate_function(kernels, t, x, q0, u0, index, data, work, hub_radius, row):
         """:func:`rate_with` as a library of its own, which the integrators call as a first-class function."""
         return rate_with(kernels, t, x, q0, u0, index, data, work, hub_radius, row)
-
-    @njit(cache=True)
-    def rate_call(t, x, q0, u0, index, data, work, hub_radius, row):
-        """:func:`rate_with` calling the kernels directly, as a library of its own, for callers with many call sites
-        (the controlled loop's eight: there inlining each copy costs more to compile than the library it saves,
-        3.5 s of 53 s measured)."""
-        return rate_with((equations, add_aero, output_row), t, x, q0, u0, index, data, work, hub_radius, row)
 
     @njit(cache=True)
     def check_state(x, limit):

@@ -7,8 +7,8 @@ kinematics follow from those (``omega = W u``, ``v_apex = J_apex u``), the node 
 scratch, as the numpy twin: the loads are a function of the state alone), and the lumped loads add
 ``Z^T sum_p [F; rho x F + M; (R D)^T F]`` to the forcing. ``aero`` is the tuple of
 :func:`.compiled_aero_arrays.aero_data`; ``state`` the arrays of :func:`.compiled_aero_arrays.aero_state`. The
-kernels :func:`equations` and :func:`derivative` take ``data = (structure, aero, generator law)`` and ``work =
-(structural work, aero state)``.
+kernels :func:`equations` and :func:`loaded_equations` take ``data = (structure, aero, generator law)`` and ``work
+= (structural work, aero state)``.
 
 The dynamic wake's states (:mod:`bladefem.aero.dynamic_wake`) ride at the end of the integrator's state vector,
 after the free coordinates and rates: :func:`load_wake` copies them into the aero state before the equations (which
@@ -38,7 +38,6 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.polar import curved_axes, euler_angles
     from ...aero.wind import point_wind
     from .compiled_kernels import beam_node
-    from .compiled_state import full_state, state_rate
     from . import control
     from .compiled_kernels import equations as structural_equations
 
@@ -386,13 +385,3 @@ if njit is not None:                                   # module-level kernels: n
     def equations(q, u, data, work, t):
         """:func:`loaded_equations` calling the kernels directly."""
         return loaded_equations(q, u, data, work, t, structural_equations, add_aero)
-
-    @njit(cache=True)
-    def derivative(t, x, q0, u0, index, data, work):
-        """dx/dt of the free coordinates and the dynamic wake, x = (q_f, u_f, w)."""
-        q, u = full_state(t, x, q0, u0, index)
-        load_wake(x, index.shape[0], work[1])
-        M, f = equations(q, u, data, work, t)
-        out = state_rate(x, M, f, index)
-        store_wake_rate(out, index.shape[0], work[1])
-        return out

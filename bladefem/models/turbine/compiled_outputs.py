@@ -19,20 +19,22 @@ COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_tor
 
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
-    from .compiled_loads import equations, law_torque, load_wake
+    from .compiled_loads import law_torque, load_wake, loaded_equations
     from .compiled_tower_base import add_tower_and_nacelle
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
     @njit(cache=True)
-    def load_outputs(times, states, q0, u0, index, data, work, hub_radius, blade):
-        """The :data:`COLUMNS` at each output row (:func:`output_row`)."""
+    def load_outputs(kernels, times, states, q0, u0, index, data, work, hub_radius, blade):
+        """The :data:`COLUMNS` at each output row (:func:`output_row`), with ``kernels`` (structural equations,
+        aerodynamic loads, output row) called directly or as first-class functions (:mod:`.compiled_calls`)."""
+        structural, aerodynamic, outputs = kernels
         out = np.zeros((times.shape[0], len(COLUMNS)))
         for row in range(times.shape[0]):
             q, u = full_state(times[row], states[row], q0, u0, index)
             load_wake(states[row], index.shape[0], work[1])
-            M, f = equations(q, u, data, work, times[row])
-            output_row(q, u, M, f, index, data, work, hub_radius, blade, out[row])
+            M, f = loaded_equations(q, u, data, work, times[row], structural, aerodynamic)
+            outputs(q, u, M, f, index, data, work, hub_radius, blade, out[row])
         return out
 
     @njit(cache=True)
