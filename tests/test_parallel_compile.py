@@ -152,3 +152,35 @@ def test_without_first_class_functions_the_kernels_are_linked(monkeypatch, tmp_p
                         lambda kernel, *rest: used.append(kernel) or original(kernel, *rest))
     assert table("linked") == joined
     assert "dp54_chunk" in {kernel.py_func.__name__ for kernel in used}          # the integrator, linked
+
+
+@pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="the compiled path needs numba")
+def test_the_controlled_loop_falls_back_to_linked_kernels(monkeypatch, tmp_path):
+    """The same fallback for the controlled loop (ROSCO's library called from the kernel) and the output rows and
+    derivative it starts with: where numba cannot compile a kernel taking the function types, each is compiled with
+    its kernels linked in, and the table is the same to the last digit."""
+    from numba.core.errors import TypingError
+
+    from bladefem.cli import main
+    from bladefem.models.turbine import compiled_calls
+
+    deck = Path(__file__).resolve().parents[1] / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore_ROSCO.fst"
+
+    def table(name: str) -> str:
+        out = tmp_path / f"{name}.csv"
+        assert main(["turbine", str(deck), "--simulate", "0.2", "--wind-speed", "16", "--pitch-deg", "10", "--quiet",
+                     "-o", str(out)]) == 0
+        return out.read_text()
+
+    joined = table("joined")
+
+    def refuse(*args, **kwargs):
+        raise TypingError("this numba cannot compile kernels taking first-class functions")
+
+    monkeypatch.setattr(compiled_calls, "integrator", refuse)
+    used = []
+    original = compiled_calls.linked
+    monkeypatch.setattr(compiled_calls, "linked",
+                        lambda kernel, *rest: used.append(kernel) or original(kernel, *rest))
+    assert table("linked") == joined
+    assert {"controlled_chunk", "load_outputs", "rate_function"} <= {kernel.py_func.__name__ for kernel in used}
