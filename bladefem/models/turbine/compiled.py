@@ -169,7 +169,7 @@ class CompiledEquations:
                      np.zeros(3), np.zeros((3, n)), np.zeros((4, 3)))
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
-        self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`_joined`
+        self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`joined`
 
     def _parallel(self, entry: str, helper: tuple = ()) -> Callable[[], None]:
         """Before a cold first call of ``entry``: its kernels compiled on two processes where a core is free
@@ -196,20 +196,24 @@ class CompiledEquations:
         from .compiled_integrators import rate_function
         args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work,
                 float(self.hub_radius), _NO_ROW)
-        return self._joined("derivative", "turbine equations", rate_function, args)
+        return self.joined("derivative", "turbine equations", rate_function, args)
 
-    def _joined(self, name: str, what: str, kernel, args: tuple):
-        """``kernel``'s result for ``args`` after its kernels' tuple, the kernels given as first-class functions
-        (:func:`.compiled_calls.join`; compiled on two processes where a core is free on a cold first call)."""
+    def joined(self, name: str, what: str, kernel, args: tuple, with_rate: bool = False,
+               in_helper: bool = False):
+        """``kernel``'s result for ``args`` after its function arguments (the state rate if ``with_rate``, and the
+        kernels' tuple) given as first-class functions (:func:`.compiled_calls.join`), the kernel and its functions
+        kept under ``name`` for the next calls. A cold first call compiles on two processes where a core is free,
+        ``kernel`` itself in the helper if ``in_helper``."""
         from .compiled_calls import function_types, join, unwarned
-        with unwarned():
+        with unwarned():                               # numba makes function types at each call too
             if name in self._calls:
-                joined = self._calls[name]
-                return joined[0](*joined[1:], *args)
-            signature = function_types(kernel, self.loaded, self.all_work, args, with_rate=False)
-            with first_call(name, what, kernel, signature or args, prepare=self._parallel("integrator")):
-                self._calls[name], result = join(kernel, self.loaded, self.all_work, args, signature,
-                                                 with_rate=False)
+                called = self._calls[name]
+                return called[0](*called[1:], *args)
+            signature = function_types(kernel, self.loaded, self.all_work, args, with_rate)
+            jobs = ((kernel.py_func.__module__, kernel.py_func.__name__, signature),) if (
+                in_helper and signature is not None) else ()
+            with first_call(name, what, kernel, signature or args, prepare=self._parallel("integrator", jobs)):
+                self._calls[name], result = join(kernel, self.loaded, self.all_work, args, signature, with_rate)
                 return result
 
     def integrate(self, times: NDArray, x0: NDArray, rtol: float, atol: float, q0: NDArray, u0: NDArray,
@@ -223,7 +227,6 @@ class CompiledEquations:
         is left to the usual KeyboardInterrupt) and ``watch(t_before, t, times, states, loads, evaluations)`` with
         the output rows the call wrote may stop the run with a reason. ``first_step``: the first trial step, s
         (default 1e-3; a run restarted every controller interval starts with the interval)."""
-        from .compiled_calls import function_types, join, unwarned
         from .compiled_integrators import dop853_chunk, dp54_chunk
         from .compiled_outputs import COLUMNS
         from .watch import BUDGET, interruptible
@@ -241,22 +244,11 @@ class CompiledEquations:
         t, h, rows, evaluations = float(times[0]), min(first, max(times[-1] - times[0], 1e-12)), 1, 0
         f, end = np.zeros(len(x)), float(times[-1])
 
-        compiled = None
-
         def step(start: bool) -> tuple:
-            nonlocal compiled
             args = (t, x, f, h, end, budget, start, times, out, loads, rows, float(rtol), float(atol), limit,
                     tableau, q0, u0, index, self.loaded, self.all_work, float(self.hub_radius))
-            with unwarned():                           # numba makes function types at each call too
-                if compiled is None:                   # the integrator for these types and the kernels it calls
-                    signature = function_types(kernel, self.loaded, self.all_work, args)
-                    jobs = () if signature is None else ((kernel.py_func.__module__, kernel.py_func.__name__,
-                                                          signature),)
-                    with first_call(f"integrator {order}", "turbine simulation kernels", kernel, signature or args,
-                                    prepare=self._parallel("integrator", jobs)):
-                        compiled, result = join(kernel, self.loaded, self.all_work, args, signature)
-                        return result
-                return compiled[0](*compiled[1:], *args)
+            return self.joined(f"integrator {order}", "turbine simulation kernels", kernel, args, with_rate=True,
+                               in_helper=True)
 
         t_before, rows_before = t, 0
         t, x, f, h, rows, count, status, bad = step(True)
@@ -286,7 +278,7 @@ class CompiledEquations:
                 np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(u0, dtype=float),
                 np.ascontiguousarray(index, dtype=np.int64), self.loaded, self.all_work, float(self.hub_radius),
                 blade)
-        return self._joined("outputs", "turbine outputs", load_outputs, args)
+        return self.joined("outputs", "turbine outputs", load_outputs, args)
 
     def root_moments(self, times: NDArray, states: NDArray, q0: NDArray, u0: NDArray, index: NDArray,
                      blade: int = 0) -> NDArray:

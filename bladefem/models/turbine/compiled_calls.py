@@ -56,23 +56,29 @@ def rate_types(loaded: tuple, work: tuple) -> tuple:
             types.float64, vector)
 
 
-def kernels(loaded: tuple, work: tuple, with_rate: bool = True) -> tuple:
-    """The (rate, (structural equations, aerodynamic loads, output row)) dispatchers the integrators are given
-    (without ``with_rate``, the kernels' tuple alone, for the output rows and the derivative), each compiled (or
-    loaded from the disk cache) for its argument types first: numba converts a dispatcher without that version to a
-    function type by compiling it for the full signature, return type included, another entry of the disk cache
-    than the one :mod:`.parallel_compile`'s helper writes."""
+def functions(with_rate: bool = True) -> tuple:
+    """The dispatchers a joined kernel is given: (the state rate, (structural equations, aerodynamic loads, output
+    row)); without ``with_rate`` the kernels' tuple alone (the output rows, the derivative)."""
     from .compiled_integrators import rate_function
     from .compiled_kernels import equations
     from .compiled_loads import add_aero
     from .compiled_outputs import output_row
-    from .parallel_compile import kernel_signatures
-    kinds = kernel_signatures(loaded, work)
-    jobs = [(equations, kinds["structure"]), (add_aero, kinds["aero"]), (output_row, kinds["row"])]
-    for dispatcher, argument_types in jobs + ([(rate_function, rate_types(loaded, work))] if with_rate else []):
-        dispatcher.compile(argument_types)
     called = (equations, add_aero, output_row)
     return (rate_function, called) if with_rate else (called,)
+
+
+def kernels(loaded: tuple, work: tuple, with_rate: bool = True) -> tuple:
+    """:func:`functions`, each compiled (or loaded from the disk cache) for its argument types first: numba converts
+    a dispatcher without that version to a function type by compiling it for the full signature, return type
+    included, another entry of the disk cache than the one :mod:`.parallel_compile`'s helper writes."""
+    from .parallel_compile import kernel_signatures
+    given = functions(with_rate)
+    kinds = kernel_signatures(loaded, work)
+    for dispatcher, kind in zip(given[-1], ("structure", "aero", "row")):
+        dispatcher.compile(kinds[kind])
+    if with_rate:
+        given[0].compile(rate_types(loaded, work))
+    return given
 
 
 def integrator_types(kernel, loaded: tuple, work: tuple, args: tuple, with_rate: bool = True) -> tuple:
@@ -92,16 +98,10 @@ def integrator(kernel, signature: tuple):
 
 
 def linked(kernel, with_rate: bool = True) -> tuple:
-    """``kernel`` with the state rate (``with_rate``) and the kernels it calls given as dispatchers: numba compiles
-    a version of it for them and links them in, as before first-class functions (a slower cold compilation, the
-    same results). The fallback of :func:`join` where this numba cannot make or call the function types (marked
-    experimental)."""
-    from .compiled_integrators import rate_function
-    from .compiled_kernels import equations
-    from .compiled_loads import add_aero
-    from .compiled_outputs import output_row
-    called = (equations, add_aero, output_row)
-    return (kernel, rate_function, called) if with_rate else (kernel, called)
+    """``kernel`` with :func:`functions` given as dispatchers: numba compiles a version of it for them and links them
+    in, as before first-class functions (a slower cold compilation, the same results). The fallback of :func:`join`
+    where this numba cannot make or call the function types (marked experimental)."""
+    return kernel, *functions(with_rate)
 
 
 def function_types(kernel, loaded: tuple, work: tuple, args: tuple, with_rate: bool = True) -> tuple | None:

@@ -245,8 +245,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     (a library or
     input file that fails there is an :class:`InputError`). Between kernel calls (about ``BUDGET`` right-hand
     sides) the new rows are watched, progress told and Ctrl-C looked for."""
-    from .compiled import _dp54_tableau, first_call
-    from .compiled_calls import function_types, join, unwarned
+    from .compiled import _dp54_tableau
     from .compiled_control import FAILED, OVERRIDE, controlled_chunk
     from .watch import BUDGET, interruptible
     system, compiled, model = run.system, run.compiled, run.model
@@ -276,7 +275,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     pitching = (float(pitcher.base), pitcher.references)
     K, tableau = np.zeros((7, len(x))), _dp54_tableau()
     index, q0, u0 = (np.ascontiguousarray(a) for a in (system.index, system.q0, system.u0))
-    k, t, rows, evaluations, call_first, joined = 0, 0.0, 1, 0, False, None
+    k, t, rows, evaluations, call_first = 0, 0.0, 1, 0, False
     history, known = np.zeros((ABM4_HISTORY, len(x))), np.array([0 if multistep else -1], dtype=np.int64)
 
     def result(count: int) -> SimulationResult:
@@ -289,15 +288,8 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
                     float(rtol), float(atol), float(rk4_step), limit, tableau, K, q0, u0, index, compiled.loaded,
                     compiled.all_work, float(compiled.hub_radius), pitching, function, controller.records, buffers,
                     turbine, constants, history, known)
-            with unwarned():
-                if joined is None:                     # the loop for these types and the kernels it calls
-                    signature = function_types(controlled_chunk, compiled.loaded, compiled.all_work, args)
-                    with first_call("controlled loop", "controlled simulation kernels", controlled_chunk,
-                                    signature or args, prepare=compiled._parallel("integrator")):
-                        joined, out = join(controlled_chunk, compiled.loaded, compiled.all_work, args, signature)
-                else:
-                    out = joined[0](*joined[1:], *args)
-            k, t, rows, count, status, bad = out
+            k, t, rows, count, status, bad = compiled.joined("controlled loop", "controlled simulation kernels",
+                                                             controlled_chunk, args, with_rate=True)
             call_first, evaluations = True, evaluations + count
             pitcher.pitch = float(held_commands[0])
             controller.pitch_command[:] = held_commands[0]
