@@ -3,7 +3,8 @@
 the state rate (the integrator calls them as first-class functions, :mod:`bladefem.models.turbine.compiled_calls`):
 this process then loads them from numba's cache instead of compiling them; the output is the same to the bit as with everything
 compiled in one process (the helper failing, which falls back to that); a warm run starts no helper; every kernel is
-compiled for one argument-type signature (what lets the two processes write the cache without clashing)."""
+compiled for one argument-type signature (what lets the two processes write the cache without clashing); at the
+command's LLVM optimization level (``NUMBA_OPT=1``) the output is the same to the bit as at numba's default."""
 
 import json
 import os
@@ -36,9 +37,10 @@ print(json.dumps({"code": code, "helpers": len(parallel_compile.STARTED),
 """
 
 
-def simulate(folder: Path, cache: Path, mode: str = "") -> tuple[dict, bytes, str]:
-    """One ``--simulate 0.05`` in a subprocess with numba's cache in ``cache``: its report, output file, stderr."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT), "NUMBA_CACHE_DIR": str(cache)}
+def simulate(folder: Path, cache: Path, mode: str = "", optimization: str = "3") -> tuple[dict, bytes, str]:
+    """One ``--simulate 0.05`` in a subprocess with numba's cache in ``cache`` at LLVM's ``optimization`` level
+    (``NUMBA_OPT``): its report, output file, stderr."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "NUMBA_CACHE_DIR": str(cache), "NUMBA_OPT": optimization}
     for name in ("BLADEFEM_NO_NUMBA", "BLADEFEM_COMPILE_HELPER"):
         env.pop(name, None)
     output = folder / f"out{len(list(folder.glob('out*')))}.csv"
@@ -65,9 +67,13 @@ def test_cold_run_compiles_on_two_processes_with_the_same_result(tmp_path):
     assert (alone["code"], alone["helpers"], alone["hits"], alone["misses"]) == (0, 1, 0, 1)
     assert alone["signatures"] == 1
     assert serial == parallel
+    # compiled at the command's optimization level (bladefem.cli.NUMBA_OPTIMIZATION): the same table to the bit
+    from bladefem.cli import NUMBA_OPTIMIZATION
+    _, optimized, _ = simulate(tmp_path, tmp_path / "level", optimization=NUMBA_OPTIMIZATION)
+    assert optimized == parallel
 
 
-def test_helper_only_where_a_core_looks_free(monkeypatch):
+def test_helper_only_where_a_core_looks_free(monkeypatch, tmp_path):
     from bladefem.models.turbine import parallel_compile
     monkeypatch.setenv("BLADEFEM_COMPILE_HELPER", "0")
     assert not parallel_compile.spare_core()
@@ -75,12 +81,43 @@ def test_helper_only_where_a_core_looks_free(monkeypatch):
     assert parallel_compile.spare_core()
     monkeypatch.delenv("BLADEFEM_COMPILE_HELPER")
     monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    # where the idle time cannot be read: the last minute's load average
+    monkeypatch.setattr(parallel_compile, "PROC_STAT", str(tmp_path / "missing"))
     monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (1.5, 0.0, 0.0))
     assert not parallel_compile.spare_core()
     monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (0.9, 0.0, 0.0))
     assert parallel_compile.spare_core()
     monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0}, raising=False)
     assert not parallel_compile.spare_core()
+
+
+def proc_stat(idle0: float, idle1: float, busy0: float, busy1: float) -> str:
+    """A /proc/stat with cpu0 and cpu1 (and a cpu2 outside this process's cores, always busy)."""
+    def line(name, idle, busy):
+        return f"{name} {busy:.0f} 0 0 {idle:.0f} 0 0 0 0 0 0"
+    return "\n".join([line("cpu", idle0 + idle1, busy0 + busy1 + 1e6), line("cpu0", idle0, busy0),
+                      line("cpu1", idle1, busy1), line("cpu2", 0, 1e6), "intr 1 2 3"])
+
+
+@pytest.mark.parametrize("idle_share, spare", [((1.0, 1.0), True), ((1.0, 0.1), True), ((0.7, 0.3), True),
+                                                 ((0.5, 0.3), False),
+                                                 ((0.0, 0.0), False)])
+def test_the_idle_time_now_decides_not_the_load_average(monkeypatch, tmp_path, idle_share, spare):
+    """A load average of 1.5 (a previous run's, say) but both cores idle now: the helper starts; the idle time of
+    this process's own cores (cpu0 and cpu1 of three) over the sample, one core's worth or more, decides."""
+    from bladefem.models.turbine import parallel_compile
+    monkeypatch.delenv("BLADEFEM_COMPILE_HELPER", raising=False)
+    monkeypatch.setattr(parallel_compile.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(parallel_compile.os, "getloadavg", lambda: (0.0 if not spare else 1.5, 0.0, 0.0))
+    stat = tmp_path / "stat"
+    stat.write_text(proc_stat(1000, 1000, 5000, 5000))
+    monkeypatch.setattr(parallel_compile, "PROC_STAT", str(stat))
+    later = proc_stat(1000 + 20 * idle_share[0], 1000 + 20 * idle_share[1], 5000 + 20 * (1 - idle_share[0]),
+                      5000 + 20 * (1 - idle_share[1]))
+    monkeypatch.setattr(parallel_compile.time, "sleep", lambda seconds: stat.write_text(later))
+    assert parallel_compile.idle_cores([0, 1]) == pytest.approx(sum(idle_share))
+    stat.write_text(proc_stat(1000, 1000, 5000, 5000))
+    assert parallel_compile.spare_core() is spare
 
 
 def test_a_kernel_failing_ahead_is_left_to_the_call(monkeypatch):

@@ -29,6 +29,7 @@ import os
 import pickle
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -50,6 +51,13 @@ ENTRIES = {
 PATIENCE = 300.0
 #: the bladefem package this process runs (the helper must import the same one)
 PACKAGE = Path(__file__).resolve().parents[2]
+#: seconds over which :func:`spare_core` measures the idle time of the cores
+SAMPLE = 0.2
+#: idle cores :func:`spare_core` asks for: one, less the sample's resolution (the counters tick 100 times a second:
+#: 40 ticks of two cores in 0.2 s, a tick or two either way is 0.05-0.1 core)
+IDLE = 0.9
+#: the kernel's per-CPU time counters (Linux)
+PROC_STAT = "/proc/stat"
 #: starts of helper processes in this process (for tests)
 STARTED: list[int] = []
 
@@ -120,16 +128,54 @@ def stop(helper: subprocess.Popen) -> None:
 
 def spare_core() -> bool:
     """Whether a helper process would find a core of its own: BLADEFEM_COMPILE_HELPER=1 (yes) or 0 (no), else at
-    least two cores for this process and the last minute's load average at least one below their number."""
+    least two cores for this process and, of their time, one core's worth idle while this process waits
+    :data:`SAMPLE` s (:func:`idle_cores`, at least :data:`IDLE`; where the system does not tell, the last minute's load average at least one
+    below their number). The idle time now, not the load average: a run right after another one (a pip install, a
+    previous run) sees a load average of one or more for a minute after that work has ended."""
     chosen = os.environ.get("BLADEFEM_COMPILE_HELPER", "")
     if chosen in ("0", "1"):
         return chosen == "1"
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    cores = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else list(range(os.cpu_count() or 1))
+    if len(cores) < 2:
+        return False
+    idle = idle_cores(cores)
+    if idle is not None:
+        return idle >= IDLE
     try:
         load = os.getloadavg()[0]
     except (AttributeError, OSError):                 # no load average on this system (Windows)
         load = 0.0
-    return cores >= 2 and load <= cores - 1
+    return load <= len(cores) - 1
+
+
+def cpu_times(cores: list[int]) -> tuple[float, float] | None:
+    """(idle, total) jiffies of the CPUs ``cores`` from /proc/stat (Linux), or None where it cannot be read."""
+    try:
+        lines = Path(PROC_STAT).read_text().splitlines()
+    except OSError:
+        return None
+    wanted, idle, total = {f"cpu{core}" for core in cores}, 0.0, 0.0
+    for line in lines:
+        fields = line.split()
+        if fields and fields[0] in wanted:
+            values = [float(v) for v in fields[1:]]
+            idle += sum(values[3:5])                   # idle and iowait
+            total += sum(values[:8])                   # user .. steal (guest time is counted in user)
+            wanted.discard(fields[0])
+    return None if wanted else (idle, total)
+
+
+def idle_cores(cores: list[int]) -> float | None:
+    """How many of the CPUs ``cores`` were idle, on average over :data:`SAMPLE` s, or None where the system does
+    not tell (no /proc/stat, or it lacks one of them)."""
+    before = cpu_times(cores)
+    if before is None:
+        return None
+    time.sleep(SAMPLE)
+    after = cpu_times(cores)
+    if after is None or after[1] <= before[1]:
+        return None
+    return len(cores) * (after[0] - before[0]) / (after[1] - before[1])
 
 
 def compile_in_parallel(entry: str, loaded: tuple, work: tuple, extra: tuple = ()) -> None:
@@ -167,4 +213,5 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    os._exit(main())                                   # numba's cache files are written and closed; freeing the
+                                                       # compiled code at exit took 0.8 s that the caller waited
