@@ -46,17 +46,19 @@ def test_the_exit_code_is_the_commands():
     assert bladefem("modes", "cases/uniform_blade.yaml", "--rpm", "fast").returncode == 2
 
 
-def test_outputs_are_whole_although_the_interpreter_is_not_torn_down(tmp_path, capsys):
-    """A run's table on stdout and its files are the same as the same command's in this process."""
-    from bladefem.cli import main
+def test_outputs_are_whole_although_the_interpreter_is_not_torn_down(tmp_path):
+    """A run's table on stdout and its files are the same as the same command's ended by the interpreter's usual
+    teardown (``raise SystemExit(main())``), each in a fresh process."""
+    argv = ["campbell", "cases/nrel5mw_blade.yaml", "--rpm", "0:12:4", "--n-modes", "4", "--json", "--plot"]
     here, there = tmp_path / "here.png", tmp_path / "there.png"
-    argv = ["campbell", "cases/nrel5mw_blade.yaml", "--rpm", "0:12:4", "--n-modes", "4", "--json"]
-    assert main([*argv, "--plot", str(here)]) == 0
-    table = capsys.readouterr().out
-    done = bladefem(*argv, "--plot", str(there))
+    usual = subprocess.run([sys.executable, "-c", "import sys; from bladefem.cli import main; "
+                            "raise SystemExit(main(sys.argv[1:]))", *argv, str(here)], capture_output=True,
+                           text=True, env=environment(NUMBA_OPT="1"), cwd=ROOT, timeout=600)
+    assert usual.returncode == 0, usual.stderr
+    done = bladefem(*argv, str(there))
     assert done.returncode == 0, done.stderr
-    assert done.stdout == table and table.rstrip().endswith("}")
-    assert there.stat().st_size == here.stat().st_size > 0
+    assert done.stdout == usual.stdout and usual.stdout.rstrip().endswith("}")
+    assert there.read_bytes() == here.read_bytes()
     lots = entry_with("sys.stdout.write('x' * 1_000_000)\nreturn 0")     # more than any pipe's buffer
     assert (lots.returncode, len(lots.stdout)) == (0, 1_000_000)
 
