@@ -141,8 +141,7 @@ def main() -> None:
     controlled.compiled_loop = measured
     try:
         code = bladefem(["turbine", str(DECK), "--simulate", "0.1", "--wind-speed", "16", "--pitch-deg", "10",
-                         "--quiet", "--output", os.path.join(os.path.dirname(os.path.abspath(__file__)), "out",
-                                                             "rhs_parts.csv")])
+                         "--quiet", "--output", str(ROOT / "bench" / "out" / "rhs_parts.csv")])
     finally:
         controlled.compiled_loop = compiled_loop
     if code:

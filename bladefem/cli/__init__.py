@@ -160,7 +160,7 @@ def entry() -> NoReturn:
     (:data:`NUMBA_OPTIMIZATION`, before numba is imported), :func:`main`, then the process ends without
     tearing the interpreter down where that loses nothing (one thread left; the exit handlers run, the standard
     streams flushed, every output already written and closed by the command). Freeing numba's compiled code and
-    the modules' objects took 1.1 s of a cold ``turbine --simulate`` and 0.35 s of a warm one (``bench/bench_startup.py
+    the modules' objects took 1.1 s of a cold ``turbine --simulate`` and 0.3 s of a warm one (``bench/bench_startup.py
     --exit``); with other threads still running the interpreter ends as usual (it waits for them)."""
     os.environ.setdefault("NUMBA_OPT", NUMBA_OPTIMIZATION)
     code = main()
