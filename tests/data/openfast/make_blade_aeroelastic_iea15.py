@@ -26,7 +26,11 @@ state near the undeflected blade (the sections at minus their twist carry a larg
 blade is the operating point both tools can share.
 
     python tests/data/openfast/make_blade_aeroelastic_iea15.py OPENFAST_EXECUTABLE RUNS_FOLDER [RPM ...]
-        [--order N] [--lin-time T] [--prebent] [--structural] [--no-pitching-moment] [--reduce]
+        [--order N] [--lin-time T] [--prebent] [--structural] [--no-pitching-moment] [--constant-cm CM] [--reduce]
+
+``--constant-cm CM``: every airfoil's pitching-moment coefficient set to CM at every angle of attack
+(:func:`constant_pitching_moment`; ``constant_cm_points``): the moment then changes with the relative speed alone,
+not with the angle of attack.
 
 ``--reduce``: extract the JSON from the runs already in RUNS_FOLDER (OpenFAST not run).
 """
@@ -63,6 +67,24 @@ def straightened_aerodyn_blade(text: str) -> str:
             words[c] = "0.0"
         lines[k] = "  ".join(words)
     return "\n".join(lines) + "\n"
+
+
+def constant_pitching_moment(folder: Path, cm: float) -> None:
+    """Every airfoil table under ``folder`` (``*Polar*.dat``) with its Cm column (the fourth) set to ``cm``: the
+    ``NumAlf`` rows after the line labelled so, comment lines skipped."""
+    for path in sorted(folder.rglob("*Polar*.dat")):
+        lines = path.read_text().splitlines()
+        for k, line in enumerate(lines):
+            if line.split()[1:2] != ["NumAlf"]:
+                continue
+            rows, row = int(line.split()[0]), k + 1
+            while rows:
+                words = lines[row].split()
+                if words and not words[0].startswith("!"):
+                    lines[row] = "  ".join([*words[:3], f"{cm:.6e}", *words[4:]])
+                    rows -= 1
+                row += 1
+        path.write_text("\n".join(lines) + "\n")
 
 
 def bladefem_aerodyn(folder: Path) -> Path:
@@ -143,26 +165,30 @@ def main() -> None:
     order = int(flags[flags.index("--order") + 1]) if "--order" in flags else ORDER
     lin_time = flags[flags.index("--lin-time") + 1] if "--lin-time" in flags else LIN_TIME
     reduce = "--reduce" in flags
+    cm = float(flags[flags.index("--constant-cm") + 1]) if "--constant-cm" in flags else None
     aero, prebent, moment = "--structural" not in flags, "--prebent" in flags, "--no-pitching-moment" not in flags
     numbers = [f for k, f in enumerate(flags)
-               if not f.startswith("--") and (k == 0 or flags[k - 1] not in ("--order", "--lin-time"))]
+               if not f.startswith("--") and (k == 0 or flags[k - 1] not in ("--order", "--lin-time", "--constant-cm"))]
     rpms = tuple(float(r) for r in numbers) or RPMS
     points = []
     for rpm in rpms:
         folder = runs / (f"rpm{rpm:g}_order{order}_t{lin_time}{'' if aero else '_structural'}"
-                         f"{'_prebent' if prebent else ''}{'' if moment else '_nocm'}")
+                         f"{'_prebent' if prebent else ''}{'' if moment else '_nocm'}{'' if cm is None else f'_cm{cm:g}'}")
         if reduce:
             fst = folder / "IEA-15-240-RWT-Monopile" / FST
         else:
             if folder.exists():
                 shutil.rmtree(folder)
             fst = write_case(folder, rpm, aero, prebent, order, moment, lin_time)
+            if cm is not None:
+                constant_pitching_moment(folder, cm)
         point = linearized(None if reduce else openfast, fst, rpm, count=12)
-        points.append({**point, "order_elem": order, "tip_twist_rad": tip_twist(next(fst.parent.glob("*.lin")))})
+        points.append({**point, "order_elem": order, "tip_twist_rad": tip_twist(next(fst.parent.glob("*.lin"))),
+                       **({} if cm is None else {"constant_cm": cm})})
     path = HERE / "blade_aeroelastic_linearization_iea15.json"
     old = json.loads(path.read_text()) if path.exists() else {}
-    key = ("prebent_points" if prebent else "no_pitching_moment_points" if not moment else "points" if aero
-           else "structural_points")
+    key = ("prebent_points" if prebent else "no_pitching_moment_points" if not moment else
+           "constant_cm_points" if cm is not None else "points" if aero else "structural_points")
     if order != ORDER:
         key = f"order{order}_{key}"
     if float(lin_time) != float(LIN_TIME):
@@ -176,7 +202,8 @@ def main() -> None:
                           f"{LIN_TIME} s (the undeflected blade); blade 1's modes; tip_twist_rad: the tip's elastic "
                           "twist at the operating point. structural_points: the same without aerodynamics "
                           "(CompAero 0); no_pitching_moment_points: without the airfoils' pitching moment (UseBlCm "
-                          "False); prebent_points: the files' curved axis and aerodynamic-centre offsets; orderN_*: "
+                          "False); constant_cm_points: every airfoil's Cm set to constant_cm at every angle of attack; "
+                          "prebent_points: the files' curved axis and aerodynamic-centre offsets; orderN_*: "
                           "order_elem N (convergence); lin_time_T_*: linearized at T s, part way into the motion "
                           "the aerodynamic loads start.",
            "provenance": {"openfast": {"version": "v5.0.0", "commit": "2895884d2",
