@@ -221,3 +221,47 @@ def test_the_controlled_loop_falls_back_to_linked_kernels(monkeypatch, tmp_path)
                         lambda kernel, *rest: used.append(kernel) or original(kernel, *rest))
     assert table("linked") == joined
     assert {"controlled_chunk", "load_outputs", "rate_function"} <= {kernel.py_func.__name__ for kernel in used}
+
+
+def test_prestart_only_for_a_cold_cache_and_once(monkeypatch):
+    """``turbine --simulate`` starts the helper before it builds the model only when the aerodynamic loads have
+    nothing in numba's cache and a core looks free, once; the first compiled call then gives that helper its jobs
+    instead of starting another."""
+    from bladefem.models.turbine import parallel_compile
+    launched, sent = [], []
+    monkeypatch.setattr(parallel_compile, "EARLY", [])
+    monkeypatch.setattr(parallel_compile, "launch", lambda: launched.append("helper") or "helper")
+    monkeypatch.setattr(parallel_compile, "send", lambda helper, jobs: sent.append((helper, jobs)) or None)
+    monkeypatch.setattr(parallel_compile.atexit, "register", lambda *args: None)
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
+    monkeypatch.setattr(parallel_compile, "cold", lambda: False)
+    parallel_compile.prestart()
+    assert launched == [] and parallel_compile.EARLY == []
+    monkeypatch.setattr(parallel_compile, "cold", lambda: True)
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: False)
+    parallel_compile.prestart()
+    assert launched == []
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: True)
+    parallel_compile.prestart()
+    parallel_compile.prestart()
+    assert launched == ["helper"] and parallel_compile.EARLY == ["helper"]
+    monkeypatch.setattr(parallel_compile, "spare_core", lambda: False)    # busy now: the helper is there already
+    monkeypatch.setattr(parallel_compile, "signatures", lambda loaded, work: dict.fromkeys(("aero", "structure",
+                                                                                            "state", "row", "rate"),
+                                                                                           ()))
+    monkeypatch.setattr(parallel_compile, "compile_kernels", lambda jobs: None)
+    monkeypatch.setattr(parallel_compile, "ready", lambda module, name, types: False)
+    parallel_compile.compile_in_parallel("integrator", (), ())
+    assert launched == ["helper"] and [(helper, [name for _, name, _ in jobs]) for helper, jobs in sent] == [
+        ("helper", ["add_aero"])]
+    assert parallel_compile.EARLY == []
+
+
+def test_a_helper_given_no_jobs_exits():
+    """A helper whose caller sends nothing (it needed no compilation, or failed before) warms up, reads the end of
+    its stdin and exits cleanly."""
+    from bladefem.models.turbine import parallel_compile
+    helper = parallel_compile.launch()
+    assert helper is not None
+    helper.stdin.close()
+    assert helper.wait(timeout=120) == 0

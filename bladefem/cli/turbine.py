@@ -300,6 +300,9 @@ def run(args: argparse.Namespace) -> int:
     refuse_overwriting_inputs(args)
     if wants_aeroelastic(args):
         return run_aeroelastic(args)
+    if args.simulate:
+        from ..models.turbine.parallel_compile import prestart
+        prestart()                                             # a cold first run: the compile helper warms up now
     deck, params, model = build_model(args)
     if args.simulate:
         model = apply_wind(args, model)

@@ -15,7 +15,9 @@ library).
 
 Only a cold call (:func:`.compiled.first_call` found no machine code in the cache) starts the helper, and only when
 a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of CPU); a
-warm run never does. The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both
+warm run never does. ``turbine --simulate`` starts it earlier still (:func:`prestart`, before the deck is read) when
+the aerodynamic loads have nothing in the cache: it imports the kernels' modules and sets up numba's compiler
+(:func:`warm_up`, about 0.4 s) while this process reads the deck and builds the model, then waits for its jobs. The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both
 processes write numba's cache: numba writes each file to a temporary name and renames it, and the two compile
 different kernels except shared leaves (vector helpers, the beam node), which they compile for the same argument
 types, so for the same index entry with equivalent machine code. If the helper fails (it cannot start, import this
@@ -25,6 +27,7 @@ when this process needs its kernels is waited for at most :data:`PATIENCE` s.
 
 from __future__ import annotations
 
+import atexit
 import os
 import pickle
 import subprocess
@@ -60,6 +63,10 @@ IDLE = 0.9
 PROC_STAT = "/proc/stat"
 #: starts of helper processes in this process (for tests)
 STARTED: list[int] = []
+#: the helper :func:`prestart` started, waiting for its jobs until :func:`compile_in_parallel` sends them
+EARLY: list[subprocess.Popen] = []
+#: the module of the integrators, which the helper compiles as the caller's ``extra``
+INTEGRATORS = "bladefem.models.turbine.compiled_integrators"
 
 
 def signatures(loaded: tuple, work: tuple) -> dict:
@@ -100,8 +107,8 @@ def ready(module: str, name: str, argument_types: tuple) -> bool:
     return tuple(argument_types) in getattr(importlib.import_module(module), name).signatures
 
 
-def start_helper(jobs) -> subprocess.Popen | None:
-    """The helper process compiling ``jobs``, or None if it cannot start."""
+def launch() -> subprocess.Popen | None:
+    """A helper process (:func:`main`) waiting for its jobs on stdin, or None if it cannot start."""
     environment = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [str(PACKAGE.parent), *filter(None, [os.environ.get("PYTHONPATH")])])}
     try:
@@ -110,6 +117,18 @@ def start_helper(jobs) -> subprocess.Popen | None:
     except OSError:
         return None
     STARTED.append(helper.pid)
+    return helper
+
+
+def start_helper(jobs) -> subprocess.Popen | None:
+    """The helper process compiling ``jobs`` (the one :func:`prestart` started, else a new one), or None if it
+    cannot start."""
+    helper = EARLY.pop() if EARLY else launch()
+    return None if helper is None else send(helper, jobs)
+
+
+def send(helper: subprocess.Popen, jobs) -> subprocess.Popen | None:
+    """``helper`` given ``jobs`` (its stdin closed after them), or None (and it stopped) if it cannot take them."""
     try:
         helper.stdin.write(pickle.dumps(jobs))
         helper.stdin.close()
@@ -124,6 +143,33 @@ def stop(helper: subprocess.Popen) -> None:
     if helper.poll() is None:
         helper.kill()
     helper.wait()
+
+
+def cold() -> bool:
+    """Whether numba's disk cache holds nothing for the aerodynamic loads (a fresh install's first run, or kernel
+    sources changed since: numba then reads the index as empty). Reads numba internals, as
+    :func:`.compiled.will_compile`; if they moved, or numba is off, says False (the helper then starts later, at
+    the first compiled call, as without this)."""
+    if os.environ.get("BLADEFEM_NO_NUMBA"):
+        return False
+    try:
+        from .compiled_loads import add_aero
+        return not add_aero._cache._cache_file._load_index()
+    except Exception:                                  # numba missing, or its private cache API changed
+        return False
+
+
+def prestart() -> None:
+    """Start the helper now, before this process builds its model, where the first compiled call will compile
+    (:func:`cold`) and a core looks free (:func:`spare_core`): it warms up (:func:`warm_up`) meanwhile. The call that
+    compiles then sends it its jobs (:func:`start_helper`); a process that never does ends it at exit (and a helper
+    whose caller is gone reads the end of its stdin and exits)."""
+    if EARLY or not cold() or not spare_core():
+        return
+    helper = launch()
+    if helper is not None:
+        EARLY.append(helper)
+        atexit.register(stop, helper)
 
 
 def spare_core() -> bool:
@@ -184,7 +230,7 @@ def compile_in_parallel(entry: str, loaded: tuple, work: tuple, extra: tuple = (
     :data:`PATIENCE`: the caller's compilation then does what it left). Without a spare core, nothing (the caller
     compiles everything). A kernel that fails to compile here is left to the caller's compilation, which then
     reports the error as without this."""
-    if not spare_core():
+    if not EARLY and not spare_core():
         return
     try:
         kinds = signatures(loaded, work)
@@ -204,11 +250,26 @@ def compile_in_parallel(entry: str, loaded: tuple, work: tuple, extra: tuple = (
             stop(helper)
 
 
+def warm_up() -> None:
+    """Import the modules of the helper's kernels and compile one small function without caching it: numba's
+    typing and target contexts are set up (about 0.2 s) before the jobs arrive."""
+    import importlib
+
+    from numba import njit
+    for module in sorted({module for module, _, _ in HELPER} | {INTEGRATORS}):
+        importlib.import_module(module)
+    njit(lambda x: x + 1.0)(1.0)
+
+
 def main() -> int:
-    """The helper: compile the pickled jobs on stdin if this interpreter imports the bladefem named in argv."""
+    """The helper: if this interpreter imports the bladefem named in argv, warm up, then compile the pickled jobs on
+    stdin (none: its caller needed none, or is gone)."""
     if Path(sys.argv[1]).resolve() != PACKAGE:
         return 1
-    compile_kernels(pickle.load(sys.stdin.buffer))
+    warm_up()
+    jobs = sys.stdin.buffer.read()
+    if jobs:
+        compile_kernels(pickle.loads(jobs))
     return 0
 
 
