@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .polar import projection
+from .polar import pitched_axes, projection
 from .rotor import Inflow, Rotor
 
 
@@ -35,7 +35,8 @@ class NodeKinematics:
     chi0 : skew angle per azimuth (n_az,), rad; skew_cos : (..,)
     disk_velocity : disk-averaged wind along x_s per azimuth (n_az,), m/s; max_radius : largest r_local, m
     cant, toe : (..,) the section's angles in its local polar frame (zero in the legacy projection), rad;
-    drdz : (..,) the annulus factor (1 in the legacy projection)
+    drdz : (..,) the annulus factor (1 in the legacy projection); twist : (..,) what the pitched, canted section's
+    orientation adds to the aerodynamic twist and the pitch (AeroDyn's Euler angle), rad
     """
 
     position: NDArray
@@ -57,6 +58,7 @@ class NodeKinematics:
     cant: NDArray
     toe: NDArray
     drdz: NDArray
+    twist: NDArray
 
 
 def shaft_frame(tilt: float, yaw: float) -> tuple[NDArray, NDArray, NDArray]:
@@ -68,9 +70,11 @@ def shaft_frame(tilt: float, yaw: float) -> tuple[NDArray, NDArray, NDArray]:
 
 
 def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDArray,
-                yaw: float = 0.0) -> NodeKinematics:
+                yaw: float = 0.0, pitch: float = 0.0) -> NodeKinematics:
     """Kinematics of every node at the rotor azimuths ``azimuths`` (rad, blade 1) for rotor speed ``rotor_speed``
-    (rad/s) and nacelle yaw ``yaw`` (rad)."""
+    (rad/s), nacelle yaw ``yaw`` and blade pitch ``pitch`` (rad): the pitch turns the whole blade about its pitch
+    axis, its aerodynamic-centre offsets and the sections' cant with it (AeroDyn places them in the pitched blade
+    frame)."""
     xs, ys, zs = shaft_frame(rotor.shaft_tilt, yaw)
     psi = np.asarray(azimuths, dtype=float)[:, None] + 2 * np.pi * np.arange(rotor.n_blades) / rotor.n_blades
     radial = np.cos(psi)[..., None] * zs - np.sin(psi)[..., None] * ys               # (n_az, B, 3)
@@ -79,8 +83,9 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     axis = cone_s * xs + cone_c * radial                                              # i3
     normal = cone_c * xs - cone_s * radial                                            # i1
     along = rotor.hub_radius + rotor.span
-    position = (along[:, None] * axis[..., None, :] + rotor.curve[:, None] * normal[..., None, :]
-                - rotor.sweep[:, None] * tangent[..., None, :])                       # (n_az, B, n, 3)
+    normal_p, tangent_p = pitched_axes(normal, tangent, pitch)
+    position = (along[:, None] * axis[..., None, :] + rotor.curve[:, None] * normal_p[..., None, :]
+                - rotor.sweep[:, None] * tangent_p[..., None, :])                     # (n_az, B, n, 3)
     height = rotor.hub_height + position[..., 2]
     wind = inflow.velocity(height)
     velocity = wind - rotor_speed * np.cross(xs, position)
@@ -88,7 +93,7 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     tangent_n = np.broadcast_to(tangent[..., None, :], position.shape)
     axis_n = np.broadcast_to(axis[..., None, :], position.shape)
     frame = projection(rotor.options.formulation == 2, position, xs, normal_n, tangent_n, axis_n,
-                       curve_angle=rotor.curve_angle)
+                       curve_angle=rotor.curve_angle, pitch=pitch)
     vx, vy = frame.components(velocity)
     axial = position @ xs
     r_local = np.linalg.norm(position - axial[..., None] * xs, axis=-1)
@@ -108,7 +113,7 @@ def rigid_rotor(rotor: Rotor, inflow: Inflow, rotor_speed: float, azimuths: NDAr
     skew_cos = np.broadcast_to(np.einsum("abk,ak->ab", radial, in_plane)[..., None], vx.shape)
     return NodeKinematics(position, xs, frame.normal, frame.tangent, frame.span, vx, vy, r_local, z, tip_constant,
                           hub_constant, tip_ratio, chi0, skew_cos, disk_velocity, float(r_local.max()), frame.cant,
-                          frame.toe, frame.drdz)
+                          frame.toe, frame.drdz, frame.twist)
 
 
 def _distance_along_blade(rotor: Rotor, position: NDArray, axis: NDArray) -> NDArray:

@@ -116,7 +116,7 @@ def rotor_performance(source, wind_speed: float | None = None, rpm: float = 0.0,
 def performance_at(rotor: Rotor, inflow: Inflow, rotor_speed: float, pitch: float, yaw: float,
                    azimuths: NDArray) -> RotorPerformance:
     """:func:`rotor_performance` in SI units at the given rotor azimuths (rad)."""
-    kin = rigid_rotor(rotor, inflow, rotor_speed, azimuths, yaw)
+    kin = rigid_rotor(rotor, inflow, rotor_speed, azimuths, yaw, pitch)
     solution = solve_kinematics(rotor, kin, rotor_speed, pitch)
     column = {name: solution[..., i] for i, name in enumerate(COLUMNS)}
     force = column["fn"][..., None] * kin.normal + column["ft"][..., None] * kin.rotation
@@ -169,11 +169,11 @@ def solve_kinematics(rotor: Rotor, kin: NodeKinematics, rotor_speed: float, pitc
     options = rotor.options.vector()
     shape = kin.vx.shape
     out = np.empty(shape + (NODE_OUTPUTS,))
-    theta = np.broadcast_to(rotor.twist + pitch, shape[-1:])
+    theta = rotor.twist + pitch + kin.twist
     for i in range(shape[0]):
         tsr = rotor_speed * kin.max_radius / kin.disk_velocity[i] if kin.disk_velocity[i] else 0.0
         flat = [np.ascontiguousarray(np.broadcast_to(x, shape[1:]).ravel()) for x in (
-            kin.vx[i], kin.vy[i], kin.r_local[i], rotor.chord, theta, kin.tip_constant[i], kin.hub_constant[i],
+            kin.vx[i], kin.vy[i], kin.r_local[i], rotor.chord, theta[i], kin.tip_constant[i], kin.hub_constant[i],
             kin.tip_ratio[i], np.full(shape[1:], kin.chi0[i]), kin.skew_cos[i], rotor.airfoil, kin.cant[i],
             kin.toe[i], kin.drdz[i])]
         vx, vy, r_local, chord, twist, tip_c, hub_c, tip_ratio, chi0, skew_cos, airfoil, cant, toe, drdz = flat

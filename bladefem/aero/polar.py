@@ -159,36 +159,52 @@ class Projection:
                 np.einsum("...k,...k->...", relative, self.y_axis))
 
 
+def pitched_axes(normal: NDArray, tangent: NDArray, pitch: NDArray | float) -> tuple[NDArray, NDArray]:
+    """The blade's normal i1 and tangent e_t (..., 3) turned about its pitch axis by ``pitch`` (rad, positive to
+    feather, broadcast over the leading axes): ``cos p i1 + sin p e_t`` and ``cos p e_t - sin p i1``, the frame
+    a pitched blade's geometry (aerodynamic-centre offsets, cant) is given in."""
+    p = np.asarray(pitch, dtype=float)[..., None]
+    c, s = np.cos(p), np.sin(p)
+    return c * normal + s * tangent, c * tangent - s * normal
+
+
 def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tangent: NDArray, span: NDArray,
                in_plane_slope: NDArray | float = 0.0, out_of_plane_slope: NDArray | float = 0.0,
-               curve_angle: NDArray | float = 0.0) -> Projection:
+               curve_angle: NDArray | float = 0.0, pitch: NDArray | float = 0.0) -> Projection:
     """The projection of every node: ``arm`` (B, Na, 3) the nodes from the apex, ``shaft`` (3,) the shaft axis,
-    ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the undeflected blade's axes i1, e_t, i3,
-    the sections canted by the blade's curvature angle ``curve_angle`` (Na,) rad (``BlCrvAng``) and turned by the
-    slopes (B, Na) of the deflected blade (:func:`curved_axes`)."""
+    ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the undeflected, unpitched blade's axes
+    i1, e_t, i3, the sections pitched by ``pitch`` (rad, broadcast to (B, Na)), canted in the pitched blade by its
+    curvature angle ``curve_angle`` (Na,) rad (``BlCrvAng``) and turned by the slopes (B, Na) of the deflected blade
+    (:func:`curved_axes`). AeroDyn composes a node's orientation so, twist last: R_z(-twist) R_y(cant) R_z(-pitch)
+    (the pitch about the root's axis first); its Euler angles mix the pitch into the cant and the twist of a canted
+    section. ``twist`` of the result is what the section's orientation adds to the aerodynamic twist and the pitch
+    (the extracted angle less the pitch)."""
     shape = arm.shape[:-1]
     normal, tangent, span = (np.broadcast_to(axis, arm.shape) for axis in (normal, tangent, span))
-    basis = np.stack([span, tangent, normal], axis=-2)                           # (B, Na, 3 axes, 3)
+    pitch = np.broadcast_to(np.asarray(pitch, dtype=float), shape)
+    normal_p, tangent_p = pitched_axes(normal, tangent, pitch)
+    basis = np.stack([span, tangent_p, normal_p], axis=-2)                       # (B, Na, 3 axes, 3)
     slopes = [np.broadcast_to(np.asarray(slope, dtype=float), shape) for slope in (in_plane_slope, out_of_plane_slope)]
     curve = np.broadcast_to(np.asarray(curve_angle, dtype=float), shape)
     c = np.stack(np.vectorize(curved_axes, otypes=[float] * 9)(*slopes, np.cos(curve), np.sin(curve)), axis=-1)
     n_b, t_b, s_b = (np.einsum("...i,...ik->...k", c[..., 3 * j:3 * j + 3], basis) for j in range(3))
+    dot = lambda a, b: np.einsum("...k,...k", a, b)                           # noqa: E731
     if not polar:
-        # AeroDyn's NoSweepPitchTwist: the Euler angles against the unturned blade (x i1, y -e_t, z i3); vx along
-        # the blade's normal turned by the cant alone, vy against the rotation, the loads along those axes
-        m = [c[..., 2], -c[..., 1], c[..., 0], -c[..., 5], c[..., 4], -c[..., 3], c[..., 8]]
+        # AeroDyn's NoSweepPitchTwist: the Euler angles against the unturned, unpitched blade (x i1, y -e_t, z i3);
+        # vx along the blade's normal turned by the cant alone, vy against the rotation, the loads along those axes
+        m = [dot(n_b, normal), -dot(n_b, tangent), dot(n_b, span), -dot(t_b, normal), dot(t_b, tangent),
+             -dot(t_b, span), dot(s_b, normal)]
         _, cant, twist = (np.asarray(a) for a in np.vectorize(euler_angles, otypes=[float] * 3)(*m))
         x_a = np.cos(cant)[..., None] * normal - np.sin(cant)[..., None] * span
         z_a = np.sin(cant)[..., None] * normal + np.cos(cant)[..., None] * span
-        return Projection(x_axis=x_a, y_axis=-tangent, cant=np.zeros(shape), toe=np.zeros(shape), twist=twist,
-                          drdz=np.ones(shape), normal=x_a, tangent=tangent, span=z_a)
+        return Projection(x_axis=x_a, y_axis=-tangent, cant=np.zeros(shape), toe=np.zeros(shape),
+                          twist=twist - pitch, drdz=np.ones(shape), normal=x_a, tangent=tangent, span=z_a)
     radial = arm - (arm @ shaft)[..., None] * shaft
     on_axis = np.linalg.norm(radial, axis=-1, keepdims=True) == 0.0   # a node on the shaft (hub radius 0): the
     outward = np.where(on_axis, s_b - (s_b @ shaft)[..., None] * shaft, radial)   # section's span axis points out
     z_l = outward / np.linalg.norm(outward, axis=-1, keepdims=True)
     x_l = np.broadcast_to(shaft, arm.shape)
     y_l = np.cross(z_l, x_l)
-    dot = lambda a, b: np.einsum("...k,...k", a, b)                           # noqa: E731
     m = [dot(n_b, x_l), dot(n_b, y_l), dot(n_b, z_l), -dot(t_b, x_l), -dot(t_b, y_l), -dot(t_b, z_l), dot(s_b, x_l)]
     toe, cant, twist = (np.asarray(a) for a in np.vectorize(euler_angles, otypes=[float] * 3)(*m))
     # the loads' axes: the section's untwisted axes (x', -y') turned back by the twist its orientation carries
@@ -198,5 +214,5 @@ def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tange
     step_projected = np.linalg.norm(np.diff(radial, axis=-2), axis=-1)
     drdz = np.divide(step_projected, step, out=np.zeros_like(step), where=step > 0)
     drdz = np.concatenate([drdz[..., :1], drdz], axis=-1)
-    return Projection(x_axis=x_l, y_axis=y_l, cant=cant, toe=toe, twist=twist, drdz=drdz, normal=load_normal,
-                      tangent=load_tangent, span=s_b)
+    return Projection(x_axis=x_l, y_axis=y_l, cant=cant, toe=toe, twist=twist - pitch, drdz=drdz,
+                      normal=load_normal, tangent=load_tangent, span=s_b)
