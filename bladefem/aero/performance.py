@@ -39,6 +39,8 @@ class RotorPerformance:
     azimuths : rad; r_local, z : m; a, ap : induction factors; phi, alpha : rad; w : relative speed, m/s;
     cl, cd, cm; fn, ft : force per length normal to the plane (downwind) and along the rotation, N/m;
     m : pitching moment per length, N m/m; valid : the BEM equations had a solution
+    section_twist : what the pitched, canted section's orientation adds to the aerodynamic twist and the pitch
+    (AeroDyn's Euler angle, :func:`bladefem.aero.polar.projection`), rad
     """
 
     wind_speed: float
@@ -68,6 +70,7 @@ class RotorPerformance:
     ft: NDArray
     m: NDArray
     valid: NDArray
+    section_twist: NDArray
 
     @property
     def rpm(self) -> float:
@@ -134,7 +137,7 @@ def performance_at(rotor: Rotor, inflow: Inflow, rotor_speed: float, pitch: floa
         azimuths=np.asarray(azimuths, dtype=float), r_local=kin.r_local, z=kin.z, a=column["a"],
         ap=column["ap"], phi=column["phi"], alpha=column["alpha"], w=column["w"], cl=column["cl"],
         cd=column["cd"], cm=column["cm"], fn=column["fn"], ft=column["ft"], m=column["m"],
-        valid=column["valid"] > 0.5)
+        valid=column["valid"] > 0.5, section_twist=kin.twist)
 
 
 def line_load_resultant(position: NDArray, force: NDArray, moment: NDArray, z: NDArray) -> tuple[NDArray, NDArray]:

@@ -49,7 +49,8 @@ class AeroOperatingPoint:
 
     span : node positions from the blade root, m; chord : m; centre : aerodynamic-centre offsets (3, nodes), m
     X, Y : relative velocity normal to the rotor plane and in it with the frozen induction, m/s
-    theta : aerodynamic twist plus pitch (alpha = atan2(X, Y) - theta); alpha : angle of attack;
+    theta : aerodynamic twist plus pitch, plus what a pitched canted section adds (alpha = atan2(X, Y) - theta);
+    alpha : angle of attack;
     cl, cd, cm and their slopes dcl, dcd, dcm (per rad); a, ap : induction factors
     air_density : kg/m^3; rotor_speed : rad/s; shaft_axis : a in the blade frame; wind_speed : m/s; pitch : rad
     """
@@ -82,13 +83,14 @@ def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: 
     inflow = Inflow(wind_speed, rotor.hub_height if math.isfinite(rotor.hub_height) else 1.0)
     performance = performance_at(rotor, inflow, rotor_speed, pitch, 0.0, np.zeros(1))
     w, alpha = performance.w[0, 0], performance.alpha[0, 0]
-    angle = alpha + rotor.twist + pitch           # the inflow angle in the section's plane (phi, but for a section
+    theta = rotor.twist + pitch + performance.section_twist[0, 0]     # with what a pitched canted section adds
+    angle = alpha + theta                         # the inflow angle in the section's plane (phi, but for a section
     #                                               canted or toed in AeroDyn's polar projection, BEM_Mod 2)
     slopes = polar_slopes(rotor, alpha)
     cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
     return AeroOperatingPoint(
         span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor),
-        X=w * np.sin(angle), Y=w * np.cos(angle), theta=rotor.twist + pitch, alpha=alpha, cl=performance.cl[0, 0],
+        X=w * np.sin(angle), Y=w * np.cos(angle), theta=theta, alpha=alpha, cl=performance.cl[0, 0],
         cd=performance.cd[0, 0], cm=cm,
         dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
         air_density=rotor.air_density, rotor_speed=rotor_speed,
