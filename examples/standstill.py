@@ -145,7 +145,10 @@ no unsteady aerodynamics, no gravity; tests/data/openfast/standstill_linearizati
 60 deg: blade 1's first flapwise, first edgewise and second flapwise modes match bladefem's within 2 % in frequency
 (the FE's exact shapes against ElastoDyn's polynomials) and within 7 % plus 0.1 percentage point in total damping,
 with the same sign everywhere: at 30 deg OpenFAST gives -7.92, -1.24 and -0.86 % where bladefem gives -8.29, -1.28
-and -0.98 % (tests/test_standstill.py).
+and -0.98 % (tests/test_standstill.py), both with the legacy projection (`BEM_Mod` 1 in a copy of the deck's AeroDyn
+file). The map above runs the deck as shipped (`BEM_Mod` 2): in AeroDyn's polar projection each section, coned by
+the precone and canted by any prebend in the pitched blade, sees the inflow in its own plane, as the BEM of the
+turbine model and of `rotor` takes it (the second flap mode at 30 deg: -0.68 % against the legacy -0.98 %).
 
 ## IEA-15MW, feathered, 50 m/s
 

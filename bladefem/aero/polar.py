@@ -168,6 +168,12 @@ def pitched_axes(normal: NDArray, tangent: NDArray, pitch: NDArray | float) -> t
     return c * normal + s * tangent, c * tangent - s * normal
 
 
+def pitched_slopes(in_plane: NDArray, out_of_plane: NDArray, pitch: NDArray) -> tuple[NDArray, NDArray]:
+    """Slopes along the unpitched blade's e_t and i1 resolved along the pitched blade's (:func:`pitched_axes`)."""
+    c, s = np.cos(pitch), np.sin(pitch)
+    return c * in_plane - s * out_of_plane, s * in_plane + c * out_of_plane
+
+
 def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tangent: NDArray, span: NDArray,
                in_plane_slope: NDArray | float = 0.0, out_of_plane_slope: NDArray | float = 0.0,
                curve_angle: NDArray | float = 0.0, pitch: NDArray | float = 0.0) -> Projection:
@@ -175,7 +181,7 @@ def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tange
     ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the undeflected, unpitched blade's axes
     i1, e_t, i3, the sections pitched by ``pitch`` (rad, broadcast to (B, Na)), canted in the pitched blade by its
     curvature angle ``curve_angle`` (Na,) rad (``BlCrvAng``) and turned by the slopes (B, Na) of the deflected blade
-    (:func:`curved_axes`). AeroDyn composes a node's orientation so, twist last: R_z(-twist) R_y(cant) R_z(-pitch)
+    (:func:`curved_axes`), given along the unpitched e_t and i1 (in-plane, out-of-plane). AeroDyn composes a node's orientation so, twist last: R_z(-twist) R_y(cant) R_z(-pitch)
     (the pitch about the root's axis first); its Euler angles mix the pitch into the cant and the twist of a canted
     section. ``twist`` of the result is what the section's orientation adds to the aerodynamic twist and the pitch
     (the extracted angle less the pitch)."""
@@ -184,7 +190,8 @@ def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tange
     pitch = np.broadcast_to(np.asarray(pitch, dtype=float), shape)
     normal_p, tangent_p = pitched_axes(normal, tangent, pitch)
     basis = np.stack([span, tangent_p, normal_p], axis=-2)                       # (B, Na, 3 axes, 3)
-    slopes = [np.broadcast_to(np.asarray(slope, dtype=float), shape) for slope in (in_plane_slope, out_of_plane_slope)]
+    slopes = pitched_slopes(*(np.broadcast_to(np.asarray(slope, dtype=float), shape)
+                              for slope in (in_plane_slope, out_of_plane_slope)), pitch)
     curve = np.broadcast_to(np.asarray(curve_angle, dtype=float), shape)
     c = np.stack(np.vectorize(curved_axes, otypes=[float] * 9)(*slopes, np.cos(curve), np.sin(curve)), axis=-1)
     n_b, t_b, s_b = (np.einsum("...i,...ik->...k", c[..., 3 * j:3 * j + 3], basis) for j in range(3))

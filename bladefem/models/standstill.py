@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..aero.kinematics import rigid_rotor
+from ..aero.polar import section_angle
 from ..aero.rotor import Inflow, Rotor
 from ..assembly import BladeMatrices
 from ..modal.campbell import TRACKING_MARGIN, best_assignment, mac_from_products
@@ -119,12 +120,20 @@ def negative_intervals(x: NDArray, y: NDArray) -> list[tuple[float, float]]:
 def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pitch: float) -> AeroOperatingPoint:
     """The sections of blade 1 of the parked ``rotor`` (its ``shaft_tilt`` and ``precone``) in a uniform wind of
     ``wind_speed`` (m/s) along the inertial x, nacelle yaw ``yaw``, rotor azimuth ``azimuth`` and pitch ``pitch``
-    (rad): in-plane relative velocity, angle of attack and polars there; no rotation, no induction."""
+    (rad): in-plane relative velocity, angle of attack and polars there; no rotation, no induction. The pitch
+    turns the whole blade, a prebent blade's aerodynamic centres and its sections' cant with it, as AeroDyn
+    places them (:func:`bladefem.aero.kinematics.rigid_rotor`), and ``theta`` carries what the pitched canted
+    section's orientation adds to its twist and pitch."""
     height = rotor.hub_height if math.isfinite(rotor.hub_height) else 1.0
-    kinematics = rigid_rotor(rotor, Inflow(wind_speed, height), 0.0, np.array([azimuth]), yaw)
-    X, Y = kinematics.vx[0, 0], kinematics.vy[0, 0]
-    theta = rotor.twist + pitch
-    alpha = np.angle(np.exp(1j * (np.arctan2(X, Y) - theta)))         # wrapped into (-pi, pi]
+    kinematics = rigid_rotor(rotor, Inflow(wind_speed, height), 0.0, np.array([azimuth]), yaw, pitch)
+    cant, toe = kinematics.cant[0, 0], kinematics.toe[0, 0]
+    x, y = kinematics.vx[0, 0] * np.cos(cant), kinematics.vy[0, 0]
+    # the inflow in the section's own plane (bladefem.aero.bem.section_loads, no induction): the polar
+    # projection's canted or toed section sees its own angle; the legacy projection's, atan2(vx, vy)
+    inflow = np.vectorize(section_angle, otypes=[float])(np.arctan2(x, y), cant, toe)
+    X, Y = np.hypot(x, y) * np.sin(inflow), np.hypot(x, y) * np.cos(inflow)
+    theta = rotor.twist + pitch + kinematics.twist[0, 0]
+    alpha = np.angle(np.exp(1j * (inflow - theta)))                     # wrapped into (-pi, pi]
     coefficients = np.array([rotor.polars[airfoil].coefficients(angle)
                              for angle, airfoil in zip(alpha, rotor.airfoil)])[:, :, 0].T
     slopes = polar_slopes(rotor, alpha)

@@ -53,7 +53,8 @@ class TurbineAero:
     inflow : steady wind (speed at the reference height, shear, direction, upflow)
     pitch : collective blade pitch, rad (the structural model's blade shapes must be pitched alike)
     axial : (Na,) node distance from the rotor apex along the pitch axis (HubRad + BlSpn), m
-    offset : (Na, 3) aerodynamic-centre offset in the blade frame (span, toward the leading edge, downwind), m
+    offset : (Na, 3) aerodynamic-centre offset in the blade frame (span, toward the leading edge, downwind), m: the
+        planform's ``BlCrvAC`` downwind and ``BlSwpAC`` against the rotation, turned with the blade by ``pitch``
     value, slope : (k, Na, 2) the blade's modal shapes and slopes (in-plane, out-of-plane) at the nodes
     shortening : (k, k, Na) the shortening integrals S_ij at the nodes, 1/m
     arc : (Na,) AeroDyn's zLocal: hub radius plus the polyline length through the undeflected nodes, m
@@ -158,7 +159,7 @@ def turbine_aero(rotor: Rotor, inflow: Inflow, params, pitch: float) -> TurbineA
         raise InputError(f"the AeroDyn blade reaches {rotor.span[-1]:g} m from the root but the structural blade is "
                          f"{blade.length:g} m long", field="BlSpn")
     value, slope, shortening = interpolated_shapes(blade, rotor.span)
-    offset = np.column_stack([np.zeros_like(rotor.span), -rotor.sweep, rotor.curve])
+    offset = pitched_offsets(rotor.curve, rotor.sweep, pitch)
     points = np.column_stack([params.hub_radius + rotor.span, offset[:, 1:]])
     steps = np.linalg.norm(np.diff(np.vstack([[params.hub_radius, 0.0, 0.0], points]), axis=0), axis=1)
     arc = params.hub_radius + np.cumsum(steps)
@@ -168,6 +169,14 @@ def turbine_aero(rotor: Rotor, inflow: Inflow, params, pitch: float) -> TurbineA
     return TurbineAero(rotor=rotor, inflow=inflow, pitch=float(pitch), axial=params.hub_radius + rotor.span,
                        offset=offset, value=value, slope=slope, shortening=shortening, arc=arc,
                        tip_constant=tip_constant, hub_constant=hub_constant)
+
+
+def pitched_offsets(curve: NDArray, sweep: NDArray, pitch: float) -> NDArray:
+    """(Na, 3) aerodynamic-centre offsets in the blade frame (span, toward the leading edge, downwind), m, of
+    ``curve`` downwind and ``sweep`` against the rotation (m) turned with the blade by ``pitch`` (rad, to feather),
+    as AeroDyn places ``BlCrvAC`` and ``BlSwpAC`` in the pitched blade frame (:func:`bladefem.aero.polar.pitched_axes`)."""
+    c, s = math.cos(pitch), math.sin(pitch)
+    return np.column_stack([np.zeros_like(curve), s * curve - c * sweep, c * curve + s * sweep])
 
 
 def interpolated_shapes(beam: ModalBeam, x: NDArray) -> tuple[NDArray, NDArray, NDArray]:
@@ -268,7 +277,7 @@ def aero_loads(model, aero: TurbineAero, q: NDArray, u: NDArray, t: float = 0.0,
     apex, shaft = motion.apex.r, motion.rotor.R[:, 0]
     arm = r - apex
     frame = projection(aero.rotor.options.formulation == 2, arm, shaft, i1, e_t, i3, v_slope, w_slope,
-                       aero.rotor.curve_angle)
+                       aero.rotor.curve_angle, aero.pitch)
     vx, vy = frame.components(relative)
     r_local = np.linalg.norm(arm - (arm @ shaft)[..., None] * shaft, axis=-1)
     disk = disk_values(relative, shaft, R[:, :, 0], motion.rotor.omega @ shaft, r_local)

@@ -13,7 +13,8 @@ HUB = ("thrust", "torque", "power", "tsr", "cp", "ct", "disk_velocity", "skew")
 
 def aero_data(model) -> tuple:
     """The aerodynamic arrays of ``model`` in the order :func:`add_aero` unpacks them (empty arrays without
-    aerodynamics, so that the kernels compile once for both)."""
+    aerodynamics, so that the kernels compile once for both); the last, (1,), the blades' pitch (rad) that the
+    offsets, the sections' angles and their cant are set at (:mod:`.pitching` moves them together)."""
     from ...aero.rotor import Inflow
     from .aero import TurbineAero
     aero: TurbineAero | None = model.aero
@@ -23,7 +24,7 @@ def aero_data(model) -> tuple:
         return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0, 2)),
                 np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
                 np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
-                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty, np.zeros((0, 2)))
+                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty, np.zeros((0, 2)), np.zeros(1))
     across = np.zeros((k, aero.n_nodes, 3))
     across[:, :, 0] = aero.along
     across[:, :, 1:] = aero.value
@@ -35,7 +36,7 @@ def aero_data(model) -> tuple:
             aero.hub_constant.copy(), rotor.airfoil.astype(np.int64), knots, values, coefs, start, count,
             aero.options.copy(), np.array([rotor.air_density, float(rotor.n_blades)]), *inflow.arrays(),
             *wake_data(aero, model.params.n_blades),
-            np.column_stack([np.cos(rotor.curve_angle), np.sin(rotor.curve_angle)]))
+            np.column_stack([np.cos(rotor.curve_angle), np.sin(rotor.curve_angle)]), np.array([aero.pitch]))
 
 
 def wake_data(aero, blades: int) -> tuple:

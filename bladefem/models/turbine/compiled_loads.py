@@ -54,6 +54,7 @@ if njit is not None:                                   # module-level kernels: n
         b_columns = data[9]
         across, short, axial, offset, slope = aero[0], aero[1], aero[2], aero[3], aero[4]
         params, table, grid, curve = aero[19], aero[20], aero[21], aero[25]
+        cos_pitch, sin_pitch = math.cos(aero[26][0]), math.sin(aero[26][0])
         wind = np.zeros(3)
         Z_w, frame_w, apex_w = work[4], work[5], work[6]
         rho_w, vel_w, RD_w, normal_w, span_w, rel_w = state[0], state[1], state[2], state[3], state[4], state[5]
@@ -91,7 +92,13 @@ if njit is not None:                                   # module-level kernels: n
                     a_i = offset[p, 1] * slope[i, p, 0] + offset[p, 2] * slope[i, p, 1]
                     D[1, i] -= 0.5 * (a_i * v + a * slope[i, p, 0])
                     D[2, i] -= 0.5 * (a_i * w + a * slope[i, p, 1])
-                n3, nt, n1, t3, tt, t1, s3, st, s1 = curved_axes(v, w, curve[p, 0], curve[p, 1])
+                # the section canted in the pitched blade (kinematics.pitched_slopes, polar.projection)
+                n3, nt, n1, t3, tt, t1, s3, st, s1 = curved_axes(cos_pitch * v - sin_pitch * w,
+                                                                 sin_pitch * v + cos_pitch * w, curve[p, 0],
+                                                                 curve[p, 1])
+                nt, n1 = cos_pitch * nt + sin_pitch * n1, cos_pitch * n1 - sin_pitch * nt
+                tt, t1 = cos_pitch * tt + sin_pitch * t1, cos_pitch * t1 - sin_pitch * tt
+                st, s1 = cos_pitch * st + sin_pitch * s1, cos_pitch * s1 - sin_pitch * st
                 for r in range(3):
                     rho_w[b, p, r] = (R[r, 0] * (d[0] + offset[p, 0]) + R[r, 1] * (d[1] + offset[p, 1])
                                       + R[r, 2] * (d[2] + offset[p, 2]))
@@ -110,11 +117,12 @@ if njit is not None:                                   # module-level kernels: n
         return omega
 
     @njit(cache=True)
-    def projected_inflow(rho_w, b, p, rel, normal, tangent, span, R, shaft, polar):
+    def projected_inflow(rho_w, b, p, rel, normal, tangent, span, R, shaft, polar, pitch):
         """(vx, vy, cant, toe, twist, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`)
-        for its bent section's axes ``normal``, ``tangent``, ``span``, which are turned in place into the axes its
-        loads act along: the legacy projection against the unturned blade (frame ``R``), or (``polar``) AeroDyn's
-        local polar frame."""
+        for its bent section's axes ``normal``, ``tangent``, ``span`` (pitched by ``pitch``, rad), which are turned
+        in place into the axes its loads act along: the legacy projection against the unturned, unpitched blade
+        (frame ``R``), or (``polar``) AeroDyn's local polar frame; ``twist`` is what the orientation adds to the
+        pitch."""
         if not polar:
             m11, m12, m13, m21, m22, m23, m31 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             for r in range(3):
@@ -134,7 +142,7 @@ if njit is not None:                                   # module-level kernels: n
                 tangent[r] = R[r, 1]
                 vx += rel[r] * normal[r]
                 vy -= rel[r] * tangent[r]
-            return vx, vy, 0.0, 0.0, twist, 1.0
+            return vx, vy, 0.0, 0.0, twist - pitch, 1.0
         z_l, y_l = np.zeros(3), np.zeros(3)
         j = max(p, 1)
         rho, prev = rho_w[b, j], rho_w[b, j - 1]
@@ -176,7 +184,7 @@ if njit is not None:                                   # module-level kernels: n
             normal[r] = c * n - s * t
             tangent[r] = s * n + c * t
         drdz = math.sqrt(step_projected) / math.sqrt(step) if step > 0.0 else 0.0
-        return vx, vy, cant, toe, twist, drdz
+        return vx, vy, cant, toe, twist - pitch, drdz
 
     @njit(cache=True)
     def add_aero(f, q, u, data, aero, work, state, t):
@@ -245,7 +253,7 @@ if njit is not None:                                   # module-level kernels: n
             for p in range(nodes):
                 vx, vy, cant, toe, twist, drdz = projected_inflow(rho_w, b, p, rel_w[b, p], normal_w[b, p],
                                                                   tangent_w[b, p], span_w[b, p], R, shaft,
-                                                                  options[FORMULATION] == 2.0)
+                                                                  options[FORMULATION] == 2.0, aero[26][0])
                 if lagging:
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, q_axial, q_tangential = \
                         wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p],

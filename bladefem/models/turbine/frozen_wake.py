@@ -73,7 +73,7 @@ def node_inflow(model, aero: TurbineAero, q: NDArray, u: NDArray) -> NodeInflow:
     i3, e_t, i1 = R[:, None, :, 0], R[:, None, :, 1], R[:, None, :, 2]
     v_slope, w_slope = np.einsum("bk,kpa->abp", q[model.blade_columns], aero.slope)
     frame = projection(aero.rotor.options.formulation == 2, group.r - motion.apex.r, motion.rotor.R[:, 0], i1, e_t,
-                       i3, v_slope, w_slope, aero.rotor.curve_angle)
+                       i3, v_slope, w_slope, aero.rotor.curve_angle, aero.pitch)
     return NodeInflow(group=group, velocity=group.velocity(u), wind=aero.inflow.velocity(group.r[..., 2]),
                       normal=frame.normal, tangent=frame.tangent, span=frame.span, rotor_W=motion.rotor.W,
                       frame=frame)

@@ -7,9 +7,11 @@ out-of-plane ``z``) by ``d = p - p0`` about the pitch axis, the same turn that b
 (flapwise ``(sin t, cos t)`` and edgewise ``(cos t, -sin t)`` both go to ``(y cos d + z sin d, -y sin d + z cos d)``
 at ``t + d``), and adds ``d`` to the sections' angle. What does not depend on the pitch is left alone: the modal
 stiffness (ElastoDyn's from the untwisted polynomials; bladefem's FE shapes turn with their stiffness), masses on
-the pitch axis, shortening integrals, the aerodynamic-centre offsets (as ``--pitch-deg`` builds them; their
-arms' motion along the axis, -(offset . slope), follows the turned slopes). The pitch
-rate's own inertial effect is left out, as in ElastoDyn without its pitch DOF.
+the pitch axis, shortening integrals. The aerodynamic-centre offsets turn with the blade, as ``--pitch-deg``
+builds them (AeroDyn places ``BlCrvAC`` and ``BlSwpAC`` in the pitched blade frame; their arms' motion along the
+axis, -(offset . slope), follows), and the kernels cant the sections in the pitched blade by the pitch they are
+given. The pitch rate's own inertial effect is left out, as in ElastoDyn without its pitch DOF, and so is the
+offsets' velocity from the pitch rate (the pitch is held between the controller's calls).
 """
 
 from __future__ import annotations
@@ -34,12 +36,17 @@ def pitch_arrays(pitch, base, references, structure, aero):
     """Every blade pitched to ``pitch`` (rad) on the kernels' arrays (``structure``, ``aero``: the structural and
     aerodynamic tuples of :class:`~.compiled.CompiledEquations`): the shapes' across components, the sections' and
     their slopes turned by ``pitch - base`` from the ``references`` (shapes, sections, slopes, angles) built at
-    ``base``, the offset nodes' motion along the axis set from the turned slopes, and ``pitch - base`` added to the
-    sections' angles. Loops, so that numba compiles the same definition for the compiled controller loop."""
-    blade, value, slope, theta = references
+    ``base``, the aerodynamic-centre offsets turned alike, the offset nodes' motion along the axis set from the
+    turned slopes, ``pitch - base`` added to the sections' angles and ``pitch`` set as the kernels' pitch. Loops,
+    so that numba compiles the same definition for the compiled controller loop."""
+    blade, value, slope, theta, offset = references
     delta = pitch - base
     c, s = math.cos(delta), math.sin(delta)
     shapes, sections, offsets, slopes, angles = structure[5], aero[0], aero[3], aero[4], aero[8]
+    for p in range(offset.shape[0]):
+        y, z = offset[p, 1], offset[p, 2]
+        offsets[p, 1], offsets[p, 2] = y * c + z * s, -y * s + z * c
+    aero[26][0] = pitch
     for i in range(blade.shape[0]):
         for p in range(blade.shape[1]):
             y, z = blade[i, p, 1], blade[i, p, 2]
@@ -69,9 +76,10 @@ class CompiledPitch:
         aero = compiled.aero
         slope = (np.asarray(model.aero.slope, dtype=float) if model.aero is not None
                  else np.zeros((0, 0, 2)))                  # (k, Na, 2): in-plane, out-of-plane
-        #: the arrays at the base pitch: structural shapes (k, P, 3), sections (k, Na, 3), their slopes, angles
+        #: the arrays at the base pitch: structural shapes (k, P, 3), sections (k, Na, 3), their slopes, angles,
+        #: aerodynamic-centre offsets (Na, 3)
         self.references = tuple(np.ascontiguousarray(a, dtype=float).copy()
-                                for a in (compiled.data[5], aero[0], slope, aero[8]))
+                                for a in (compiled.data[5], aero[0], slope, aero[8], aero[3]))
         self.tip = np.asarray(model.params.blade.tip_value, dtype=float).copy()      # (k, 2)
 
     def set(self, pitch: float) -> None:
