@@ -170,14 +170,18 @@ blades' azimuths at 15 to 75 deg as well. OpenFAST users running the parked IEA-
 20 deg pitch offset of one blade removes (github.com/IEAWindSystems/IEA-15-240-RWT/issues/218); Höning, Herráez and
 Stoevesandt (2026, "Aeroelastic instabilities of the IEA 15 MW rotor during extreme yaw maneuvers", Wind Energy
 Science 11, 1531) study the same rotor in extreme yaw. The flapwise mode (in the rotor plane when feathered) is
-overdamped by attached flow near the wind direction and loses its damping in narrower sectors; the first torsion
-mode has negative sectors too (the quasi-steady damping of a twisting section in stall).
+damped heavily by attached flow near the wind direction (86 % at yaw 0) and loses its damping in narrower sectors.
+The first torsion mode's total damping is negative over most yaw misalignments, by less than 1 % but near the
+wind's own direction and behind it (down to -4.7 %): this quasi-steady analysis has no pitch-rate
+(three-quarter-chord) damping of the twisting sections (added as `bladefem flutter` adds it, broad negative
+sectors remain), and the mode carries bending in stall; it marks where to look with unsteady aerodynamics.
 
-With the aerodynamic stiffness kept (no `--damping-only`) the feathered IEA-15MW in 50 m/s also shows a real
-eigenvalue above zero near yaw 0 (a static divergence of the first flapwise mode through the lift of the elastic
-twist): AeroDyn places the sections' loads on the blade's reference axis, as bladefem does, so the lift's moment
-about the shear centre depends on where that axis lies in the section; it is a result of that convention to check
-with the flutter analysis, not a stall-induced vibration.
+The lift acts at the aerodynamic centres, with its arm measured from the prebent reference axis: the structure's
+degrees of freedom are that axis's motion, and AeroDyn's `BlCrvAC` and BeamDyn's key points carry the same 4 m
+prebend, so the arm is at most 0.065 m out of the plane of the chord (and AeroDyn's sweep, up to 0.44 m). Measured
+from the pitch axis, as bladefem took it before, the prebend was a 4 m arm: it added 7 to 17 % to the torsion
+mode's damping over most of the sweep and, with the aerodynamic stiffness kept (no `--damping-only`), made the first flapwise mode diverge
+statically near yaw 0; with the arm from the axis no mode diverges anywhere in the sweep.
 
 ## Limits
 

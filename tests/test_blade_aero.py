@@ -202,3 +202,30 @@ def test_first_flap_damping_near_openfast_collective_flap():
         flap = solve_quadratic_modes(matrices, rpm, 4, damping=damping, stiffness=stiffness).first("flap")
         assert flap.damping_ratio == pytest.approx(reference["damping_ratio"], rel=0.10), point["wind_speed_m_s"]
         assert flap.frequency_hz == pytest.approx(reference["natural_frequency_hz"], rel=0.07)
+
+
+@pytest.mark.parametrize("pitch_deg", [0.0, 30.0, 90.0])
+def test_the_aerodynamic_centres_arm_is_measured_from_the_reference_axis(pitch_deg):
+    """The structure's degrees of freedom are the motion of its reference axis, so the lift's arm is the
+    aerodynamic centre's offset from that axis: AeroDyn's offsets (0, -BlSwpAC, BlCrvAC), turned with the blade
+    by the pitch, less the curved axis's own offset. A planform whose aerodynamic centres lie on the blade's
+    prebent, swept axis has no arm at any pitch (1e-12 m); on a straight blade the arm is AeroDyn's offset,
+    pitched: (0, curve sin p - sweep cos p, curve cos p + sweep sin p). Before, the arm was the whole offset,
+    unpitched: 4.0 m at the IEA-15MW's tip, where its AeroDyn centres sit within 0.065 m of the BeamDyn axis."""
+    from dataclasses import replace
+
+    from bladefem.models.blade_aero import aerodynamic_centres
+    from bladefem.sections import ReferenceAxis
+    span = np.linspace(0.0, 60.0, 13)
+    prebend, sweep = -3.0 * (span / 60.0) ** 2, 0.8 * (span / 60.0) ** 3
+    blade = Blade(uniform_sections(60.0, 300.0, 2e9), axis=ReferenceAxis(span, sweep, prebend))
+    polar = Polar(alpha=np.radians([-180.0, 180.0]), cl=np.zeros(2), cd=np.zeros(2), cm=np.zeros(2))
+    rotor = Rotor(n_blades=3, hub_radius=2.0, span=span, chord=np.full(13, 2.0), twist=np.zeros(13),
+                  airfoil=np.zeros(13, dtype=int), polars=(polar,), curve=prebend, sweep=-sweep)
+    pitch = math.radians(pitch_deg)
+    on_axis = aerodynamic_centres(rotor, pitch, blade)
+    assert np.abs(on_axis).max() < 1e-12
+    straight = aerodynamic_centres(replace(rotor, curve=prebend, sweep=-sweep), pitch)
+    c, s = math.cos(pitch), math.sin(pitch)
+    np.testing.assert_allclose(straight, np.stack([np.zeros(13), s * prebend + c * sweep, c * prebend - s * sweep]),
+                               rtol=0, atol=1e-15)

@@ -168,6 +168,15 @@ def pitched_axes(normal: NDArray, tangent: NDArray, pitch: NDArray | float) -> t
     return c * normal + s * tangent, c * tangent - s * normal
 
 
+def pitched_offsets(curve: NDArray, sweep: NDArray, pitch: float) -> NDArray:
+    """(Na, 3) aerodynamic-centre offsets in the blade frame (span, toward the leading edge, downwind), m, of
+    ``curve`` downwind and ``sweep`` against the rotation (m) turned with the blade by ``pitch`` (rad, to feather),
+    as AeroDyn places ``BlCrvAC`` and ``BlSwpAC`` in the pitched blade frame (:func:`pitched_axes`)."""
+    c, s = math.cos(pitch), math.sin(pitch)
+    curve, sweep = np.asarray(curve, dtype=float), np.asarray(sweep, dtype=float)
+    return np.column_stack([np.zeros_like(curve), s * curve - c * sweep, c * curve + s * sweep])
+
+
 def pitched_slopes(in_plane: NDArray, out_of_plane: NDArray, pitch: NDArray) -> tuple[NDArray, NDArray]:
     """Slopes along the unpitched blade's e_t and i1 resolved along the pitched blade's (:func:`pitched_axes`)."""
     c, s = np.cos(pitch), np.sin(pitch)

@@ -69,7 +69,7 @@ def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
         from ..models.blade_aero import aero_matrices, operating_point
         rotor = aerodyn_rotor(args.aero, blade, args.blades)
         require_root_off_axis(rotor)
-        point = operating_point(rotor, args.wind_speed, args.rpm * math.pi / 30.0, blade.pitch)
+        point = operating_point(rotor, args.wind_speed, args.rpm * math.pi / 30.0, blade.pitch, blade)
         damping, stiffness = aero_matrices(matrices, point)
         notes += ((f"quasi-steady aerodynamic damping and stiffness from {args.aero} at {args.wind_speed:g} m/s, "
                    f"pitch {math.degrees(blade.pitch):g} deg, {args.blades} blades (BEM induction frozen)"),)

@@ -4,7 +4,8 @@ operating point (the induced velocities held, as OpenFAST's linearization with a
 At an operating point (wind speed, rotor speed, pitch) the BEM of :mod:`bladefem.aero` gives, at each AeroDyn node,
 the relative velocity normal to the coned rotor plane ``X = vx (1 - a)`` (downwind) and in it ``Y = vy (1 + a')``
 (towards the trailing edge), the angle of attack and the polar there. A section's loads per length are the force
-``(0, ft, fn)`` at its aerodynamic centre ``s_ac = (0, -BlSwpAC, BlCrvAC)`` and the pitching moment ``m`` about the
+``(0, ft, fn)`` at its aerodynamic centre ``s_ac`` (``(0, -BlSwpAC, BlCrvAC)`` pitched, from the reference axis:
+:func:`aerodynamic_centres`) and the pitching moment ``m`` about the
 span axis (:func:`bladefem.aero.bem.node_loads`):
 
     fn = q c (cl cos phi + cd sin phi),  ft = q c (cl sin phi - cd cos phi),  m = q c^2 cm,
@@ -31,6 +32,7 @@ from numpy.typing import NDArray
 from skfem import Basis
 
 from ..aero.performance import performance_at
+from ..aero.polar import pitched_offsets
 from ..aero.rotor import Inflow, Rotor
 from ..assembly import BladeMatrices, span_mesh
 from ..assembly.blade import QUADRATURE_ORDER
@@ -38,6 +40,7 @@ from ..assembly.forms import assemble_terms
 from ..assembly.parameters import AeroParameters
 from ..assembly.terms import aerodynamic_damping, aerodynamic_stiffness
 from ..elements import beam_element, skew
+from ..sections import Blade
 
 #: step of the central difference for the polars' slopes, rad (linear polars: the slope of the interval)
 SLOPE_STEP = 1e-6
@@ -77,9 +80,11 @@ class AeroOperatingPoint:
     pitch: float
 
 
-def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: float) -> AeroOperatingPoint:
+def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: float, blade: Blade | None = None
+                    ) -> AeroOperatingPoint:
     """The BEM solution of ``rotor`` in uniform wind ``wind_speed`` (m/s) along the shaft at ``rotor_speed``
-    (rad/s) and blade pitch ``pitch`` (rad), and the polars' slopes there."""
+    (rad/s) and blade pitch ``pitch`` (rad), and the polars' slopes there; the aerodynamic centres' arms from the
+    reference axis of ``blade`` (:func:`aerodynamic_centres`; None: from the pitch axis)."""
     inflow = Inflow(wind_speed, rotor.hub_height if math.isfinite(rotor.hub_height) else 1.0)
     performance = performance_at(rotor, inflow, rotor_speed, pitch, 0.0, np.zeros(1))
     w, alpha = performance.w[0, 0], performance.alpha[0, 0]
@@ -89,7 +94,7 @@ def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: 
     slopes = polar_slopes(rotor, alpha)
     cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
     return AeroOperatingPoint(
-        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor),
+        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch, blade),
         X=w * np.sin(angle), Y=w * np.cos(angle), theta=theta, alpha=alpha, cl=performance.cl[0, 0],
         cd=performance.cd[0, 0], cm=cm,
         dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
@@ -111,9 +116,17 @@ def polar_slopes(rotor: Rotor, alpha: NDArray) -> NDArray:
     return slopes
 
 
-def aerodynamic_centres(rotor: Rotor) -> NDArray:
-    """(3, nodes): the aerodynamic centres' offsets ``(0, -BlSwpAC, BlCrvAC)`` in the blade frame, m."""
-    return np.stack([np.zeros_like(rotor.span), -rotor.sweep, rotor.curve])
+def aerodynamic_centres(rotor: Rotor, pitch: float = 0.0, blade: Blade | None = None) -> NDArray:
+    """(3, nodes): the aerodynamic centres' offsets from the sections' reference points in the blade frame, m:
+    AeroDyn's ``(0, -BlSwpAC, BlCrvAC)`` turned with the blade by ``pitch`` (rad), less the offset of ``blade``'s
+    curved reference axis there (pitched alike), whose points' motion the structure's degrees of freedom are (the
+    prebend BeamDyn's key points and AeroDyn's ``BlCrvAC`` both carry is no arm). ``BlSpn`` is taken as the arc
+    length along the curved axis (they differ by the second order of its slope: 0.05 m at the IEA-15MW's tip)."""
+    centre = pitched_offsets(rotor.curve, rotor.sweep, pitch).T
+    if blade is not None and blade.curved:
+        axis = blade.axis.frame(np.clip(rotor.span, 0.0, blade.axis.length), pitch)
+        centre[1:] -= axis.position[1:]
+    return centre
 
 
 def shaft_axis(rotor: Rotor) -> NDArray:

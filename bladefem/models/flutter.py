@@ -112,7 +112,7 @@ def flutter_point(matrices: BladeMatrices, basis: SweepBasis, rotor: Rotor, cond
     """The tracked modes at ``condition``: from the structure's lowest modes when ``previous`` is None, else
     continued from the roots of ``previous`` (module docstring)."""
     speed = condition.rotor_speed
-    op = operating_point(rotor, condition.wind_speed, speed, condition.pitch)
+    op = operating_point(rotor, condition.wind_speed, speed, condition.pitch, matrices.blade)
     aero = ReducedAero(basis, flutter_sections(op, chordwise_centre))
     M_r, K_r, C_r = np.eye(basis.size), basis.stiffness(speed), speed * basis.G
     if previous is None:

@@ -37,6 +37,7 @@ from ..modal.campbell import TRACKING_MARGIN, best_assignment, mac_from_products
 from ..modal.quadratic import solve_quadratic_modes
 from ..modal.results import ModalResult
 from ..modal.solve import solve_modes
+from ..sections import Blade
 from .blade_aero import AeroOperatingPoint, aero_matrices, aerodynamic_centres, polar_slopes, shaft_axis
 
 
@@ -117,13 +118,15 @@ def negative_intervals(x: NDArray, y: NDArray) -> list[tuple[float, float]]:
     return sectors
 
 
-def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pitch: float) -> AeroOperatingPoint:
+def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pitch: float,
+                 blade: Blade | None = None) -> AeroOperatingPoint:
     """The sections of blade 1 of the parked ``rotor`` (its ``shaft_tilt`` and ``precone``) in a uniform wind of
     ``wind_speed`` (m/s) along the inertial x, nacelle yaw ``yaw``, rotor azimuth ``azimuth`` and pitch ``pitch``
     (rad): in-plane relative velocity, angle of attack and polars there; no rotation, no induction. The pitch
     turns the whole blade, a prebent blade's aerodynamic centres and its sections' cant with it, as AeroDyn
     places them (:func:`bladefem.aero.kinematics.rigid_rotor`), and ``theta`` carries what the pitched canted
-    section's orientation adds to its twist and pitch."""
+    section's orientation adds to its twist and pitch. The aerodynamic centres' arms are taken from ``blade``'s
+    reference axis (:func:`~bladefem.models.blade_aero.aerodynamic_centres`)."""
     height = rotor.hub_height if math.isfinite(rotor.hub_height) else 1.0
     kinematics = rigid_rotor(rotor, Inflow(wind_speed, height), 0.0, np.array([azimuth]), yaw, pitch)
     cant, toe = kinematics.cant[0, 0], kinematics.toe[0, 0]
@@ -140,7 +143,8 @@ def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pi
     cm = coefficients[2] if rotor.options.pitching_moment else np.zeros_like(alpha)
     zero = np.zeros_like(alpha)
     return AeroOperatingPoint(
-        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor), X=X, Y=Y, theta=theta, alpha=alpha,
+        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch, blade), X=X, Y=Y, theta=theta,
+        alpha=alpha,
         cl=coefficients[0], cd=coefficients[1], cm=cm, dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=zero,
         ap=zero, air_density=rotor.air_density, rotor_speed=0.0, shaft_axis=shaft_axis(rotor),
         wind_speed=wind_speed, pitch=pitch)
@@ -184,7 +188,7 @@ def standstill_sweep(matrices: BladeMatrices, rotor: Rotor, wind_speed: float, p
     grid = [(y, a) for y in yaws for a in azimuths]
     points = []
     for yaw, azimuth in (progress or iter)(grid):
-        op = parked_point(rotor, wind_speed, math.radians(yaw), math.radians(azimuth), pitch)
+        op = parked_point(rotor, wind_speed, math.radians(yaw), math.radians(azimuth), pitch, matrices.blade)
         damping, stiffness = aero_matrices(matrices, op)
         result = solve_quadratic_modes(matrices, 0.0, n_modes + TRACKING_MARGIN, damping=damping,
                                        stiffness=stiffness if aero_stiffness else None, coriolis=False)

@@ -40,7 +40,7 @@ from ...aero.performance import COLUMNS, induction_weight
 from ...aero.polars import pack_polars
 from ...aero.rotor import Inflow, Rotor
 from ...errors import InputError
-from ...aero.polar import Projection, projection
+from ...aero.polar import Projection, pitched_offsets, projection
 from .kinematics import BeamNodes, NodeGroup, carry_nodes, turned_arms
 from .shapes import ModalBeam
 
@@ -169,14 +169,6 @@ def turbine_aero(rotor: Rotor, inflow: Inflow, params, pitch: float) -> TurbineA
     return TurbineAero(rotor=rotor, inflow=inflow, pitch=float(pitch), axial=params.hub_radius + rotor.span,
                        offset=offset, value=value, slope=slope, shortening=shortening, arc=arc,
                        tip_constant=tip_constant, hub_constant=hub_constant)
-
-
-def pitched_offsets(curve: NDArray, sweep: NDArray, pitch: float) -> NDArray:
-    """(Na, 3) aerodynamic-centre offsets in the blade frame (span, toward the leading edge, downwind), m, of
-    ``curve`` downwind and ``sweep`` against the rotation (m) turned with the blade by ``pitch`` (rad, to feather),
-    as AeroDyn places ``BlCrvAC`` and ``BlSwpAC`` in the pitched blade frame (:func:`bladefem.aero.polar.pitched_axes`)."""
-    c, s = math.cos(pitch), math.sin(pitch)
-    return np.column_stack([np.zeros_like(curve), s * curve - c * sweep, c * curve + s * sweep])
 
 
 def interpolated_shapes(beam: ModalBeam, x: NDArray) -> tuple[NDArray, NDArray, NDArray]:
