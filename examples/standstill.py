@@ -170,7 +170,7 @@ blades' azimuths at 15 to 75 deg as well. OpenFAST users running the parked IEA-
 20 deg pitch offset of one blade removes (github.com/IEAWindSystems/IEA-15-240-RWT/issues/218); Höning, Herráez and
 Stoevesandt (2026, "Aeroelastic instabilities of the IEA 15 MW rotor during extreme yaw maneuvers", Wind Energy
 Science 11, 1531) study the same rotor in extreme yaw. The flapwise mode (in the rotor plane when feathered) is
-damped heavily by attached flow near the wind direction (86 % at yaw 0) and loses its damping in narrower sectors.
+damped heavily by attached flow near the wind direction (87 % at yaw 0) and loses its damping in narrower sectors.
 The first torsion mode's total damping is negative over most yaw misalignments, by less than 1 % but near the
 wind's own direction and behind it (down to -4.7 %): this quasi-steady analysis has no pitch-rate
 (three-quarter-chord) damping of the twisting sections (added as `bladefem flutter` adds it, broad negative

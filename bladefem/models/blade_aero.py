@@ -24,7 +24,7 @@ aerodynamics and the change of induction (frozen).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -50,12 +50,17 @@ SLOPE_STEP = 1e-6
 class AeroOperatingPoint:
     """Section aerodynamics at one operating point, per AeroDyn node (SI, rad).
 
-    span : node positions from the blade root, m; chord : m; centre : aerodynamic-centre offsets (3, nodes), m
+    span : node positions from the blade root (BlSpn; on a curved axis its arc length there), m; chord : m;
+    centre : the aerodynamic centres' arms from the sections' reference points (3, nodes), m
     X, Y : relative velocity normal to the rotor plane and in it with the frozen induction, m/s
     theta : aerodynamic twist plus pitch, plus what a pitched canted section adds (alpha = atan2(X, Y) - theta);
     alpha : angle of attack;
     cl, cd, cm and their slopes dcl, dcd, dcm (per rad); a, ap : induction factors
-    air_density : kg/m^3; rotor_speed : rad/s; shaft_axis : a in the blade frame; wind_speed : m/s; pitch : rad
+    air_density : kg/m^3; rotor_speed : rad/s; shaft_axis : a in the blade frame (3,), or in each section's
+    frame on a curved axis (3, nodes); wind_speed : m/s; pitch : rad
+
+    The section frame is the blade frame on a straight axis and the curved axis's local frame (the frame of its
+    degrees of freedom) on a curved one: :func:`on_the_axis`.
     """
 
     span: NDArray
@@ -93,13 +98,26 @@ def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: 
     #                                               canted or toed in AeroDyn's polar projection, BEM_Mod 2)
     slopes = polar_slopes(rotor, alpha)
     cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
-    return AeroOperatingPoint(
+    return on_the_axis(AeroOperatingPoint(
         span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch, blade),
         X=w * np.sin(angle), Y=w * np.cos(angle), theta=theta, alpha=alpha, cl=performance.cl[0, 0],
         cd=performance.cd[0, 0], cm=cm,
         dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
         air_density=rotor.air_density, rotor_speed=rotor_speed,
-        shaft_axis=shaft_axis(rotor), wind_speed=wind_speed, pitch=pitch)
+        shaft_axis=shaft_axis(rotor), wind_speed=wind_speed, pitch=pitch), blade)
+
+
+def on_the_axis(op: AeroOperatingPoint, blade: Blade | None) -> AeroOperatingPoint:
+    """``op`` (spans ``BlSpn``, arms and shaft axis in the blade frame) on ``blade``'s reference axis: on a curved
+    axis each AeroDyn node at the arc length where the axis reaches its ``BlSpn`` along the pitch axis, its arm
+    and the shaft axis in the axis's local frame there, the frame of the curved beam's degrees of freedom, which
+    the section canted by ``BlCrvAng`` (the axis's slope) shares; the section's loads and motion are taken in it
+    (a cant that differs from the axis's slope is left out). A straight axis: ``op`` as it is."""
+    if blade is None or not blade.curved:
+        return op
+    arc = blade.axis.arc_length(op.span)
+    frame = blade.axis.frame(arc, op.pitch)
+    return replace(op, span=arc, centre=frame.to_local(op.centre), shaft_axis=frame.to_local(op.shaft_axis))
 
 
 def polar_slopes(rotor: Rotor, alpha: NDArray) -> NDArray:
@@ -120,12 +138,11 @@ def aerodynamic_centres(rotor: Rotor, pitch: float = 0.0, blade: Blade | None = 
     """(3, nodes): the aerodynamic centres' offsets from the sections' reference points in the blade frame, m:
     AeroDyn's ``(0, -BlSwpAC, BlCrvAC)`` turned with the blade by ``pitch`` (rad), less the offset of ``blade``'s
     curved reference axis there (pitched alike), whose points' motion the structure's degrees of freedom are (the
-    prebend BeamDyn's key points and AeroDyn's ``BlCrvAC`` both carry is no arm). ``BlSpn`` is taken as the arc
-    length along the curved axis (they differ by the second order of its slope: 0.05 m at the IEA-15MW's tip)."""
+    prebend BeamDyn's key points and AeroDyn's ``BlCrvAC`` both carry is no arm), at the axis point as far along
+    the pitch axis as the node (``BlSpn``)."""
     centre = pitched_offsets(rotor.curve, rotor.sweep, pitch).T
     if blade is not None and blade.curved:
-        axis = blade.axis.frame(np.clip(rotor.span, 0.0, blade.axis.length), pitch)
-        centre[1:] -= axis.position[1:]
+        centre[1:] -= blade.axis.frame(blade.axis.arc_length(rotor.span), pitch).position[1:]
     return centre
 
 
@@ -169,7 +186,8 @@ def section_matrices(op: AeroOperatingPoint) -> tuple[NDArray, NDArray]:
     out[3, 3] = 1.0
     E = np.array([[0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])           # (X, Y) from the relative air velocity
     velocity = np.einsum("ij,jkn->ikn", E, N)                    # d(X, Y) = -velocity dd/dt - ...
-    rotation = op.rotor_speed * np.einsum("ij,jk,kln->iln", E, skew(op.shaft_axis), N)
+    shaft = np.broadcast_to(np.asarray(op.shaft_axis, dtype=float).reshape(3, -1), (3, nodes))   # per section
+    rotation = op.rotor_speed * np.einsum("ij,jkn,kln->iln", E, skew(shaft), N)
     generalized = np.einsum("gpn,gcn->pcn", out, J)              # (6, 3, nodes): [N_ac; e_phi]^T J
     D = np.einsum("pcn,cqn->pqn", generalized[:, :2], velocity)
     K = np.einsum("pcn,cqn->pqn", generalized[:, :2], rotation)

@@ -38,7 +38,14 @@ from ..modal.quadratic import solve_quadratic_modes
 from ..modal.results import ModalResult
 from ..modal.solve import solve_modes
 from ..sections import Blade
-from .blade_aero import AeroOperatingPoint, aero_matrices, aerodynamic_centres, polar_slopes, shaft_axis
+from .blade_aero import (
+    AeroOperatingPoint,
+    aero_matrices,
+    aerodynamic_centres,
+    on_the_axis,
+    polar_slopes,
+    shaft_axis,
+)
 
 
 @dataclass(frozen=True)
@@ -142,12 +149,12 @@ def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pi
     slopes = polar_slopes(rotor, alpha)
     cm = coefficients[2] if rotor.options.pitching_moment else np.zeros_like(alpha)
     zero = np.zeros_like(alpha)
-    return AeroOperatingPoint(
+    return on_the_axis(AeroOperatingPoint(
         span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch, blade), X=X, Y=Y, theta=theta,
         alpha=alpha,
         cl=coefficients[0], cd=coefficients[1], cm=cm, dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=zero,
         ap=zero, air_density=rotor.air_density, rotor_speed=0.0, shaft_axis=shaft_axis(rotor),
-        wind_speed=wind_speed, pitch=pitch)
+        wind_speed=wind_speed, pitch=pitch), blade)
 
 
 def mode_names(result: ModalResult, pitch: float) -> tuple[str, ...]:

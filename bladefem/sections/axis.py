@@ -137,6 +137,14 @@ class ReferenceAxis:
         k = np.clip(np.searchsorted(knots, s, side="right") - 1, 0, len(knots) - 2)
         return pieces[k] + integral(knots[k], s)
 
+    def arc_length(self, along: NDArray) -> NDArray:
+        """The arc lengths (m) at which the axis reaches ``along`` (m) along the pitch axis (``x0(s) = along``; x0 is
+        increasing), clipped to the axis: a table of x0 inverted, then one Newton step."""
+        fine = np.linspace(0.0, self.length, 64 * len(self.span))
+        target = np.clip(np.asarray(along, dtype=float), 0.0, float(self.along_pitch_axis(np.array(self.length))))
+        s = np.interp(target, self.along_pitch_axis(fine), fine)
+        return np.clip(s - (self.along_pitch_axis(s) - target) / self._derivatives(s, 1)[0][0], 0.0, self.length)
+
     def frame(self, s: NDArray, pitch: float = 0.0) -> AxisFrame:
         """The axis's position, frame and curvatures at arc lengths ``s`` (m), the blade pitched by ``pitch``
         (rad)."""
