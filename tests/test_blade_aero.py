@@ -169,12 +169,31 @@ def test_modes_with_aerodynamics_on_the_command_line(capsys):
     (["--wind-speed", "11"], "--aero"),
     (["--aero", CASE / "missing.dat", "--wind-speed", "11"], None),
     (["--aero", AERODYN, "--wind-speed", "11", "--method", "galerkin"], "--aero"),
-], ids=["no-wind", "no-aerodyn", "missing-file", "galerkin"])
+    (["--quasi-steady"], "--quasi-steady"),
+], ids=["no-wind", "no-aerodyn", "missing-file", "galerkin", "quasi-steady-alone"])
 def test_aero_option_errors_are_one_line(capsys, argv, field):
     code, out, err = run(capsys, "modes", MAIN, "--rpm", "12", "--elements", "48", *argv)
     assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
     if field:
         assert field in err
+
+
+def test_an_unsteady_deck_runs_quasi_steady_when_asked(capsys):
+    """The IEA-22MW deck asks for unsteady airfoil aerodynamics (UA_Mod 4): ``modes --aero`` refuses it on one line
+    naming file, line and field and the option that runs without it, and runs it with ``--quasi-steady`` (these
+    modes are quasi-steady by construction), saying what it left out."""
+    root = Path(__file__).resolve().parents[1] / "tests" / "data" / "iea22"
+    blade, aerodyn = root / "beamdyn" / "IEA-22-280-RWT_BeamDyn.dat", root / "IEA-22-280-RWT-Monopile" / \
+        "IEA-22-280-RWT_AeroDyn15.dat"
+    argv = ("modes", blade, "--hub-radius", "3.97", "--rpm", "7", "--aero", aerodyn, "--wind-speed", "10",
+            "--n-modes", "3", "--elements", "30", "--json")
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
+    assert f"{aerodyn}:7" in err and "UA_Mod" in err and "--quasi-steady" in err
+    code, out, _ = run(capsys, *argv, "--quasi-steady")
+    data = json.loads(out)
+    assert code == 0 and [mode["kind"] for mode in data["modes"]][:2] == ["flap", "edge"]
+    assert any(note.startswith("left out (--quasi-steady)") and "UA_Mod" in note for note in data["notes"])
 
 
 def test_pitch_enters_the_operating_point(nrel5mw):

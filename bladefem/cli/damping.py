@@ -33,19 +33,23 @@ def add_aero_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--wind-speed", type=options.non_negative, metavar="M_S", help="wind speed along the shaft, m/s")
     group.add_argument("--blades", type=positive_int, default=3, metavar="N",
                        help="number of blades for the BEM induction (default 3)")
+    group.add_argument("--quasi-steady", action="store_true",
+                       help="run with the polars' static tables where the AeroDyn file asks for unsteady airfoil "
+                            "aerodynamics or a dynamic wake (these modes are quasi-steady by construction)")
 
 
 def reject_for_towers(args: argparse.Namespace) -> None:
     """Towers do not rotate: --coriolis and --aero are mistakes there."""
-    for option in ("coriolis", "aero", "wind_speed"):
+    for option in ("coriolis", "aero", "wind_speed", "quasi_steady"):
         if getattr(args, option, None) not in (None, False):
             raise InputError("applies to rotating blades only, not to towers", field=f"--{option.replace('_', '-')}")
 
 
 def wants_quadratic(args: argparse.Namespace) -> bool:
-    """--coriolis, --aero or --wind-speed asks for the quadratic eigenproblem (a lone --wind-speed is then refused)."""
+    """--coriolis, --aero or --wind-speed asks for the quadratic eigenproblem (a lone --wind-speed or --quasi-steady
+    is then refused)."""
     return bool(getattr(args, "coriolis", False) or getattr(args, "aero", None)
-                or getattr(args, "wind_speed", None) is not None)
+                or getattr(args, "wind_speed", None) is not None or getattr(args, "quasi_steady", False))
 
 
 def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
@@ -55,6 +59,8 @@ def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     if args.method != "fe":
         raise InputError("Coriolis coupling and aerodynamic damping are in the finite-element model only; use "
                          "--method fe", field=option)
+    if args.quasi_steady and args.aero is None:
+        raise InputError("applies to the aerodynamic damping of --aero only", field="--quasi-steady")
     if (args.aero is None) != (args.wind_speed is None):
         raise InputError("--aero and --wind-speed go together", field="--wind-speed" if args.aero else "--aero")
     if args.wind_speed is not None and args.wind_speed < 0:
@@ -67,12 +73,15 @@ def quadratic_modes(blade: Blade, args: argparse.Namespace) -> ModalResult:
     if args.aero is not None:
         from ..builders.aerodyn_rotor import aerodyn_rotor, require_root_off_axis
         from ..models.blade_aero import aero_matrices, operating_point
-        rotor = aerodyn_rotor(args.aero, blade, args.blades)
+        way = frozenset({"--quasi-steady"})
+        rotor = aerodyn_rotor(args.aero, blade, args.blades, way, way if args.quasi_steady else frozenset())
         require_root_off_axis(rotor)
         point = operating_point(rotor, args.wind_speed, args.rpm * math.pi / 30.0, blade.pitch, blade)
         damping, stiffness = aero_matrices(matrices, point)
-        notes += ((f"quasi-steady aerodynamic damping and stiffness from {args.aero} at {args.wind_speed:g} m/s, "
-                   f"pitch {math.degrees(blade.pitch):g} deg, {args.blades} blades (BEM induction frozen)"),)
+        left_out = rotor.notes[1:]                      # the first names the files; the next note does that
+        notes += left_out + ((f"quasi-steady aerodynamic damping and stiffness from {args.aero} at "
+                              f"{args.wind_speed:g} m/s, pitch {math.degrees(blade.pitch):g} deg, {args.blades} "
+                              "blades (BEM induction frozen)"),)
     result = solve_quadratic_modes(matrices, args.rpm, args.n_modes, notes, damping, stiffness, args.coriolis)
     return replace(result, notes=result.notes + _pitch_rate_notes(result)) if args.aero is not None else result
 
