@@ -116,7 +116,7 @@ def on_the_axis(op: AeroOperatingPoint, blade: Blade | None) -> AeroOperatingPoi
     if blade is None or not blade.curved:
         return op
     arc = blade.axis.arc_length(op.span)
-    frame = blade.axis.frame(arc, op.pitch)
+    frame = blade.axis_frame(arc)                      # pitched with the structure: the frame of its DOFs
     return replace(op, span=arc, centre=frame.to_local(op.centre), shaft_axis=frame.to_local(op.shaft_axis))
 
 
