@@ -180,8 +180,8 @@ The lift acts at the aerodynamic centres, with its arm measured from the prebent
 degrees of freedom are that axis's motion, and AeroDyn's `BlCrvAC` and BeamDyn's key points carry the same 4 m
 prebend, so the arm is at most 0.065 m out of the plane of the chord (and AeroDyn's sweep, up to 0.44 m). Measured
 from the pitch axis, as bladefem took it before, the prebend was a 4 m arm: it added 7 to 17 % to the torsion
-mode's damping over most of the sweep and, with the aerodynamic stiffness kept (no `--damping-only`), made the first flapwise mode diverge
-statically near yaw 0; with the arm from the axis no mode diverges anywhere in the sweep.
+mode's damping over most of the sweep and, with the aerodynamic stiffness kept (no `--damping-only`), made the
+first flapwise mode diverge statically near yaw 0; with the arm from the axis no mode diverges anywhere in the sweep.
 
 ## Limits
 

@@ -168,19 +168,20 @@ def pitched_axes(normal: NDArray, tangent: NDArray, pitch: NDArray | float) -> t
     return c * normal + s * tangent, c * tangent - s * normal
 
 
+def turned(y: NDArray, z: NDArray, angle: NDArray | float) -> tuple[NDArray, NDArray]:
+    """Across components (y along e_t, toward the leading edge; z along i1, downwind) of a vector turned with the
+    blade about its pitch axis by ``angle`` (rad, positive to feather): ``(y cos + z sin, -y sin + z cos)``. With
+    ``-angle``: the unpitched components resolved along the axes pitched by ``angle`` (:func:`pitched_axes`)."""
+    c, s = np.cos(angle), np.sin(angle)
+    return y * c + z * s, -y * s + z * c
+
+
 def pitched_offsets(curve: NDArray, sweep: NDArray, pitch: float) -> NDArray:
     """(Na, 3) aerodynamic-centre offsets in the blade frame (span, toward the leading edge, downwind), m, of
     ``curve`` downwind and ``sweep`` against the rotation (m) turned with the blade by ``pitch`` (rad, to feather),
     as AeroDyn places ``BlCrvAC`` and ``BlSwpAC`` in the pitched blade frame (:func:`pitched_axes`)."""
-    c, s = math.cos(pitch), math.sin(pitch)
     curve, sweep = np.asarray(curve, dtype=float), np.asarray(sweep, dtype=float)
-    return np.column_stack([np.zeros_like(curve), s * curve - c * sweep, c * curve + s * sweep])
-
-
-def pitched_slopes(in_plane: NDArray, out_of_plane: NDArray, pitch: NDArray) -> tuple[NDArray, NDArray]:
-    """Slopes along the unpitched blade's e_t and i1 resolved along the pitched blade's (:func:`pitched_axes`)."""
-    c, s = np.cos(pitch), np.sin(pitch)
-    return c * in_plane - s * out_of_plane, s * in_plane + c * out_of_plane
+    return np.column_stack([np.zeros_like(curve), *turned(-sweep, curve, pitch)])
 
 
 def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tangent: NDArray, span: NDArray,
@@ -190,8 +191,8 @@ def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tange
     ``normal``, ``tangent`` (direction of rotation), ``span`` (B, Na, 3) the undeflected, unpitched blade's axes
     i1, e_t, i3, the sections pitched by ``pitch`` (rad, broadcast to (B, Na)), canted in the pitched blade by its
     curvature angle ``curve_angle`` (Na,) rad (``BlCrvAng``) and turned by the slopes (B, Na) of the deflected blade
-    (:func:`curved_axes`), given along the unpitched e_t and i1 (in-plane, out-of-plane). AeroDyn composes a node's orientation so, twist last: R_z(-twist) R_y(cant) R_z(-pitch)
-    (the pitch about the root's axis first); its Euler angles mix the pitch into the cant and the twist of a canted
+    (:func:`curved_axes`), given along the unpitched e_t and i1 (in-plane, out-of-plane). AeroDyn composes a
+    node's orientation so, twist last: R_z(-twist) R_y(cant) R_z(-pitch) (the pitch about the root's axis first); its Euler angles mix the pitch into the cant and the twist of a canted
     section. ``twist`` of the result is what the section's orientation adds to the aerodynamic twist and the pitch
     (the extracted angle less the pitch)."""
     shape = arm.shape[:-1]
@@ -199,8 +200,8 @@ def projection(polar: bool, arm: NDArray, shaft: NDArray, normal: NDArray, tange
     pitch = np.broadcast_to(np.asarray(pitch, dtype=float), shape)
     normal_p, tangent_p = pitched_axes(normal, tangent, pitch)
     basis = np.stack([span, tangent_p, normal_p], axis=-2)                       # (B, Na, 3 axes, 3)
-    slopes = pitched_slopes(*(np.broadcast_to(np.asarray(slope, dtype=float), shape)
-                              for slope in (in_plane_slope, out_of_plane_slope)), pitch)
+    slopes = turned(*(np.broadcast_to(np.asarray(slope, dtype=float), shape)
+                      for slope in (in_plane_slope, out_of_plane_slope)), -pitch)   # along the pitched axes
     curve = np.broadcast_to(np.asarray(curve_angle, dtype=float), shape)
     c = np.stack(np.vectorize(curved_axes, otypes=[float] * 9)(*slopes, np.cos(curve), np.sin(curve)), axis=-1)
     n_b, t_b, s_b = (np.einsum("...i,...ik->...k", c[..., 3 * j:3 * j + 3], basis) for j in range(3))

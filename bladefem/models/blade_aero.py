@@ -40,7 +40,7 @@ from ..assembly.forms import assemble_terms
 from ..assembly.parameters import AeroParameters
 from ..assembly.terms import aerodynamic_damping, aerodynamic_stiffness
 from ..elements import beam_element, skew
-from ..sections import Blade
+from ..sections import AxisFrame, Blade
 
 #: step of the central difference for the polars' slopes, rad (linear polars: the slope of the interval)
 SLOPE_STEP = 1e-6
@@ -99,25 +99,27 @@ def operating_point(rotor: Rotor, wind_speed: float, rotor_speed: float, pitch: 
     slopes = polar_slopes(rotor, alpha)
     cm = performance.cm[0, 0] if rotor.options.pitching_moment else np.zeros_like(alpha)
     return on_the_axis(AeroOperatingPoint(
-        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch, blade),
+        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch),
         X=w * np.sin(angle), Y=w * np.cos(angle), theta=theta, alpha=alpha, cl=performance.cl[0, 0],
         cd=performance.cd[0, 0], cm=cm,
         dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=performance.a[0, 0], ap=performance.ap[0, 0],
         air_density=rotor.air_density, rotor_speed=rotor_speed,
-        shaft_axis=shaft_axis(rotor), wind_speed=wind_speed, pitch=pitch), blade)
+        shaft_axis=shaft_axis(rotor), wind_speed=wind_speed, pitch=pitch), rotor, blade)
 
 
-def on_the_axis(op: AeroOperatingPoint, blade: Blade | None) -> AeroOperatingPoint:
-    """``op`` (spans ``BlSpn``, arms and shaft axis in the blade frame) on ``blade``'s reference axis: on a curved
-    axis each AeroDyn node at the arc length where the axis reaches its ``BlSpn`` along the pitch axis, its arm
-    and the shaft axis in the axis's local frame there, the frame of the curved beam's degrees of freedom, which
-    the section canted by ``BlCrvAng`` (the axis's slope) shares; the section's loads and motion are taken in it
-    (a cant that differs from the axis's slope is left out). A straight axis: ``op`` as it is."""
+def on_the_axis(op: AeroOperatingPoint, rotor: Rotor, blade: Blade | None) -> AeroOperatingPoint:
+    """``op`` (spans ``BlSpn``, arms from the pitch axis and the shaft axis in the blade frame) of ``rotor`` on
+    ``blade``'s reference axis: on a curved axis each AeroDyn node at the arc length where the axis reaches its
+    ``BlSpn`` along the pitch axis, its arm from that axis point (:func:`aerodynamic_centres`) and the shaft axis
+    in the axis's local frame there, the frame of the curved beam's degrees of freedom, which the section canted
+    by ``BlCrvAng`` (the axis's slope) shares; the section's loads and motion are taken in it (a cant that differs
+    from the axis's slope is left out). A straight axis: ``op`` as it is."""
     if blade is None or not blade.curved:
         return op
     arc = blade.axis.arc_length(op.span)
     frame = blade.axis_frame(arc)                      # pitched with the structure: the frame of its DOFs
-    return replace(op, span=arc, centre=frame.to_local(op.centre), shaft_axis=frame.to_local(op.shaft_axis))
+    centre = aerodynamic_centres(rotor, op.pitch, blade, frame)
+    return replace(op, span=arc, centre=frame.to_local(centre), shaft_axis=frame.to_local(op.shaft_axis))
 
 
 def polar_slopes(rotor: Rotor, alpha: NDArray) -> NDArray:
@@ -134,15 +136,17 @@ def polar_slopes(rotor: Rotor, alpha: NDArray) -> NDArray:
     return slopes
 
 
-def aerodynamic_centres(rotor: Rotor, pitch: float = 0.0, blade: Blade | None = None) -> NDArray:
+def aerodynamic_centres(rotor: Rotor, pitch: float = 0.0, blade: Blade | None = None,
+                        axis: AxisFrame | None = None) -> NDArray:
     """(3, nodes): the aerodynamic centres' offsets from the sections' reference points in the blade frame, m:
     AeroDyn's ``(0, -BlSwpAC, BlCrvAC)`` turned with the blade by ``pitch`` (rad), less the offset of ``blade``'s
     curved reference axis there (pitched alike), whose points' motion the structure's degrees of freedom are (the
     prebend BeamDyn's key points and AeroDyn's ``BlCrvAC`` both carry is no arm), at the axis point as far along
-    the pitch axis as the node (``BlSpn``)."""
+    the pitch axis as the node (``BlSpn``); ``axis``: that axis at the nodes, where the caller has it."""
     centre = pitched_offsets(rotor.curve, rotor.sweep, pitch).T
     if blade is not None and blade.curved:
-        centre[1:] -= blade.axis.frame(blade.axis.arc_length(rotor.span), pitch).position[1:]
+        axis = axis if axis is not None else blade.axis.frame(blade.axis.arc_length(rotor.span), pitch)
+        centre[1:] -= axis.position[1:]
     return centre
 
 

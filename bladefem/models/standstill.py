@@ -150,11 +150,11 @@ def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pi
     cm = coefficients[2] if rotor.options.pitching_moment else np.zeros_like(alpha)
     zero = np.zeros_like(alpha)
     return on_the_axis(AeroOperatingPoint(
-        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch, blade), X=X, Y=Y, theta=theta,
+        span=rotor.span, chord=rotor.chord, centre=aerodynamic_centres(rotor, pitch), X=X, Y=Y, theta=theta,
         alpha=alpha,
         cl=coefficients[0], cd=coefficients[1], cm=cm, dcl=slopes[0], dcd=slopes[1], dcm=slopes[2], a=zero,
         ap=zero, air_density=rotor.air_density, rotor_speed=0.0, shaft_axis=shaft_axis(rotor),
-        wind_speed=wind_speed, pitch=pitch), blade)
+        wind_speed=wind_speed, pitch=pitch), rotor, blade)
 
 
 def mode_names(result: ModalResult, pitch: float) -> tuple[str, ...]:

@@ -24,7 +24,8 @@ def aero_data(model) -> tuple:
         return (np.zeros((k, 0, 3)), np.zeros((k, k, 0)), empty, np.zeros((0, 3)), np.zeros((k, 0, 2)),
                 np.zeros((0, 0)), empty, empty, empty, empty, empty, np.zeros(0, dtype=np.int64), np.zeros(1),
                 np.zeros((1, 3)), np.zeros((1, 3, 4)), np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64),
-                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty, np.zeros((0, 2)), np.zeros(1))
+                np.zeros(13), np.zeros(2), *Inflow(0.0, 1.0).arrays(), np.zeros(3), empty, empty, np.zeros((0, 2)),
+                np.zeros(1))
     across = np.zeros((k, aero.n_nodes, 3))
     across[:, :, 0] = aero.along
     across[:, :, 1:] = aero.value

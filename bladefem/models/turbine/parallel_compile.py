@@ -17,7 +17,8 @@ Only a cold call (:func:`.compiled.first_call` found no machine code in the cach
 a second core looks free (:func:`spare_core`: a helper on a busy machine only adds its start, about 1 s of CPU); a
 warm run never does. ``turbine --simulate`` starts it earlier still (:func:`prestart`, before the deck is read) when
 the aerodynamic loads have nothing in the cache: it imports the kernels' modules and sets up numba's compiler
-(:func:`warm_up`, about 0.4 s) while this process reads the deck and builds the model, then waits for its jobs. The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both
+(:func:`warm_up`, about 0.4 s) while this process reads the deck and builds the model, then waits for its jobs.
+The environment variable BLADEFEM_COMPILE_HELPER=0 never starts it, =1 always does. Both
 processes write numba's cache: numba writes each file to a temporary name and renames it, and the two compile
 different kernels except shared leaves (vector helpers, the beam node), which they compile for the same argument
 types, so for the same index entry with equivalent machine code. If the helper fails (it cannot start, import this

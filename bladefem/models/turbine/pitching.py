@@ -21,15 +21,10 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ...aero.polar import turned
 from ...numba_cache import cached_njit
 
 njit = cached_njit()
-
-
-def turn(y: NDArray, z: NDArray, angle: float) -> tuple[NDArray, NDArray]:
-    """Across components (in-plane, out-of-plane) turned by ``angle`` (rad) of pitch."""
-    c, s = math.cos(angle), math.sin(angle)
-    return y * c + z * s, -y * s + z * c
 
 
 def pitch_arrays(pitch, base, references, structure, aero):
@@ -91,5 +86,5 @@ class CompiledPitch:
 
     def tip_values(self, pitch: float) -> NDArray:
         """The blade's tip shapes (k, 2) at ``pitch`` (rad): in-plane, out-of-plane."""
-        y, z = turn(self.tip[:, 0], self.tip[:, 1], pitch - self.base)
+        y, z = turned(self.tip[:, 0], self.tip[:, 1], pitch - self.base)
         return np.column_stack([y, z])
