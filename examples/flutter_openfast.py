@@ -161,8 +161,6 @@ def iea15_section() -> str:
               for name, theirs, ours, k in (("torsion", torsion_theirs, torsion_ours, 3),
                                             ("edge", edge_theirs, edge_ours, len(rpms)))}
     (first_theirs, first_ours), at = (edge_theirs[rpms.index(13.5)], edge_ours[rpms.index(13.5)]), 13.5
-    (without,) = reference.get("no_pitching_moment_points", [{"rpm": at, "modes": []}])
-    without_edge = next((m for m in without["modes"] if m["natural_frequency_hz"] < 1.0), None)
     (structural,) = [p for p in reference["structural_points"] if p["rpm"] == at]
     structural_edge = max(structural["modes"][:IEA15_COMPARED], key=lambda m: m["damping_ratio"])
 
@@ -194,16 +192,19 @@ mode near 3.9 Hz, unstable from 5 rpm on in both, {onset("torsion")}; the first 
 (bladefem's frequency with the spin softening added back). To 11 rpm the two agree mode by mode (frequencies within
 0.4 %, damping ratios within 8 % plus 0.15 percentage point), but for the first edge mode's damping above rated
 speed, which bladefem's model loses faster ({100 * first_ours["damping_ratio"]:.2f} % against
-{100 * first_theirs["damping_ratio"]:.2f} % at {at:g} rpm). Of that difference,
-{100 * structural_edge["damping_ratio"]:.2f} percentage point is a damping OpenFAST's BeamDyn linearization gives
-this blade without any aerodynamics (its damping off; bladefem's rotating blade without aerodynamics has none); the
-rest comes with the airfoils' pitching moment, for without it (`UseBlCm` False in both) OpenFAST's first edge mode
-has {100 * without_edge["damping_ratio"] if without_edge else math.nan:.2f} % at {at:g} rpm, bladefem's about the
-same (tests/test_flutter_openfast_iea15.py); its cause is not found here. With
-every airfoil's Cm constant (-0.1) the difference stays (-1.50 % against -0.74 %): it is not the polars' Cm slope.
-In bladefem the pitching moment reaches this mode through one term, the moment's change with the in-plane
-relative speed (without it 2.31 %): a constant Cm lowers the damping by 3.81 percentage points, OpenFAST's by
-3.23, while the two tools' complex mode shapes agree (the tip's twist per edgewise deflection within 5 %). From 16 rpm on, as
+{100 * first_theirs["damping_ratio"]:.2f} % at {at:g} rpm). The difference comes from the sections' mass centres, which lie off the reference axis: OpenFAST's
+BeamDyn linearization of this turning blade is not conservative with them. Without aerodynamics and with its damping
+off it damps its lowest modes ({100 * structural_edge["damping_ratio"]:.2f} % on the first edge mode at {at:g} rpm),
+where an undamped rotating beam (bladefem's) has none: its eigenvalues come in pairs lambda, -conj(lambda). With
+the mass centres moved onto the axis in both tools (the mass matrices' translation-rotation blocks set to 0) the
+blade is conservative in OpenFAST too, and every compared mode agrees above rated speed, the first edge mode's
+damping included: 0.13 % against 0.09 % at 11 rpm, -1.02 % against -1.06 % at 13.5 rpm, -1.758 % against -1.759 %
+with every airfoil's Cm constant at -0.1 (tests/test_flutter_openfast_mass_offsets.py). On the stored blade
+OpenFAST's extra damping is even in the pitching moment (with every Cm turned in sign, the part odd in the moment
+agrees: -3.20 against -3.03 percentage points; OpenFAST's even part, +0.50 point, has no counterpart in
+bladefem). OpenFAST/openfast#3394 reports BeamDyn's state Jacobians to be an inertial-frame snapshot; the transform
+of its proposed fix (OpenFAST/openfast#3400) gives BeamDyn's edge modes bladefem's spin softening (0.7209 Hz in both at 13.5 rpm) but
+leaves the blade with mass offsets non-conservative. From 16 rpm on, as
 the torsion-carrying mode falls toward the flap modes, the modes between 2 and 3.5 Hz differ by up to 3 % in
 frequency.
 

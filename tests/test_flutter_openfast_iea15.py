@@ -13,32 +13,17 @@ twist under the airfoils' pitching moment: ``lin_time_0.02_points``,
 
 The named differences:
 
-- BeamDyn's rotating-frame linearization does not show the in-plane spin softening (tests/test_beamdyn_reference.py):
-  an edge mode's OpenFAST frequency is bladefem's with Omega^2 added back.
+- BeamDyn's rotating-frame linearization does not show the in-plane spin softening (tests/test_beamdyn_reference.py;
+  OpenFAST/openfast#3394: its Jacobians are an inertial-frame snapshot): an edge mode's OpenFAST frequency is
+  bladefem's with Omega^2 added back.
 - BeamDyn's order_elem 10 (the file's own; :func:`test_openfast_reference_converged_in_order_elem`).
 - The first edge mode's damping above rated speed: bladefem's falls faster with the rotor speed than OpenFAST's
   (0.23 % against 0.61 % at 11 rpm, -0.80 % against -0.21 % at 13.5 rpm), its onset 10 % earlier (11.6 against
-  12.9 rpm). Part of it is a damping OpenFAST's BeamDyn linearization gives this blade without any aerodynamics
-  (0.27 % and 0.32 % on the first edge mode at 11 and 13.5 rpm:
-  :func:`test_openfast_blade_without_aerodynamics_is_slightly_damped`); the rest (0.12 and 0.26 percentage point)
-  comes with the airfoils' pitching moment: without it (UseBlCm False
-  in both) the edge modes' damping agrees (:func:`test_without_the_pitching_moment_the_edge_damping_agrees`). Its
-  cause is not found; narrowed down at 13.5 rpm:
-
-  - With every airfoil's Cm constant (-0.1, no slope; ``constant_cm_points``) the difference stays (-1.50 % against
-    -0.74 %), the flap and torsion-carrying modes still agree
-    (:func:`test_with_a_constant_pitching_moment_the_flap_and_torsion_modes_agree`): it is not the polars' Cm slope.
-  - With the constant Cm, all of the pitching moment's effect on bladefem's first edge mode is one section term, the
-    moment's change with the in-plane relative speed (``rho c^2 Y cm`` per unit edgewise velocity): dropped, the
-    damping is 2.31 %, bladefem's without the pitching moment. The constant Cm moves the damping by -3.81
-    percentage points in bladefem, by -3.23 in OpenFAST (from its 2.49 % without the pitching moment); AeroDyn's
-    dynamic pressure ``rho Vrel^2 / 2`` takes the node's structural velocity in ``Vrel``, the same formula.
-  - The first edge mode's complex shape agrees: at the tip, per unit edgewise deflection, twist 0.0020 - 0.0091i
-    rad/m against OpenFAST's 0.0017 - 0.0095i, flap -0.157 - 0.096i against -0.162 - 0.091i (BeamDyn's eigenvector
-    turned to bladefem's axes).
-  - Ruled out: the moment turning with the section (AeroDyn applies it about the node's z axis canted by the
-    bending, BEM_Mod 1; with the whole orientation, BEM_Mod 2): 0.008 percentage point in bladefem; BeamDyn's
-    missing spin softening (bladefem without it): 0.03 point.
+  12.9 rpm). The cause is BeamDyn's linearization of sections whose mass centres lie off the reference axis: it
+  damps the undamped blade without aerodynamics (0.32 % on the first edge mode at 13.5 rpm, where a conservative
+  blade has none) and adds a part even in the pitching moment to the edge damping; with the mass centres on the
+  axis in both tools every mode agrees, the first edge mode's damping -1.02 % against -1.06 % at 13.5 rpm
+  (tests/test_flutter_openfast_mass_offsets.py). The comparison above rated speed is made there.
 - Near the coalescence (16 and 18.5 rpm) the modes between 2 and 3.5 Hz, reshaped by the aerodynamic stiffness,
   differ by up to 2.9 % in frequency.
 """
@@ -143,18 +128,6 @@ def test_the_first_edge_mode_damping_to_rated_speed(aerodyn, rpm, capsys):
                                                                       + DAMPING_FLOOR)
 
 
-@pytest.mark.xfail(strict=True, reason="above rated speed bladefem's first edge mode loses its damping faster than "
-                   "OpenFAST's: 0.23 % against 0.61 % at 11 rpm, -0.80 % against -0.21 % at 13.5 rpm (0.39 and 0.59 "
-                   "percentage point, growing to 1.46 at 18.5 rpm; of it 0.27 at 11 rpm and 0.32 at 13.5 rpm the "
-                   "damping OpenFAST's blade has without aerodynamics); with the pitching moment off they agree")
-@pytest.mark.parametrize("rpm", [rpm for rpm in BELOW if rpm > RATED])
-def test_the_first_edge_mode_damping_above_rated_speed(aerodyn, rpm, capsys):
-    """Above rated speed, the first edge mode's damping within the other modes' tolerance: not so (the reason)."""
-    theirs, ours = first_edge(aerodyn, rpm, capsys)
-    assert abs(ours["damping_ratio"] - theirs["damping_ratio"]) <= (DAMPING * abs(theirs["damping_ratio"])
-                                                                      + DAMPING_FLOOR)
-
-
 @pytest.mark.parametrize("rpm", [rpm for rpm in RPMS if rpm not in BELOW])
 def test_near_the_coalescence(aerodyn, rpm, capsys):
     """At 16 and 18.5 rpm the torsion-carrying mode falls onto the flap modes (the coalescence) and the aerodynamic
@@ -225,8 +198,8 @@ def test_openfast_blade_without_aerodynamics_is_slightly_damped():
     its linearization gives every mode a small positive damping ratio, largest on the first edge mode (measured
     0.32 %, the first flap mode 0.21 %, the second edge mode 0.11 %; the same at 0 s and 0.002 s), where bladefem's
     gyroscopic blade without aerodynamics has none (an undamped rotating beam: purely imaginary eigenvalues), and
-    the NREL 5MW's diagonal-section blade in OpenFAST neither (below 1e-6, at 0 s as at 0.02 s). Part of OpenFAST's higher first edge mode
-    damping above rated speed is this: at 13.5 rpm it is 0.32 of the 0.59 percentage point. Held: below 0.5 % and
+    the NREL 5MW's diagonal-section blade in OpenFAST neither (below 1e-6, at 0 s as at 0.02 s). It comes with the
+    sections' mass centres off the axis (tests/test_flutter_openfast_mass_offsets.py). Held: below 0.5 % and
     positive, the compared damping (aerodynamic, percents) far larger for the flap modes."""
     (structural,) = [p for p in REFERENCE["structural_points"] if p["rpm"] == 13.5]
     damping = [m["damping_ratio"] for m in structural["modes"][:COMPARED]]
@@ -313,16 +286,3 @@ def test_with_a_constant_pitching_moment_the_flap_and_torsion_modes_agree(consta
         if o["kind"] != "edge":
             assert shifted == pytest.approx(t["natural_frequency_hz"], rel=FREQUENCY)
             assert abs(o["damping_ratio"] - t["damping_ratio"]) <= DAMPING * abs(t["damping_ratio"]) + DAMPING_FLOOR
-
-
-@pytest.mark.xfail(strict=True, reason="with a constant Cm the first edge mode's damping differs as with the "
-                   "airfoils' own: -1.50 % against OpenFAST's -0.74 % at 13.5 rpm (module docstring)")
-def test_with_a_constant_pitching_moment_the_first_edge_damping_agrees(constant_cm, capsys):
-    """The first edge mode with every airfoil's Cm constant: not within the tolerance (the reason). The moment's
-    change with the in-plane relative speed (``d m / d Y = rho c^2 Y cm``) is then the only pitching-moment term
-    (still air, no induction: no normal velocity), and bladefem's first edge damping falls by 3.81 percentage points
-    with it (from 2.31 %, as without the pitching moment), OpenFAST's by 3.23 (from 2.49 %)."""
-    primary, theirs = constant_cm
-    pairs = paired(theirs["modes"][:COMPARED], bladefem_modes(primary, theirs["rpm"], capsys), theirs["rpm"])
-    (t, o) = [(t, o) for t, o, f in pairs if o["kind"] == "edge" and f < 1.5][0]
-    assert abs(o["damping_ratio"] - t["damping_ratio"]) <= DAMPING * abs(t["damping_ratio"]) + DAMPING_FLOOR
