@@ -295,7 +295,7 @@ def main() -> None:
                           "order_elem N (convergence); lin_time_T_*: linearized at T s, part way into the motion "
                           "the aerodynamic loads start; scaled_cm_points: every airfoil's Cm times cm_factor; "
                           "no_mass_offsets_*: the sections' mass centres moved onto the reference axis (the mass "
-                          "matrices' translation-rotation blocks 0); rotating_frame_modes: the modes after OpenFAST "
+                          "matrices' translation-rotation blocks 0); rotating_frame_modes: the modes after "
                           "OpenFAST/openfast#3400's rotating-frame transform of BeamDyn's state matrix (points written "
                           "since it was added).",
            "provenance": {"openfast": {"version": "v5.0.0", "commit": "2895884d2",
