@@ -192,8 +192,9 @@ mode near 3.9 Hz, unstable from 5 rpm on in both, {onset("torsion")}; the first 
 (bladefem's frequency with the spin softening added back). To 11 rpm the two agree mode by mode (frequencies within
 0.4 %, damping ratios within 8 % plus 0.15 percentage point), but for the first edge mode's damping above rated
 speed, which bladefem's model loses faster ({100 * first_ours["damping_ratio"]:.2f} % against
-{100 * first_theirs["damping_ratio"]:.2f} % at {at:g} rpm). The difference comes from the sections' mass centres, which lie off the reference axis: OpenFAST's
-BeamDyn linearization of this turning blade is not conservative with them. Without aerodynamics and with its damping
+{100 * first_theirs["damping_ratio"]:.2f} % at {at:g} rpm).
+The difference comes from the sections' mass centres, which lie off the reference axis: OpenFAST's BeamDyn
+linearization of this turning blade is not conservative with them. Without aerodynamics and with its damping
 off it damps its lowest modes ({100 * structural_edge["damping_ratio"]:.2f} % on the first edge mode at {at:g} rpm),
 where an undamped rotating beam (bladefem's) has none: its eigenvalues come in pairs lambda, -conj(lambda). With
 the mass centres moved onto the axis in both tools (the mass matrices' translation-rotation blocks set to 0) the
@@ -203,8 +204,8 @@ with every airfoil's Cm constant at -0.1 (tests/test_flutter_openfast_mass_offse
 OpenFAST's extra damping is even in the pitching moment (with every Cm turned in sign, the part odd in the moment
 agrees: -3.20 against -3.03 percentage points; OpenFAST's even part, +0.50 point, has no counterpart in
 bladefem). OpenFAST/openfast#3394 reports BeamDyn's state Jacobians to be an inertial-frame snapshot; the transform
-of its proposed fix (OpenFAST/openfast#3400) gives BeamDyn's edge modes bladefem's spin softening (0.7209 Hz in both at 13.5 rpm) but
-leaves the blade with mass offsets non-conservative. From 16 rpm on, as
+of its proposed fix (OpenFAST/openfast#3400) gives BeamDyn's edge modes bladefem's spin softening (0.7209 Hz in
+both at 13.5 rpm) but leaves the blade with mass offsets non-conservative. From 16 rpm on, as
 the torsion-carrying mode falls toward the flap modes, the modes between 2 and 3.5 Hz differ by up to 3 % in
 frequency.
 

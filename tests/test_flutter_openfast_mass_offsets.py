@@ -14,10 +14,10 @@ tests/test_flutter_openfast_iea15.py; keys ``no_mass_offsets_*``, ``scaled_cm_po
   mode included: 0.13 % against 0.09 % at 11 rpm, -1.02 % against -1.06 % at 13.5 rpm, and with every airfoil's
   Cm constant (-0.1) -1.758 % against -1.759 %.
 - OpenFAST/openfast#3394 (open) reports BeamDyn's state Jacobians to be an inertial-frame snapshot flagged rotating;
-  the transform of its proposed fix (OpenFAST/openfast#3400; ``rotating_frame_modes``) turns BeamDyn's edge frequencies into
-  bladefem's with the spin softening (0.7209 Hz and 0.7209 Hz at 13.5 rpm). It leaves the mass-offset blade
-  non-conservative (the first flap mode -0.21 % at 13.5 rpm) and the first edge mode's difference (-0.51 % against
-  -0.80 %).
+  the transform of its proposed fix (OpenFAST/openfast#3400; ``rotating_frame_modes``) turns BeamDyn's edge
+  frequencies into bladefem's with the spin softening (0.7209 Hz and 0.7209 Hz at 13.5 rpm). It leaves the
+  mass-offset blade non-conservative (the first flap mode -0.21 % at 13.5 rpm) and the first edge mode's difference
+  (-0.51 % against -0.80 %).
 - On the stored blade, OpenFAST's extra damping is even in the pitching moment: with every airfoil's Cm turned in
   sign (``scaled_cm_points``, factor -1) the part odd in the moment agrees (-3.20 against -3.03 percentage points),
   while OpenFAST's even part (+0.50 point) has no counterpart in bladefem (-0.08 point).
@@ -25,31 +25,25 @@ tests/test_flutter_openfast_iea15.py; keys ``no_mass_offsets_*``, ``scaled_cm_po
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
 
-from bladefem.cli import main
 from test_flutter_openfast import DAMPING, DAMPING_FLOOR, EDGE_FREQUENCY, FREQUENCY, paired
-from test_flutter_openfast_iea15 import BLADE, COMPARED, REFERENCE, _script
+from test_flutter_openfast_iea15 import (
+    BLADE,
+    COMPARED,
+    _script,
+    agree,
+    bladefem_modes,
+    edge_pair,
+    point,
+    without_pitching_moment,
+)
 
 #: a conservative blade's damping ratios are zero: OpenFAST's blade without mass offsets within this (measured
 #: 8e-5, a torsion mode near 3.55 Hz; the first four modes 1e-5), 16 times below the 3.2e-3 of the stored blade
 CONSERVATIVE = 2e-4
-
-
-def bladefem_modes(blade: Path, primary: Path | None, rpm: float, capsys) -> list[dict]:
-    """bladefem's modes of ``blade`` at ``rpm`` (with ``--aero primary`` in still air, else ``--coriolis``)."""
-    aero = ["--aero", str(primary), "--wind-speed", "0"] if primary else ["--coriolis"]
-    assert main(["modes", str(blade), "--hub-radius", "3.97", "--straight-axis", *aero, "--rpm", f"{rpm:g}",
-                 "--n-modes", "16", "--json"]) == 0
-    return json.loads(capsys.readouterr().out)["modes"]
-
-
-def reference(key: str, rpm: float, factor: float | None = None) -> dict:
-    (found,) = [p for p in REFERENCE[key] if p["rpm"] == rpm and p.get("cm_factor") == factor]
-    return found
 
 
 @pytest.fixture(scope="module")
@@ -64,35 +58,25 @@ def centred_blade(tmp_path_factory) -> Path:
     return _script().bladefem_blade(tmp_path_factory.mktemp("centred"), mass_offsets=False)
 
 
-def first_edge(pairs: list[tuple[dict, dict, float]]) -> tuple[dict, dict]:
-    (pair,) = [(t, o) for t, o, f in pairs if o["kind"] == "edge" and f < 1.5]
-    return pair
-
-
-def agree(theirs: dict, ours: dict) -> bool:
-    """Damping ratios within the comparison's tolerance: 8 % of OpenFAST's plus 0.15 percentage point."""
-    return abs(ours["damping_ratio"] - theirs["damping_ratio"]) <= (DAMPING * abs(theirs["damping_ratio"])
-                                                                      + DAMPING_FLOOR)
-
-
 @pytest.mark.parametrize("rpm", [11.0, 13.5])
 def test_openfast_blade_with_mass_offsets_is_not_conservative(centred_blade, rpm, capsys):
     """Without aerodynamics and damping, OpenFAST's stored blade has its two lowest modes damped (measured 0.18-0.32
-    %) and no mode of the same frequency with the opposite damping: not a conservative system, in the states' frame as written and after OpenFAST
-    OpenFAST/openfast#3400's rotating-frame transform (the first flap mode then -0.21 % at 13.5 rpm). With the mass
+    %) and no mode of the same frequency with the opposite damping: not a conservative system, in the states' frame
+    as written and after OpenFAST/openfast#3400's rotating-frame transform (the first flap mode then -0.21 % at
+    13.5 rpm). With the mass
     centres on the axis its damping ratios are zero within :data:`CONSERVATIVE`, as bladefem's are for both blades
     (every damping ratio of ``--coriolis`` below 1e-9)."""
-    stored = reference("structural_points", rpm)
+    stored = point(rpm, "structural_points")
     for mode in stored["modes"][:2]:                          # damped, without the partner -conj(lambda)
         assert mode["damping_ratio"] > 5 * CONSERVATIVE
         assert not [m for m in stored["modes"] if m["damping_ratio"] < 0
                     and abs(m["natural_frequency_hz"] / mode["natural_frequency_hz"] - 1) < 1e-3]
     assert max(abs(m["damping_ratio"]) for m in stored["rotating_frame_modes"][:COMPARED]) > 5 * CONSERVATIVE
-    centred = reference("no_mass_offsets_structural_points", rpm)
+    centred = point(rpm, "no_mass_offsets_structural_points")
     for modes in (centred["modes"], centred["rotating_frame_modes"]):
         assert max(abs(m["damping_ratio"]) for m in modes[:COMPARED]) < CONSERVATIVE
     for blade in (BLADE, centred_blade):
-        assert max(abs(m["damping_ratio"]) for m in bladefem_modes(blade, None, rpm, capsys)) < 1e-9
+        assert max(abs(m["damping_ratio"]) for m in bladefem_modes(None, rpm, capsys, blade)) < 1e-9
 
 
 @pytest.mark.parametrize("rpm", [11.0, 13.5])
@@ -100,8 +84,8 @@ def test_the_rotating_frame_transform_gives_the_spin_softening(rpm, capsys):
     """OpenFAST's stored structural modes after OpenFAST/openfast#3400's transform have bladefem's frequencies, the
     edge modes' spin softening included (no Omega^2 added back): the four lowest within 0.5 % (measured 0.18 %, the
     second flap mode; the first edge mode 0.7209 Hz in both at 13.5 rpm)."""
-    ours = sorted(m["frequency_hz"] for m in bladefem_modes(BLADE, None, rpm, capsys))[:4]
-    theirs = [m["natural_frequency_hz"] for m in reference("structural_points", rpm)["rotating_frame_modes"][:4]]
+    ours = sorted(m["frequency_hz"] for m in bladefem_modes(None, rpm, capsys))[:4]
+    theirs = [m["natural_frequency_hz"] for m in point(rpm, "structural_points")["rotating_frame_modes"][:4]]
     assert ours == pytest.approx(theirs, rel=EDGE_FREQUENCY)
 
 
@@ -111,8 +95,8 @@ def test_without_mass_offsets_every_mode_agrees_above_rated(centred_blade, aerod
     bladefem's, every damping ratio within 8 % plus 0.15 percentage point, the edge modes' included (the first
     edge mode 0.916 % against 0.886 % at rated, 0.134 % against 0.089 % at 11 rpm, -1.023 % against -1.055 % at
     13.5 rpm), the frequencies within the tolerances of the stored blade's comparison."""
-    pairs = paired(reference("no_mass_offsets_points", rpm)["modes"][:COMPARED],
-                   bladefem_modes(centred_blade, aerodyn, rpm, capsys), rpm)
+    pairs = paired(point(rpm, "no_mass_offsets_points")["modes"][:COMPARED],
+                   bladefem_modes(aerodyn, rpm, capsys, centred_blade), rpm)
     assert len({id(ours) for _, ours, _ in pairs}) == len(pairs) == COMPARED
     for theirs, ours, shifted in pairs:
         edge = ours["kind"] == "edge"
@@ -124,14 +108,14 @@ def test_without_mass_offsets_a_constant_pitching_moment_agrees(centred_blade, t
     """Every airfoil's Cm constant (-0.1), the mass centres on the axis, 13.5 rpm: the first edge mode's damping
     -1.758 % against OpenFAST's -1.759 % (on the stored blade -1.50 % against -0.74 %), every compared mode's
     damping within the tolerance."""
-    stored = reference("no_mass_offsets_constant_cm_points", 13.5)
+    stored = point(13.5, "no_mass_offsets_constant_cm_points")
     script = _script()
     primary = script.bladefem_aerodyn(tmp_path)
     script.constant_pitching_moment(tmp_path, stored["constant_cm"])
-    pairs = paired(stored["modes"][:COMPARED], bladefem_modes(centred_blade, primary, 13.5, capsys), 13.5)
+    pairs = paired(stored["modes"][:COMPARED], bladefem_modes(primary, 13.5, capsys, centred_blade), 13.5)
     assert len({id(ours) for _, ours, _ in pairs}) == len(pairs) == COMPARED
     assert all(agree(theirs, ours) for theirs, ours, _ in pairs)
-    theirs, ours = first_edge(pairs)
+    theirs, ours = edge_pair(pairs)
     assert ours["damping_ratio"] < 0 and theirs["damping_ratio"] < 0
 
 
@@ -143,12 +127,12 @@ def test_openfasts_extra_edge_damping_is_even_in_the_pitching_moment(aerodyn, tm
     script = _script()
     minus = script.bladefem_aerodyn(tmp_path / "minus")
     script.scaled_pitching_moment(tmp_path / "minus", -1.0)
-    cases = ((reference("scaled_cm_points", 13.5, 1.0), aerodyn),
-             (reference("scaled_cm_points", 13.5, -1.0), minus),
-             (REFERENCE["no_pitching_moment_points"][0], _without_pitching_moment(aerodyn, tmp_path / "none")))
+    cases = ((point(13.5, "scaled_cm_points", 1.0), aerodyn),
+             (point(13.5, "scaled_cm_points", -1.0), minus),
+             (point(13.5, "no_pitching_moment_points"), without_pitching_moment(aerodyn, tmp_path / "none")))
     (plus_theirs, plus_ours), (minus_theirs, minus_ours), (zero_theirs, zero_ours) = [
-        first_edge(paired(point["modes"][:COMPARED], bladefem_modes(BLADE, deck, 13.5, capsys), 13.5))
-        for point, deck in cases]
+        edge_pair(paired(stored["modes"][:COMPARED], bladefem_modes(deck, 13.5, capsys), 13.5))
+        for stored, deck in cases]
 
     def parts(plus: dict, minus: dict, zero: dict) -> tuple[float, float]:
         z = [mode["damping_ratio"] for mode in (plus, minus, zero)]
@@ -158,16 +142,3 @@ def test_openfasts_extra_edge_damping_is_even_in_the_pitching_moment(aerodyn, tm
     odd_ours, even_ours = parts(plus_ours, minus_ours, zero_ours)
     assert abs(odd_ours - odd_theirs) <= DAMPING * abs(odd_theirs) + DAMPING_FLOOR
     assert abs(even_ours) < DAMPING_FLOOR < 2.5 * DAMPING_FLOOR < even_theirs
-
-
-def _without_pitching_moment(primary: Path, folder: Path) -> Path:
-    """A copy of ``primary``'s deck with UseBlCm False."""
-    import re
-    import shutil
-
-    shutil.copytree(primary.parents[1], folder)
-    copy = folder / primary.relative_to(primary.parents[1])
-    text, count = re.subn(r"(?m)^\s*\S+(\s+UseBlCm\s)", r"False\1", copy.read_text())
-    assert count == 1
-    copy.write_text(text)
-    return copy

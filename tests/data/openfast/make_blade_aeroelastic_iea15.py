@@ -216,22 +216,19 @@ def rotating_frame_modes(lin: Path, rpm: float, count: int = 12) -> list[dict]:
     (q, dq/dt) triplet, with the hub's angular velocity ``w = (Omega, 0, 0)`` in the states' axes (the shaft along
     X, blade 1 up, no precone)."""
     import numpy as np
+    from make_blade_aeroelastic import blade1_modes
     from make_standstill import read_lin
 
     names, A = read_lin(lin)
-    own = np.array(["BD_1 " in name for name in names])
-    block = A[np.ix_(own, own)]
-    half = block.shape[0] // 2
+    own = np.ix_(*2 * [np.array(["BD_1 " in name for name in names])])
+    half = len(A[own]) // 2
     omega = rpm * math.pi / 30.0
     spin = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -omega], [0.0, omega, 0.0]])
     S = np.eye(2 * half)
     for i in range(0, half, 3):
         S[half + i:half + i + 3, i:i + 3] = -spin
-    values = np.linalg.eigvals(S @ block @ np.linalg.inv(S) + np.kron(np.eye(2 * half // 3), -spin))
-    oscillating = values[(values.imag > 0) & (np.abs(values.imag) > 1e-9 * np.abs(values))]
-    modes = [{"natural_frequency_hz": float(abs(v) / (2 * np.pi)), "damped_frequency_hz": float(v.imag / (2 * np.pi)),
-              "damping_ratio": float(-v.real / abs(v))} for v in oscillating]
-    return sorted(modes, key=lambda mode: mode["natural_frequency_hz"])[:count]
+    A[own] = S @ A[own] @ np.linalg.inv(S) + np.kron(np.eye(2 * half // 3), -spin)
+    return [mode for mode in blade1_modes(names, A) if "natural_frequency_hz" in mode][:count]
 
 
 def main() -> None:
@@ -252,7 +249,8 @@ def main() -> None:
     points = []
     for rpm in rpms:
         folder = runs / (f"rpm{rpm:g}_order{order}_t{lin_time}{'' if aero else '_structural'}"
-                         f"{'_prebent' if prebent else ''}{'' if moment else '_nocm'}{'' if cm is None else f'_cm{cm:g}'}"
+                         f"{'_prebent' if prebent else ''}{'' if moment else '_nocm'}"
+                         f"{'' if cm is None else f'_cm{cm:g}'}"
                          f"{'' if factor is None else f'_cmx{factor:g}'}{'' if offsets else '_no_mass_offsets'}")
         if reduce:
             fst = folder / "IEA-15-240-RWT-Monopile" / FST
@@ -304,7 +302,7 @@ def main() -> None:
                           "aerodyn": "tests/data/iea15/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile_AeroDyn15.dat",
                           "script": "tests/data/openfast/make_blade_aeroelastic_iea15.py"},
            **{k: v for k, v in old.items() if k.endswith("points")},
-           key: sorted(kept + points, key=lambda p: p["rpm"])}
+           key: sorted(kept + points, key=lambda p: (p["rpm"], p.get("cm_factor", 0.0)))}
     path.write_text(json.dumps(out, indent=1) + "\n")
 
 
