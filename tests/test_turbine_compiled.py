@@ -39,9 +39,9 @@ def test_compiled_equations_equal_the_numpy_assembly(model):
 
 
 def test_nodal_force_hook_equals_the_numpy_generalized_forces(model):
-    """The kernel leaves each blade node's position (apex plus offset), velocity and the blade frames in ``work``;
-    nodal forces turn into generalized forces ``sum_p J_p^T F_p`` as in the numpy assembly (the path aerodynamic
-    loads take)."""
+    """The kernels leave each blade node's position (apex plus offset), velocity and the blade frames in ``work``;
+    nodal forces turn into generalized forces ``sum_p J_p^T F_p`` as in the numpy assembly (the path the output
+    rows' inertial loads take)."""
     from bladefem.models.turbine.compiled_kernels import nodal_forces
     compiled = compiled_equations(model)
     rng = np.random.default_rng(7)
@@ -49,7 +49,7 @@ def test_nodal_force_hook_equals_the_numpy_generalized_forces(model):
     forces = rng.normal(scale=1e3, size=model.blade_masses.shape + (3,))
     _, f = model.equations(q, u, blade_forces=forces)
     _, fc = compiled(q, u)
-    nodal_forces(fc, forces, compiled.work)
+    nodal_forces(fc, forces, q, u, compiled.data, compiled.work)
     np.testing.assert_allclose(fc, f, rtol=0, atol=1e-12 * np.abs(f).max())
     motion = model.motion(q, u)
     np.testing.assert_allclose(compiled.work[6], motion.apex.r, atol=1e-12)

@@ -81,6 +81,7 @@ def compile_notice(what: str, stream=None, prepare: Callable[[], None] | None = 
 
 def model_data(model) -> tuple:
     """The model's arrays in the order the kernels unpack them."""
+    from .compiled_invariants import blade_invariants
     tower, blade = model.tower_nodes, model.blade_nodes
     return (model.n,
             tower.across_flat.reshape(tower.k, tower.P, 3).copy(), tower.shortening_flat.reshape(4, 4, -1).copy(),
@@ -91,7 +92,9 @@ def model_data(model) -> tuple:
             model.fore_aft_tilt.copy(), model.side_side_tilt.copy(), model.yaw.copy(), model.azimuth.copy(),
             model.generator_angle.copy(), model.tilt.copy(), model.rigid_offsets.copy(), model.rigid_masses.copy(),
             np.array(model.inertias, dtype=float), model.gravity.copy(), model.K.copy(), model.C.copy(),
-            float(model.params.tower_base_height))
+            float(model.params.tower_base_height),
+            blade_invariants(blade.across_flat.reshape(blade.k, blade.P, 3), blade.shortening_flat.reshape(
+                blade.k, blade.k, -1), _axial(blade), model.blade_masses[0]))
 
 
 def _axial(nodes) -> NDArray:
@@ -166,7 +169,7 @@ class CompiledEquations:
         k, nodes = blade_across.shape[:2]
         self.work = (np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)), np.zeros((blades, nodes, 3)),
                      np.zeros((blades, nodes, 3, k)), np.zeros((blades, 6 + k, n)), np.zeros((blades, 3, 3)),
-                     np.zeros(3), np.zeros((3, n)), np.zeros((4, 3)))
+                     np.zeros(3), np.zeros((3, n)), np.zeros((5, 3)))
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
         self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`joined`

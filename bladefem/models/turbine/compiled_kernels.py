@@ -15,6 +15,8 @@ njit = cached_njit()
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
+    from .compiled_invariants import blade_inertia, pitched_frame, to_earth
+
 
     @njit(cache=True)
     def solve_spd(A, b):
@@ -196,24 +198,17 @@ if njit is not None:                                   # module-level kernels: n
         bias[order] = bias_axial
 
     @njit(cache=True)
-    def work_arrays(data):
-        """Per blade node: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3), R D (B, P, 3,
-        k); per blade the shared partials Z (B, 6 + k, n) and the blade frame (B, 3, 3); the apex position (3,);
-        the hub centre of mass's partial velocities (3, n); rows of (4, 3): the hub's bias acceleration, its
-        offset from the apex, the rotor's bias angular acceleration and the shaft axis; all earth components."""
-        n, b_across, b_rotations = data[0], data[5], data[10]
-        B, k, P = b_rotations.shape[0], b_across.shape[0], b_across.shape[1]
-        return (np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3)), np.zeros((B, P, 3, k)),
-                np.zeros((B, 6 + k, n)), np.zeros((B, 3, 3)), np.zeros(3), np.zeros((3, n)), np.zeros((4, 3)))
-
-    @njit(cache=True)
     def equations(q, u, data, work):
-        """Mass matrix M (n, n) and forcing f (n,) of ``M du/dt = f`` at (q, u); fills ``work`` with the blade
-        nodes' motion (:func:`work_arrays`: node positions are ``apex + rho``), so that nodal forces F (B, P, 3)
-        add ``Z_b^T sum_p G_p^T F_p`` (:func:`nodal_forces`)."""
+        """Mass matrix M (n, n) and forcing f (n,) of ``M du/dt = f`` at (q, u). Fills in ``work``
+        (:class:`.compiled.CompiledEquations`) per blade the shared partials Z (B, 6 + k, n) and the blade frame
+        (B, 3, 3); the apex position (3,); the hub centre of mass's partial velocities (3, n); rows of (5, 3): the
+        hub's bias acceleration, its offset from the apex, the rotor's bias angular acceleration, the shaft axis and
+        the apex's bias acceleration; all earth components. The blades' inertia comes from their modal integrals
+        (:mod:`.compiled_invariants`); :func:`blade_node_motion` fills the nodes' own motion where a sum over them
+        needs it (the output rows, :func:`nodal_forces`)."""
         (n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns, b_rotations,
          fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
-         K, C, base_height) = data
+         K, C, base_height, b_invariants) = data
         rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w, hub_J_w, hub_w = work
         M = np.zeros((n, n))
         f = np.zeros(n)
@@ -277,14 +272,12 @@ if njit is not None:                                   # module-level kernels: n
                 for r in range(3):
                     hub_w[0, r] = a[r]
                     hub_w[1, r] = top_r[r] + rho[r] - apex_w[r]
-        # blade nodes: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade]
-        kb = b_across.shape[0]
-        D = np.zeros((3, kb))
-        moving = np.zeros(3)
-        apex_v = np.zeros(3)
+        # blades: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade], summed by the modal integrals
         for r in range(3):
-            for c in range(n):
-                apex_v[r] += apex_J[r, c] * u[c]
+            hub_w[4, r] = apex_a[r]
+        kb = b_across.shape[0]
+        A_local, F_local = np.zeros((6 + kb, 6 + kb)), np.zeros(6 + kb)
+        g, w, al = np.zeros(3), np.zeros(3), np.zeros(3)
         for b in range(b_rotations.shape[0]):
             Rb = np.zeros((3, 3))
             for r in range(3):
@@ -297,42 +290,15 @@ if njit is not None:                                   # module-level kernels: n
             for i in range(kb):
                 qb[i] = q[cols[i]]
                 ub[i] = u[cols[i]]
-            A = np.zeros((6 + kb, 6 + kb))
-            F = np.zeros(6 + kb)
-            G = np.zeros((3, 6 + kb))
-            G[0, 0] = 1.0
-            G[1, 1] = 1.0
-            G[2, 2] = 1.0
-            w0, w1, w2 = wL[0], wL[1], wL[2]
-            for p in range(b_axial.shape[0]):
-                beam_node(b_across, b_short, b_axial, p, qb, ub, 0, D, d, rate, bias)
-                rho = rho_w[b, p]
+            Ri = pitched_frame(Rb, b_invariants[9])
+            for c in range(3):                           # the components in the frame of the integrals
+                g[c] = w[c] = al[c] = 0.0
                 for r in range(3):
-                    rho[r] = Rb[r, 0] * d[0] + Rb[r, 1] * d[1] + Rb[r, 2] * d[2]
-                    moving[r] = Rb[r, 0] * rate[0] + Rb[r, 1] * rate[1] + Rb[r, 2] * rate[2]
-                    for i in range(kb):
-                        G[r, 6 + i] = Rb[r, 0] * D[0, i] + Rb[r, 1] * D[1, i] + Rb[r, 2] * D[2, i]
-                        RD_w[b, p, r, i] = G[r, 6 + i]
-                # a = a_apex + alpha x rho + omega x (omega x rho) + 2 omega x R d' + R d'' (d'' is axial only)
-                wr0 = w1 * rho[2] - w2 * rho[1]
-                wr1 = w2 * rho[0] - w0 * rho[2]
-                wr2 = w0 * rho[1] - w1 * rho[0]
-                velocity_w[b, p, 0] = apex_v[0] + wr0 + moving[0]
-                velocity_w[b, p, 1] = apex_v[1] + wr1 + moving[1]
-                velocity_w[b, p, 2] = apex_v[2] + wr2 + moving[2]
-                bias_w[b, p, 0] = apex_a[0] + alL[1] * rho[2] - alL[2] * rho[1] + w1 * wr2 - w2 * wr1 \
-                    + 2.0 * (w1 * moving[2] - w2 * moving[1]) + Rb[0, 0] * bias[0]
-                bias_w[b, p, 1] = apex_a[1] + alL[2] * rho[0] - alL[0] * rho[2] + w2 * wr0 - w0 * wr2 \
-                    + 2.0 * (w2 * moving[0] - w0 * moving[2]) + Rb[1, 0] * bias[0]
-                bias_w[b, p, 2] = apex_a[2] + alL[0] * rho[1] - alL[1] * rho[0] + w0 * wr1 - w1 * wr0 \
-                    + 2.0 * (w0 * moving[1] - w1 * moving[0]) + Rb[2, 0] * bias[0]
-                m = b_mass[p]
-                for r in range(3):
-                    load[r] = m * (gravity[r] - bias_w[b, p, r])
-                G[0, 4], G[0, 5] = rho[2], -rho[1]
-                G[1, 3], G[1, 5] = -rho[2], rho[0]
-                G[2, 3], G[2, 4] = rho[1], -rho[0]
-                accumulate_node(A, F, G, m, load)
+                    g[c] += Ri[r, c] * (gravity[r] - apex_a[r])
+                    w[c] += Ri[r, c] * wL[r]
+                    al[c] += Ri[r, c] * alL[r]
+            blade_inertia(b_invariants, qb, ub, g, w, al, A_local, F_local)
+            A, F = to_earth(A_local, F_local, Ri)
             Z = Z_w[b]
             store_block(Z, 0, 0, apex_J)
             store_block(Z, 3, 0, WL)
@@ -351,9 +317,55 @@ if njit is not None:                                   # module-level kernels: n
         return M, f
 
     @njit(cache=True)
-    def nodal_forces(f, forces, work):
+    def blade_node_motion(q, u, data, work):
+        """Per blade node, in ``work``: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3)
+        and R D (B, P, 3, k), earth components, at the (q, u) of the last :func:`equations` call (whose frames,
+        partials and apex motion it takes from ``work``)."""
+        b_across, b_short, b_axial, b_columns = data[5], data[6], data[7], data[9]
+        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, hub_w = work[0], work[1], work[2], work[3], work[4], \
+            work[5], work[8]
+        n, kb = q.shape[0], b_across.shape[0]
+        D = np.zeros((3, kb))
+        d, rate, bias, moving = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
+        apex_v, w = np.zeros(3), np.zeros(3)
+        for r in range(3):
+            for c in range(n):
+                apex_v[r] += Z_w[0, r, c] * u[c]
+                w[r] += Z_w[0, 3 + r, c] * u[c]
+        al, apex_a = hub_w[2], hub_w[4]
+        qb, ub = np.empty(kb), np.empty(kb)
+        for b in range(frame_w.shape[0]):
+            Rb = frame_w[b]
+            for i in range(kb):
+                qb[i] = q[b_columns[b, i]]
+                ub[i] = u[b_columns[b, i]]
+            for p in range(b_axial.shape[0]):
+                beam_node(b_across, b_short, b_axial, p, qb, ub, 0, D, d, rate, bias)
+                rho = rho_w[b, p]
+                for r in range(3):
+                    rho[r] = Rb[r, 0] * d[0] + Rb[r, 1] * d[1] + Rb[r, 2] * d[2]
+                    moving[r] = Rb[r, 0] * rate[0] + Rb[r, 1] * rate[1] + Rb[r, 2] * rate[2]
+                    for i in range(kb):
+                        RD_w[b, p, r, i] = Rb[r, 0] * D[0, i] + Rb[r, 1] * D[1, i] + Rb[r, 2] * D[2, i]
+                # a = a_apex + alpha x rho + omega x (omega x rho) + 2 omega x R d' + R d'' (d'' is axial only)
+                wr0 = w[1] * rho[2] - w[2] * rho[1]
+                wr1 = w[2] * rho[0] - w[0] * rho[2]
+                wr2 = w[0] * rho[1] - w[1] * rho[0]
+                velocity_w[b, p, 0] = apex_v[0] + wr0 + moving[0]
+                velocity_w[b, p, 1] = apex_v[1] + wr1 + moving[1]
+                velocity_w[b, p, 2] = apex_v[2] + wr2 + moving[2]
+                bias_w[b, p, 0] = apex_a[0] + al[1] * rho[2] - al[2] * rho[1] + w[1] * wr2 - w[2] * wr1 \
+                    + 2.0 * (w[1] * moving[2] - w[2] * moving[1]) + Rb[0, 0] * bias[0]
+                bias_w[b, p, 1] = apex_a[1] + al[2] * rho[0] - al[0] * rho[2] + w[2] * wr0 - w[0] * wr2 \
+                    + 2.0 * (w[2] * moving[0] - w[0] * moving[2]) + Rb[1, 0] * bias[0]
+                bias_w[b, p, 2] = apex_a[2] + al[0] * rho[1] - al[1] * rho[0] + w[0] * wr1 - w[1] * wr0 \
+                    + 2.0 * (w[0] * moving[1] - w[1] * moving[0]) + Rb[2, 0] * bias[0]
+
+    @njit(cache=True)
+    def nodal_forces(f, forces, q, u, data, work):
         """f += sum_b Z_b^T sum_p G_p^T F_bp: the generalized forces of forces (B, P, 3) (N, earth components)
-        acting on the blade nodes whose motion :func:`equations` left in ``work``."""
+        acting on the blade nodes at the (q, u) of the last :func:`equations` call (:func:`blade_node_motion`)."""
+        blade_node_motion(q, u, data, work)
         rho_w, RD_w, Z_w = work[0], work[3], work[4]
         B, P, k = RD_w.shape[0], RD_w.shape[1], RD_w.shape[3]
         for b in range(B):

@@ -20,6 +20,7 @@ COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_tor
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
     from .compiled_loads import law_torque, load_wake, loaded_equations
+    from .compiled_kernels import blade_node_motion
     from .compiled_tower_base import add_tower_and_nacelle
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -47,6 +48,7 @@ if njit is not None:                                   # module-level kernels: n
         holds a locked generator at its speed; tower-base moment: the rotor's loads carried from the apex to the
         base, plus the tower, nacelle and rotary inertias (:func:`.compiled_tower_base.add_tower_and_nacelle`)."""
         structure, law = data[0], data[2]
+        blade_node_motion(q, u, structure, work[0])
         n, b_mass, gravity, C = structure[0], structure[8], structure[20], structure[22]
         generator, rigid_mass, inertias = structure[15], structure[18], structure[19]
         rho_w, bias_w, RD_w, Z_w, frame_w = work[0][0], work[0][2], work[0][3], work[0][4], work[0][5]

@@ -32,7 +32,8 @@ def pitch_arrays(pitch, base, references, structure, aero):
     aerodynamic tuples of :class:`~.compiled.CompiledEquations`): the shapes' across components, the sections' and
     their slopes turned by ``pitch - base`` from the ``references`` (shapes, sections, slopes, angles) built at
     ``base``, the aerodynamic-centre offsets turned alike, the offset nodes' motion along the axis set from the
-    turned slopes, ``pitch - base`` added to the sections' angles and ``pitch`` set as the kernels' pitch. Loops,
+    turned slopes, ``pitch - base`` added to the sections' angles and ``pitch`` set as the kernels' pitch; the
+    blades' modal integrals (:mod:`.compiled_invariants`, built at ``base``) take the turn as theirs. Loops,
     so that numba compiles the same definition for the compiled controller loop."""
     blade, value, slope, theta, offset = references
     delta = pitch - base
@@ -42,6 +43,8 @@ def pitch_arrays(pitch, base, references, structure, aero):
         y, z = offset[p, 1], offset[p, 2]
         offsets[p, 1], offsets[p, 2] = y * c + z * s, -y * s + z * c
     aero[26][0] = pitch
+    turn = structure[24][9]
+    turn[0], turn[1] = c, s
     for i in range(blade.shape[0]):
         for p in range(blade.shape[1]):
             y, z = blade[i, p, 1], blade[i, p, 2]
