@@ -147,3 +147,51 @@ def test_dormand_prince_tableau_is_scipys():
     from bladefem.models.turbine.compiled import _dp54_tableau
     for ours, theirs in zip(_dp54_tableau(), (RK45.A, RK45.B, RK45.C, RK45.E, RK45.P)):
         np.testing.assert_array_equal(ours, theirs)
+
+
+def test_modal_integrals_equal_the_sums_over_the_nodes():
+    """A blade's inertia from its modal integrals (:mod:`.compiled_invariants`) equals the sums over its nodes of
+    ``m G^T G`` and ``G^T m (g - a)`` (random shapes, an unsymmetric shortening, random motion), to rounding; and
+    with the shapes turned by a pitch, the integrals of the unturned shapes in the turned frame
+    (:func:`pitched_frame`) equal the turned shapes' sums."""
+    if os.environ.get("BLADEFEM_NO_NUMBA"):
+        pytest.skip("compiled kernels switched off")
+    from bladefem.models.turbine.compiled_invariants import blade_inertia, blade_invariants, pitched_frame
+    rng = np.random.default_rng(2)
+    k, P = 3, 9
+    across, S = rng.normal(size=(k, P, 3)), rng.normal(size=(k, k, P))
+    axial, m = np.linspace(1.5, 60.0, P), rng.uniform(100.0, 500.0, P)
+    q, u, g, w, al = (rng.normal(size=size) for size in (k, k, 3, 3, 3))
+
+    def skew(v):
+        return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+    def node_sums(across):
+        A, F = np.zeros((6 + k, 6 + k)), np.zeros(6 + k)
+        for p in range(P):
+            d = across[:, p].T @ q
+            d[0] += axial[p] - 0.5 * q @ S[:, :, p] @ q
+            D = across[:, p].T.copy()
+            D[0] -= S[:, :, p] @ q
+            a = np.cross(al, d) + np.cross(w, np.cross(w, d)) + 2.0 * np.cross(w, D @ u)
+            a[0] -= u @ S[:, :, p] @ u
+            G = np.hstack([np.eye(3), -skew(d), D])
+            A += m[p] * G.T @ G
+            F += G.T @ (m[p] * (g - a))
+        return A, F
+
+    A, F = np.zeros((6 + k, 6 + k)), np.zeros(6 + k)
+    blade_inertia(blade_invariants(across, S, axial, m), q, u, g, w, al, A, F)
+    A_ref, F_ref = node_sums(across)
+    np.testing.assert_allclose(A, A_ref, rtol=0, atol=1e-13 * np.abs(A_ref).max())
+    np.testing.assert_allclose(F, F_ref, rtol=0, atol=1e-13 * np.abs(F_ref).max())
+    c, s = np.cos(0.3), np.sin(0.3)
+    turned = across.copy()
+    turned[..., 1], turned[..., 2] = across[..., 1] * c + across[..., 2] * s, -across[..., 1] * s + across[..., 2] * c
+    Q = pitched_frame(np.eye(3), np.array([c, s]))
+    T = np.eye(6 + k)
+    T[:3, :3] = T[3:6, 3:6] = Q
+    blade_inertia(blade_invariants(across, S, axial, m), q, u, Q.T @ g, Q.T @ w, Q.T @ al, A, F)
+    A_ref, F_ref = node_sums(turned)
+    np.testing.assert_allclose(T @ A @ T.T, A_ref, rtol=0, atol=1e-13 * np.abs(A_ref).max())
+    np.testing.assert_allclose(T @ F, F_ref, rtol=0, atol=1e-13 * np.abs(F_ref).max())
