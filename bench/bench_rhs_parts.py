@@ -7,7 +7,8 @@ pitch) is built and run for 0.1 s by the command (the kernels compiled or loaded
 initial state, each part is called ``--calls`` times in a compiled loop (no Python between calls) and its mean time
 printed: the state rate with the BEM solved (the first right-hand side of an ABM4 interval), with the BEM's
 induction held (the predicted end), with an output row; and its pieces: the structural equations (the Kane model's
-quadrature points named), the aerodynamic loads with the BEM solved and held, the solve of the mass matrix, the
+quadrature points named: the blades' now enter through their modal integrals), the aerodynamic loads with the BEM
+solved and held, of these the aerodynamic nodes' kinematics and wind, the solve of the mass matrix, the
 pitch set on the BEM's arrays, the controller library's call. Markdown table; the load average is printed, as the
 machine may be shared.
 """
@@ -31,7 +32,7 @@ def loops():
 
     from bladefem.models.turbine.compiled_control import call_library
     from bladefem.models.turbine.compiled_kernels import equations as structural
-    from bladefem.models.turbine.compiled_loads import add_aero
+    from bladefem.models.turbine.compiled_loads import add_aero, node_kinematics
     from bladefem.models.turbine.compiled_state import state_rate
     from bladefem.models.turbine.pitching import set_pitch
 
@@ -61,6 +62,13 @@ def loops():
         return f[0]
 
     @njit
+    def kinematics_loop(n, q, u, structure, aero, work):
+        total = 0.0
+        for _ in range(n):
+            total += node_kinematics(q, u, structure, aero, work[0], work[1], 1.0)[0]
+        return total
+
+    @njit
     def solve_loop(n, x, M, f, index):
         total = 0.0
         for _ in range(n):
@@ -79,7 +87,7 @@ def loops():
             total += call_library(function, records, buffers)
         return total
 
-    return rate_loop, structure_loop, aero_loop, solve_loop, pitch_loop, library_loop
+    return rate_loop, structure_loop, aero_loop, kinematics_loop, solve_loop, pitch_loop, library_loop
 
 
 def timed(calls: int, loop, *args) -> float:
@@ -107,7 +115,7 @@ def main() -> None:
         return result
 
     def parts(run, controller, times) -> None:
-        rate_loop, structure_loop, aero_loop, solve_loop, pitch_loop, library_loop = loops()
+        rate_loop, structure_loop, aero_loop, kinematics_loop, solve_loop, pitch_loop, library_loop = loops()
         compiled, system = run.compiled, run.system
         x = np.ascontiguousarray(system.initial_state().astype(float))
         index, q0, u0 = (np.ascontiguousarray(a) for a in (system.index, system.q0, system.u0))
@@ -128,6 +136,8 @@ def main() -> None:
                      timed(calls, aero_loop, q0, u0, structure, aero, work, 0.0)))
         rows.append(("aerodynamic loads, the induction held", timed(calls, aero_loop, q0, u0, structure, aero, work,
                                                                    1.0)))
+        rows.append(("of these, the aerodynamic nodes' motion, axes and wind",
+                     timed(calls, kinematics_loop, q0, u0, structure, aero, work)))
         M, f = compiled(q0, u0)
         rows.append(("the mass matrix solved for the accelerations", timed(calls, solve_loop, x, M, f, index)))
         pitcher = run.pitcher
