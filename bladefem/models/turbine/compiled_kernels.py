@@ -203,13 +203,15 @@ if njit is not None:                                   # module-level kernels: n
         (:class:`.compiled.CompiledEquations`) per blade the shared partials Z (B, 6 + k, n) and the blade frame
         (B, 3, 3); the apex position (3,); the hub centre of mass's partial velocities (3, n); rows of (5, 3): the
         hub's bias acceleration, its offset from the apex, the rotor's bias angular acceleration, the shaft axis and
-        the apex's bias acceleration; all earth components. The blades' inertia comes from their modal integrals
-        (:mod:`.compiled_invariants`); :func:`blade_node_motion` fills the nodes' own motion where a sum over them
-        needs it (the output rows, :func:`nodal_forces`)."""
+        the apex's bias acceleration; per blade its ``A = sum m G^T G`` (B, 6 + k, 6 + k) and ``F = sum G^T m (g -
+        a_bias)`` (B, 6 + k) over its nodes, from their modal integrals (:mod:`.compiled_invariants`): the blade's
+        gravity and inertial loads at accelerations ``Z du`` are then ``F - A Z du`` (the force, and the moment
+        about the apex); all earth components. :func:`blade_node_motion` fills the nodes' own motion where a sum
+        over them needs it (:func:`nodal_forces`)."""
         (n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns, b_rotations,
          fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
          K, C, base_height, b_invariants) = data
-        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, apex_w, hub_J_w, hub_w = work
+        Z_w, frame_w, apex_w, hub_J_w, hub_w, blade_A, blade_F = work[4:]
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
@@ -299,6 +301,8 @@ if njit is not None:                                   # module-level kernels: n
                     al[c] += Ri[r, c] * alL[r]
             blade_inertia(b_invariants, qb, ub, g, w, al, A_local, F_local)
             A, F = to_earth(A_local, F_local, Ri)
+            store_block(blade_A[b], 0, 0, A)
+            store_row(blade_F, b, F)
             Z = Z_w[b]
             store_block(Z, 0, 0, apex_J)
             store_block(Z, 3, 0, WL)

@@ -20,7 +20,6 @@ COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_tor
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
     from .compiled_loads import law_torque, load_wake, loaded_equations
-    from .compiled_kernels import blade_node_motion
     from .compiled_tower_base import add_tower_and_nacelle
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -48,16 +47,15 @@ if njit is not None:                                   # module-level kernels: n
         holds a locked generator at its speed; tower-base moment: the rotor's loads carried from the apex to the
         base, plus the tower, nacelle and rotary inertias (:func:`.compiled_tower_base.add_tower_and_nacelle`)."""
         structure, law = data[0], data[2]
-        blade_node_motion(q, u, structure, work[0])
-        n, b_mass, gravity, C = structure[0], structure[8], structure[20], structure[22]
+        n, gravity, C = structure[0], structure[20], structure[22]
         generator, rigid_mass, inertias = structure[15], structure[18], structure[19]
-        rho_w, bias_w, RD_w, Z_w, frame_w = work[0][0], work[0][2], work[0][3], work[0][4], work[0][5]
-        hub_J, hub = work[0][7], work[0][8]
+        Z_w, frame_w, hub_J, hub, blade_A, blade_F = work[0][4], work[0][5], work[0][7], work[0][8], \
+            work[0][9], work[0][10]
         state = work[1]
         a_rho, a_vel, a_force, a_moment, summary = state[0], state[1], state[7], state[8], state[9]
-        k = RD_w.shape[3]
+        k = blade_F.shape[1] - 6
         g_index = np.argmax(np.abs(generator))
-        a, load, arm, force, moment = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
+        load, arm, force, moment = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
         du = np.zeros(n)
         free = free_accelerations(M, f, index)
         for i in range(index.shape[0]):
@@ -77,20 +75,21 @@ if njit is not None:                                   # module-level kernels: n
                 for r in range(3):
                     for c in range(n):
                         omega[r] += Z[3 + r, c] * u[c]
-            blade_moment = np.zeros(3)
-            for p in range(rho_w.shape[1]):
-                rho = rho_w[b, p]
-                a[0] = shared[0] + shared[4] * rho[2] - shared[5] * rho[1]
-                a[1] = shared[1] + shared[5] * rho[0] - shared[3] * rho[2]
-                a[2] = shared[2] + shared[3] * rho[1] - shared[4] * rho[0]
-                for r in range(3):
-                    for i in range(k):
-                        a[r] += RD_w[b, p, r, i] * shared[6 + i]
-                    load[r] = b_mass[p] * (gravity[r] - a[r] - bias_w[b, p, r])
-                    arm[r] = rho[r] - hub_radius * R[r, 0]
-                    force[r] += load[r]
-                accumulate_moment(blade_moment, arm, load)
-                accumulate_moment(moment, rho, load)
+            # the blade's gravity and inertial loads: sum_p G_p^T m (g - a_p) = F - A Z du (force; moment about the
+            # apex), carried to its root at hub_radius along its axis
+            blade_moment, from_root = np.zeros(3), np.zeros(3)
+            for r in range(3):
+                blade_load = blade_F[b, r]
+                blade_torque = blade_F[b, 3 + r]
+                for c in range(6 + k):
+                    blade_load -= blade_A[b, r, c] * shared[c]
+                    blade_torque -= blade_A[b, 3 + r, c] * shared[c]
+                load[r] = blade_load
+                blade_moment[r] = blade_torque
+                moment[r] += blade_torque
+                force[r] += blade_load
+                from_root[r] = -hub_radius * R[r, 0]               # the apex from the root
+            accumulate_moment(blade_moment, from_root, load)
             for p in range(a_rho.shape[1]):
                 for r in range(3):
                     arm[r] = a_rho[b, p, r] - hub_radius * R[r, 0]
