@@ -38,24 +38,20 @@ def test_compiled_equations_equal_the_numpy_assembly(model):
         np.testing.assert_allclose(fc, f, rtol=0, atol=1e-13 * np.abs(f).max())
 
 
-def test_nodal_force_hook_equals_the_numpy_generalized_forces(model):
-    """The kernels leave each blade node's position (apex plus offset), velocity and the blade frames in ``work``;
-    nodal forces turn into generalized forces ``sum_p J_p^T F_p`` as in the numpy assembly (the path the output
-    rows' inertial loads take)."""
-    from bladefem.models.turbine.compiled_kernels import nodal_forces
+def test_kernel_leaves_the_frames_and_the_apex_of_the_numpy_motion(model):
+    """The kernel leaves the blade frames, the apex position and each blade's shared partials ``Z = [J_apex;
+    W_rotor; E_blade]`` in ``work`` (what the aerodynamic loads and the output rows take) as the numpy kinematics
+    has them."""
     compiled = compiled_equations(model)
     rng = np.random.default_rng(7)
     q, u = rng.normal(scale=0.5, size=model.n), rng.normal(scale=0.5, size=model.n)
-    forces = rng.normal(scale=1e3, size=model.blade_masses.shape + (3,))
-    _, f = model.equations(q, u, blade_forces=forces)
-    _, fc = compiled(q, u)
-    nodal_forces(fc, forces, q, u, compiled.data, compiled.work)
-    np.testing.assert_allclose(fc, f, rtol=0, atol=1e-12 * np.abs(f).max())
+    compiled(q, u)
+    Z, frames, apex = compiled.work[:3]
     motion = model.motion(q, u)
-    np.testing.assert_allclose(compiled.work[6], motion.apex.r, atol=1e-12)
-    np.testing.assert_allclose(compiled.work[0] + compiled.work[6], motion.blades.r, atol=1e-12)
-    np.testing.assert_allclose(compiled.work[5], motion.blade_frames.R, atol=1e-12)
-    np.testing.assert_allclose(compiled.work[1], motion.blades.velocity(u), atol=1e-12)
+    np.testing.assert_allclose(apex, motion.apex.r, atol=1e-12)
+    np.testing.assert_allclose(frames, motion.blade_frames.R, atol=1e-12)
+    np.testing.assert_allclose(Z[:, :3], np.broadcast_to(motion.apex.J, Z[:, :3].shape), atol=1e-12)
+    np.testing.assert_allclose(Z[:, 3:6], np.broadcast_to(motion.rotor.W, Z[:, 3:6].shape), atol=1e-12)
 
 
 def test_compiled_derivative_of_a_locked_system(model):

@@ -197,34 +197,19 @@ if njit is not None:                                   # module-level kernels: n
         return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
     @njit(cache=True)
-    def to_earth(A_local, F_local, R):
-        """(T A T^T, T F) for T = diag(R, R, I): a blade's :func:`blade_inertia` in earth components (the
-        translation and rotation coordinates turned by the blade frame R, the shape coordinates left)."""
-        c = A_local.shape[0]
-        T = np.zeros((c, c))
+    def to_blade(Z, R):
+        """T^T Z for T = diag(R, R, I): a blade's partials Z (6 + k, n) (translation, rotation rows in earth
+        components, shape rows) with the translation and rotation rows in the frame R's components, where
+        :func:`blade_inertia` gives A and F (so that ``Z^T T A T^T Z = (T^T Z)^T A (T^T Z)``)."""
+        out = Z.copy()
         for block in range(2):
-            for r in range(3):
+            for c in range(Z.shape[1]):
                 for s in range(3):
-                    T[3 * block + r, 3 * block + s] = R[r, s]
-        for i in range(6, c):
-            T[i, i] = 1.0
-        TA = np.zeros((c, c))
-        F = np.zeros(c)
-        for r in range(c):
-            for s in range(c):
-                t = T[r, s]
-                if t != 0.0:
-                    F[r] += t * F_local[s]
-                    for j in range(c):
-                        TA[r, j] += t * A_local[s, j]
-        A = np.zeros((c, c))
-        for r in range(c):
-            for j in range(c):
-                value = 0.0
-                for s in range(c):
-                    value += TA[r, s] * T[j, s]
-                A[r, j] = value
-        return A, F
+                    value = 0.0
+                    for r in range(3):
+                        value += R[r, s] * Z[3 * block + r, c]
+                    out[3 * block + s, c] = value
+        return out
 
     @njit(cache=True)
     def pitched_frame(R, turn):

@@ -15,7 +15,7 @@ njit = cached_njit()
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
-    from .compiled_invariants import blade_inertia, pitched_frame, to_earth
+    from .compiled_invariants import blade_inertia, pitched_frame, to_blade
 
 
     @njit(cache=True)
@@ -203,15 +203,15 @@ if njit is not None:                                   # module-level kernels: n
         (:class:`.compiled.CompiledEquations`) per blade the shared partials Z (B, 6 + k, n) and the blade frame
         (B, 3, 3); the apex position (3,); the hub centre of mass's partial velocities (3, n); rows of (5, 3): the
         hub's bias acceleration, its offset from the apex, the rotor's bias angular acceleration, the shaft axis and
-        the apex's bias acceleration; per blade its ``A = sum m G^T G`` (B, 6 + k, 6 + k) and ``F = sum G^T m (g -
-        a_bias)`` (B, 6 + k) over its nodes, from their modal integrals (:mod:`.compiled_invariants`): the blade's
-        gravity and inertial loads at accelerations ``Z du`` are then ``F - A Z du`` (the force, and the moment
-        about the apex); all earth components. :func:`blade_node_motion` fills the nodes' own motion where a sum
-        over them needs it (:func:`nodal_forces`)."""
+        the apex's bias acceleration, all earth components; per blade its ``A = sum m G^T G`` (B, 6 + k, 6 + k) and
+        ``F = sum G^T m (g - a_bias)`` (B, 6 + k) over its nodes, from their modal integrals
+        (:mod:`.compiled_invariants`), in the frame of the integrals (:func:`.compiled_invariants.pitched_frame`):
+        the blade's gravity and inertial loads at accelerations ``Z du`` are then ``F - A T^T Z du`` there (the
+        force, and the moment about the apex; T of :func:`.compiled_invariants.to_blade`)."""
         (n, t_across, t_short, t_axial, t_mass, b_across, b_short, b_axial, b_mass, b_columns, b_rotations,
          fore_aft, side_side, yaw, azimuth, generator, tilt, rigid_offsets, rigid_mass, inertias, gravity,
          K, C, base_height, b_invariants) = data
-        Z_w, frame_w, apex_w, hub_J_w, hub_w, blade_A, blade_F = work[4:]
+        Z_w, frame_w, apex_w, hub_J_w, hub_w, blade_A, blade_F = work
         M = np.zeros((n, n))
         f = np.zeros(n)
         # tower nodes: earth frame, fixed origin; J_p = D_p over the tower columns
@@ -278,7 +278,6 @@ if njit is not None:                                   # module-level kernels: n
         for r in range(3):
             hub_w[4, r] = apex_a[r]
         kb = b_across.shape[0]
-        A_local, F_local = np.zeros((6 + kb, 6 + kb)), np.zeros(6 + kb)
         g, w, al = np.zeros(3), np.zeros(3), np.zeros(3)
         for b in range(b_rotations.shape[0]):
             Rb = np.zeros((3, 3))
@@ -299,10 +298,8 @@ if njit is not None:                                   # module-level kernels: n
                     g[c] += Ri[r, c] * (gravity[r] - apex_a[r])
                     w[c] += Ri[r, c] * wL[r]
                     al[c] += Ri[r, c] * alL[r]
-            blade_inertia(b_invariants, qb, ub, g, w, al, A_local, F_local)
-            A, F = to_earth(A_local, F_local, Ri)
-            store_block(blade_A[b], 0, 0, A)
-            store_row(blade_F, b, F)
+            A, F = blade_A[b], blade_F[b]
+            blade_inertia(b_invariants, qb, ub, g, w, al, A, F)
             Z = Z_w[b]
             store_block(Z, 0, 0, apex_J)
             store_block(Z, 3, 0, WL)
@@ -310,7 +307,7 @@ if njit is not None:                                   # module-level kernels: n
                 for c in range(n):
                     Z[6 + i, c] = 0.0
                 Z[6 + i, cols[i]] = 1.0
-            add_group(M, f, A, F, Z)
+            add_group(M, f, A, F, to_blade(Z, Ri))
         # rigid bodies with one principal inertia: nacelle about yaw, hub and generator about the shaft
         add_rotor_body(M, f, RN, wN, WN, alN, 2, inertias[0])
         add_rotor_body(M, f, RL, wL, WL, alL, 0, inertias[1])
@@ -319,72 +316,3 @@ if njit is not None:                                   # module-level kernels: n
             for j in range(n):
                 f[i] -= K[i, j] * q[j] + C[i, j] * u[j]
         return M, f
-
-    @njit(cache=True)
-    def blade_node_motion(q, u, data, work):
-        """Per blade node, in ``work``: offset from the apex rho, absolute velocity, bias acceleration (B, P, 3)
-        and R D (B, P, 3, k), earth components, at the (q, u) of the last :func:`equations` call (whose frames,
-        partials and apex motion it takes from ``work``)."""
-        b_across, b_short, b_axial, b_columns = data[5], data[6], data[7], data[9]
-        rho_w, velocity_w, bias_w, RD_w, Z_w, frame_w, hub_w = work[0], work[1], work[2], work[3], work[4], \
-            work[5], work[8]
-        n, kb = q.shape[0], b_across.shape[0]
-        D = np.zeros((3, kb))
-        d, rate, bias, moving = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
-        apex_v, w = np.zeros(3), np.zeros(3)
-        for r in range(3):
-            for c in range(n):
-                apex_v[r] += Z_w[0, r, c] * u[c]
-                w[r] += Z_w[0, 3 + r, c] * u[c]
-        al, apex_a = hub_w[2], hub_w[4]
-        qb, ub = np.empty(kb), np.empty(kb)
-        for b in range(frame_w.shape[0]):
-            Rb = frame_w[b]
-            for i in range(kb):
-                qb[i] = q[b_columns[b, i]]
-                ub[i] = u[b_columns[b, i]]
-            for p in range(b_axial.shape[0]):
-                beam_node(b_across, b_short, b_axial, p, qb, ub, 0, D, d, rate, bias)
-                rho = rho_w[b, p]
-                for r in range(3):
-                    rho[r] = Rb[r, 0] * d[0] + Rb[r, 1] * d[1] + Rb[r, 2] * d[2]
-                    moving[r] = Rb[r, 0] * rate[0] + Rb[r, 1] * rate[1] + Rb[r, 2] * rate[2]
-                    for i in range(kb):
-                        RD_w[b, p, r, i] = Rb[r, 0] * D[0, i] + Rb[r, 1] * D[1, i] + Rb[r, 2] * D[2, i]
-                # a = a_apex + alpha x rho + omega x (omega x rho) + 2 omega x R d' + R d'' (d'' is axial only)
-                wr0 = w[1] * rho[2] - w[2] * rho[1]
-                wr1 = w[2] * rho[0] - w[0] * rho[2]
-                wr2 = w[0] * rho[1] - w[1] * rho[0]
-                velocity_w[b, p, 0] = apex_v[0] + wr0 + moving[0]
-                velocity_w[b, p, 1] = apex_v[1] + wr1 + moving[1]
-                velocity_w[b, p, 2] = apex_v[2] + wr2 + moving[2]
-                bias_w[b, p, 0] = apex_a[0] + al[1] * rho[2] - al[2] * rho[1] + w[1] * wr2 - w[2] * wr1 \
-                    + 2.0 * (w[1] * moving[2] - w[2] * moving[1]) + Rb[0, 0] * bias[0]
-                bias_w[b, p, 1] = apex_a[1] + al[2] * rho[0] - al[0] * rho[2] + w[2] * wr0 - w[0] * wr2 \
-                    + 2.0 * (w[2] * moving[0] - w[0] * moving[2]) + Rb[1, 0] * bias[0]
-                bias_w[b, p, 2] = apex_a[2] + al[0] * rho[1] - al[1] * rho[0] + w[0] * wr1 - w[1] * wr0 \
-                    + 2.0 * (w[0] * moving[1] - w[1] * moving[0]) + Rb[2, 0] * bias[0]
-
-    @njit(cache=True)
-    def nodal_forces(f, forces, q, u, data, work):
-        """f += sum_b Z_b^T sum_p G_p^T F_bp: the generalized forces of forces (B, P, 3) (N, earth components)
-        acting on the blade nodes at the (q, u) of the last :func:`equations` call (:func:`blade_node_motion`)."""
-        blade_node_motion(q, u, data, work)
-        rho_w, RD_w, Z_w = work[0], work[3], work[4]
-        B, P, k = RD_w.shape[0], RD_w.shape[1], RD_w.shape[3]
-        for b in range(B):
-            shared = np.zeros(6 + k)
-            for p in range(P):
-                F, rho = forces[b, p], rho_w[b, p]
-                shared[0] += F[0]
-                shared[1] += F[1]
-                shared[2] += F[2]
-                shared[3] += rho[1] * F[2] - rho[2] * F[1]
-                shared[4] += rho[2] * F[0] - rho[0] * F[2]
-                shared[5] += rho[0] * F[1] - rho[1] * F[0]
-                for i in range(k):
-                    shared[6 + i] += RD_w[b, p, 0, i] * F[0] + RD_w[b, p, 1, i] * F[1] + RD_w[b, p, 2, i] * F[2]
-            Z = Z_w[b]
-            for i in range(Z.shape[1]):
-                for r in range(6 + k):
-                    f[i] += Z[r, i] * shared[r]

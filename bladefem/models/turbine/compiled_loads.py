@@ -56,7 +56,7 @@ if njit is not None:                                   # module-level kernels: n
         params, table, grid, curve = aero[19], aero[20], aero[21], aero[25]
         cos_pitch, sin_pitch = math.cos(aero[26][0]), math.sin(aero[26][0])
         wind = np.zeros(3)
-        Z_w, frame_w, apex_w = work[4], work[5], work[6]
+        Z_w, frame_w, apex_w = work[0], work[1], work[2]
         rho_w, vel_w, RD_w, normal_w, span_w, rel_w = state[0], state[1], state[2], state[3], state[4], state[5]
         tangent_w = state[14]
         n, k = q.shape[0], across.shape[0]
@@ -197,7 +197,7 @@ if njit is not None:                                   # module-level kernels: n
             aero[10], aero[11]
         knots, values, coefs, start, count, options, scalars = aero[12], aero[13], aero[14], aero[15], aero[16], \
             aero[17], aero[18]
-        Z_w, frame_w, shaft = work[4], work[5], work[8][3]
+        Z_w, frame_w, shaft = work[0], work[1], work[4][3]
         rho_w, RD_w, normal_w, span_w, rel_w, out_w, force_w, moment_w, hub = state[0], state[2], state[3], \
             state[4], state[5], state[6], state[7], state[8], state[9]
         tangent_w = state[14]

@@ -20,6 +20,7 @@ COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_tor
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
     from .compiled_loads import law_torque, load_wake, loaded_equations
+    from .compiled_invariants import pitched_frame, to_blade
     from .compiled_tower_base import add_tower_and_nacelle
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -49,8 +50,7 @@ if njit is not None:                                   # module-level kernels: n
         structure, law = data[0], data[2]
         n, gravity, C = structure[0], structure[20], structure[22]
         generator, rigid_mass, inertias = structure[15], structure[18], structure[19]
-        Z_w, frame_w, hub_J, hub, blade_A, blade_F = work[0][4], work[0][5], work[0][7], work[0][8], \
-            work[0][9], work[0][10]
+        Z_w, frame_w, apex, hub_J, hub, blade_A, blade_F = work[0]
         state = work[1]
         a_rho, a_vel, a_force, a_moment, summary = state[0], state[1], state[7], state[8], state[9]
         k = blade_F.shape[1] - 6
@@ -75,19 +75,21 @@ if njit is not None:                                   # module-level kernels: n
                 for r in range(3):
                     for c in range(n):
                         omega[r] += Z[3 + r, c] * u[c]
-            # the blade's gravity and inertial loads: sum_p G_p^T m (g - a_p) = F - A Z du (force; moment about the
-            # apex), carried to its root at hub_radius along its axis
+            # the blade's gravity and inertial loads: sum_p G_p^T m (g - a_p) = F - A T^T Z du in the frame of its
+            # modal integrals (force; moment about the apex), turned to earth and carried to its root at hub_radius
+            # along its axis
+            Ri = pitched_frame(R, structure[24][9])
+            turned = to_blade(shared.reshape(6 + k, 1), Ri)
+            local = blade_F[b].copy()
+            for r in range(6 + k):
+                for c in range(6 + k):
+                    local[r] -= blade_A[b, r, c] * turned[c, 0]
             blade_moment, from_root = np.zeros(3), np.zeros(3)
             for r in range(3):
-                blade_load = blade_F[b, r]
-                blade_torque = blade_F[b, 3 + r]
-                for c in range(6 + k):
-                    blade_load -= blade_A[b, r, c] * shared[c]
-                    blade_torque -= blade_A[b, 3 + r, c] * shared[c]
-                load[r] = blade_load
-                blade_moment[r] = blade_torque
-                moment[r] += blade_torque
-                force[r] += blade_load
+                load[r] = Ri[r, 0] * local[0] + Ri[r, 1] * local[1] + Ri[r, 2] * local[2]
+                blade_moment[r] = Ri[r, 0] * local[3] + Ri[r, 1] * local[4] + Ri[r, 2] * local[5]
+                moment[r] += blade_moment[r]
+                force[r] += load[r]
                 from_root[r] = -hub_radius * R[r, 0]               # the apex from the root
             accumulate_moment(blade_moment, from_root, load)
             for p in range(a_rho.shape[1]):
@@ -134,7 +136,6 @@ if njit is not None:                                   # module-level kernels: n
             for j in range(n):
                 damping += u[i] * C[i, j] * u[j]
         out[14] = damping
-        apex = work[0][6]
         arm[0], arm[1], arm[2] = apex[0], apex[1], apex[2] - structure[23]
         base = moment.copy()
         accumulate_moment(base, arm, force)
