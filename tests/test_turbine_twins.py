@@ -155,6 +155,8 @@ def test_compiled_equals_numpy_for_every_option(tmp_path, name):
     x = system.initial_state()
     np.testing.assert_allclose(compiled.derivative(t, x, q - u * t, u, ix), np.concatenate([x[system.size:], du[ix]]),
                                rtol=0, atol=ROUNDING * np.abs(du).max())
+    np.testing.assert_allclose(compiled.rate(t, x, q - u * t, u, ix), np.concatenate([x[system.size:], du[ix]]),
+                               rtol=0, atol=ROUNDING * np.abs(du).max())
     compiled(q_before, u_before)
     row = compiled.outputs(np.full(1, t), x[None], q - u * t, u, ix)[0]
     expected = load_row(model, q, u, du, t=t)

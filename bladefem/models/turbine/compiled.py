@@ -194,11 +194,21 @@ class CompiledEquations:
 
     def derivative(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
         """dx/dt of the free coordinates and the dynamic wake, x = (q_f, u_f, w): the integrators' state rate
-        (:func:`.compiled_integrators.rate_function`, without output row), its kernels as first-class functions."""
+        (:func:`.compiled_integrators.rate_function`, without output row), its kernels as first-class functions
+        (a one-off call: numba converts them at each call, 0.35 ms; :meth:`rate` for a call at every step)."""
         from .compiled_integrators import rate_function
         args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work,
                 float(self.hub_radius), _NO_ROW)
         return self.joined("derivative", "turbine equations", rate_function, args)
+
+    def rate(self, t: float, x: NDArray, q0: NDArray, u0: NDArray, index: NDArray) -> NDArray:
+        """:meth:`derivative` with its kernels linked in (:func:`.compiled_integrators.direct_rate`, compiled on
+        its first call): for callers in Python at every right-hand side."""
+        from .compiled_integrators import direct_rate
+        args = (float(t), np.ascontiguousarray(x, dtype=float), q0, u0, index, self.loaded, self.all_work,
+                float(self.hub_radius))
+        with first_call("rate", "turbine equations", direct_rate, args):
+            return direct_rate(*args)
 
     def joined(self, name: str, what: str, kernel, args: tuple, with_rate: bool = False,
                in_helper: bool = False):

@@ -49,6 +49,13 @@ if njit is not None:                                   # module-level kernels: n
         return rate_with(kernels, t, x, q0, u0, index, data, work, hub_radius, row)
 
     @njit(cache=True)
+    def direct_rate(t, x, q0, u0, index, data, work, hub_radius):
+        """:func:`rate_with` without load channels, its kernels called directly (linked in): the entry for callers
+        in Python at every right-hand side (scipy's integrators, RK4 steps, the Python controlled loop), for which
+        numba's conversion of first-class function arguments at each call costs more than the right-hand side."""
+        return rate_with((equations, add_aero, output_row), t, x, q0, u0, index, data, work, hub_radius, np.zeros(0))
+
+    @njit(cache=True)
     def check_state(x, limit):
         """-1 if every |x_i| <= limit_i and finite, else the first offending index (status via sign of the
         value: not finite or beyond the limit)."""

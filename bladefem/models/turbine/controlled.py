@@ -186,7 +186,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
             measured = None
             if method == "ABM4":
-                first = compiled.derivative(t, x, system.q0, system.u0, system.index)
+                first = compiled.rate(t, x, system.q0, system.u0, system.index)
                 if known >= ABM4_HISTORY and len(chunk) == 2 and abs(end - t - step) <= 1e-9 * step:
                     out, measured = abm4_interval(system, compiled, t, end, x, first, history, limit, last - row)
                 else:

@@ -68,7 +68,7 @@ def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step:
     q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
 
     def rate(t: float, x: NDArray) -> NDArray:
-        return compiled.derivative(t, x, q0, u0, index)
+        return compiled.rate(t, x, q0, u0, index)
 
     states, count = np.full((len(chunk), len(x)), np.nan), 0 if first is None else -1
     states[0] = x
@@ -102,7 +102,7 @@ def abm4_interval(system: FreeSystem, compiled, t: float, end: float, x: NDArray
     h = end - t
     predicted = x + h * (ABM4_PREDICTOR[0] * first + ABM4_PREDICTOR[1:] @ history)
     hold[2] = 1.0
-    rate = compiled.derivative(end, predicted, q0, u0, index)
+    rate = compiled.rate(end, predicted, q0, u0, index)
     measured = compiled.outputs(np.array([end]), predicted[None], q0, u0, index)[0]
     hold[2] = 0.0
     new = x + h * (ABM4_CORRECTOR[0] * rate + ABM4_CORRECTOR[1] * first + ABM4_CORRECTOR[2:] @ history[:2])

@@ -137,8 +137,8 @@ class FreeSystem:
 
     def __call__(self, t: float, x: NDArray) -> NDArray:
         equations = self.model.fast_equations()
-        if hasattr(equations, "derivative"):
-            return equations.derivative(t, x, self.q0, self.u0, self.index)
+        if hasattr(equations, "rate"):
+            return equations.rate(t, x, self.q0, self.u0, self.index)
         q, u = self.full(t, x)
         wake = self.wake(x)
         M, f = equations(q, u, t=t, wake=wake)
