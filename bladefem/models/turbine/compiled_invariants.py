@@ -27,8 +27,9 @@ def blade_invariants(across: NDArray, shortening: NDArray, axial: NDArray, masse
     """The mass-weighted integrals of one blade (shared by all blades): ``across`` (k, P, 3), ``shortening``
     (k, k, P), ``axial`` (P,) node positions along the span (m), ``masses`` (P,) lumped node masses (kg).
 
-    Returns (total mass, I1 (3, nz), I2 (9, nz nz), I3 (3 k, nx), I4 (3 k 3, nx nz), I5 (3 k 3 k, nx nx),
-    I6 (3, k k nz), I7 (k, k k nx), I8 (k, k), turn); the row order (r, i, s, j) of a flattened tensor is C order.
+    Returns (total mass, I1 (3, nz), I2 (6, nz nz), I3 (3 k, nx), I4 (3 k 3, nx nz), I5 (3 k (3 k + 1) / 2, nx nx),
+    I6 (3, k k nz), I7 (k, k k nx), I8 (k, k), turn); the row order (r, i, s, j) of a flattened tensor is C order;
+    I2 and I5, symmetric in (s, t) and in ((r, i), (s, j)), keep the rows of their upper triangles (:func:`upper`).
     ``turn`` (cos, sin) of the pitch the shapes were turned by since (:mod:`.pitching`, a turn about the span
     axis x: the shapes' across components (y, z) go to (y cos + z sin, -y sin + z cos), the axial ones stay), set
     in place: the integrals of the turned shapes are those of a frame turned alike (:func:`pitched_frame`)."""
@@ -47,13 +48,19 @@ def blade_invariants(across: NDArray, shortening: NDArray, axial: NDArray, masse
     m = masses
     return (float(m.sum()),
             np.einsum("p,psa->sa", m, Phi),
-            np.einsum("p,psa,ptb->stab", m, Phi, Phi).reshape(9, nz * nz),
+            upper(np.einsum("p,psa,ptb->stab", m, Phi, Phi).reshape(3, 3, nz * nz)),
             np.einsum("p,pric->ric", m, Psi).reshape(3 * k, nx),
             np.einsum("p,pric,psa->risca", m, Psi, Phi).reshape(9 * k, nx * nz),
-            np.einsum("p,pric,psje->risjce", m, Psi, Psi).reshape(9 * k * k, nx * nx),
+            upper(np.einsum("p,pric,psje->risjce", m, Psi, Psi).reshape(3 * k, 3 * k, nx * nx)),
             np.einsum("p,pij,psa->sija", m, S, Phi).reshape(3, k * k * nz),
             np.einsum("p,pjl,pic->ijlc", m, S, Psi[:, 0]).reshape(k, k * k * nx),
             np.einsum("p,pij->ij", m, S), np.array([1.0, 0.0]))
+
+
+def upper(table: NDArray) -> NDArray:
+    """The rows (a, b), a <= b, of a table (n, n, c) symmetric in (a, b), in C order: (n (n + 1) / 2, c)."""
+    rows, columns = np.triu_indices(table.shape[0])
+    return np.ascontiguousarray(table[rows, columns])
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
@@ -76,6 +83,17 @@ if njit is not None:                                   # module-level kernels: n
         for i in range(a.shape[0]):
             for j in range(b.shape[0]):
                 out[i * b.shape[0] + j] = a[i] * b[j]
+        return out
+
+    @njit(cache=True)
+    def unfold(values, n):
+        """The symmetric (n, n) matrix of its upper triangle's rows ``values`` (:func:`upper`)."""
+        out = np.empty((n, n))
+        row = 0
+        for a in range(n):
+            for b in range(a, n):
+                out[a, b] = out[b, a] = values[row]
+                row += 1
         return out
 
     @njit(cache=True)
@@ -105,10 +123,10 @@ if njit is not None:                                   # module-level kernels: n
         k = q.shape[0]
         zeta, xi = monomials(q)
         s1 = contract(I1, zeta)                               # sum m d
-        dd = contract(I2, outer(zeta, zeta))                  # sum m d d^T (3 x 3, flat)
+        dd = unfold(contract(I2, outer(zeta, zeta)), 3)       # sum m d d^T
         SD = contract(I3, xi)                                 # sum m D (3, k), flat (r, i)
         T = contract(I4, outer(xi, zeta))                     # sum m D[r, i] d[s], flat (r, i, s)
-        U = contract(I5, outer(xi, xi))                       # sum m D[r, i] D[s, j], flat (r, i, s, j)
+        U = unfold(contract(I5, outer(xi, xi)), 3 * k)        # sum m D[r, i] D[s, j] at (r k + i, s k + j)
         uu = outer(u, u)
         sigma_d = contract(I6, outer(uu, zeta))               # sum m (u^T S u) d
         sigma_D = contract(I7, outer(uu, xi))                 # sum m (u^T S u) D[0, :]
@@ -116,11 +134,11 @@ if njit is not None:                                   # module-level kernels: n
         for i in range(k):
             for j in range(k):
                 sigma += I8[i, j] * u[i] * u[j]
-        trace = dd[0] + dd[4] + dd[8]
+        trace = dd[0, 0] + dd[1, 1] + dd[2, 2]
         J = np.empty((3, 3))                                  # sum m (|d|^2 I - d d^T)
         for r in range(3):
             for s in range(3):
-                J[r, s] = (trace if r == s else 0.0) - dd[3 * r + s]
+                J[r, s] = (trace if r == s else 0.0) - dd[r, s]
         X = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])       # w x
         cross_d = np.empty((3, k))                            # sum m d x D[:, i]
         rate_sum = np.zeros(3)                                # sum m D u
@@ -153,7 +171,7 @@ if njit is not None:                                   # module-level kernels: n
             for j in range(k):
                 value = 0.0
                 for r in range(3):
-                    value += U[((r * k + i) * 3 + r) * k + j]
+                    value += U[r * k + i, r * k + j]
                 A[6 + i, 6 + j] = value
         for r in range(6 + k):
             for s in range(r):
@@ -187,7 +205,7 @@ if njit is not None:                                   # module-level kernels: n
                     if X[r, s] != 0.0:
                         coriolis = 0.0
                         for j in range(k):
-                            coriolis += U[((r * k + i) * 3 + s) * k + j] * u[j]
+                            coriolis += U[r * k + i, s * k + j] * u[j]
                         value -= 2.0 * X[r, s] * coriolis
             F[6 + i] = value
 
