@@ -7,10 +7,10 @@ the nodes that the Kane equations of a blade need is then a product of mass-weig
 ``Psi``, computed once (:func:`blade_invariants`), with monomials of the state (:func:`blade_inertia`): the first
 and second moments ``sum m d`` and ``sum m d d^T``, ``sum m D``, ``sum m D (x) d``, ``sum m D (x) D`` and the axial
 bias terms of ``sum m (u^T S_p u) (d, D)``. These are the flexible-body invariants of multibody codes (Shabana,
-"Dynamics of Multibody Systems", ch. 5; SIMPACK's and ADAMS' modal neutral files), here exact: the same quadrature
-points and the same polynomial kinematics as the node sums of :func:`.compiled_kernels.equations`' numpy twin
-(:meth:`bladefem.models.turbine.kane.TurbineModel.equations`), which ``tests/test_turbine_compiled.py`` compares
-to rounding.
+"Dynamics of Multibody Systems", ch. 5; SIMPACK's SID files, MSC Adams' modal neutral files), here exact: the
+same quadrature points and the same polynomial kinematics as the node sums of the numpy twin of
+:func:`.compiled_kernels.equations` (:meth:`bladefem.models.turbine.kane.TurbineModel.equations`), which
+``tests/test_turbine_compiled.py`` compares to rounding.
 """
 
 from __future__ import annotations
