@@ -168,7 +168,7 @@ class CompiledEquations:
         n, blade_across, blades = data[0], data[5], data[10].shape[0]
         k = blade_across.shape[0]
         self.work = (np.zeros((blades, 6 + k, n)), np.zeros((blades, 3, 3)), np.zeros(3), np.zeros((3, n)),
-                     np.zeros((5, 3)), np.zeros((blades, 6 + k, 6 + k)), np.zeros((blades, 6 + k)))
+                     np.zeros((4, 3)), np.zeros((blades, 6 + k, 6 + k)), np.zeros((blades, 6 + k)))
         self.state = aero_state(blades, aero[2].shape[0], k)
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
         self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`joined`

@@ -201,9 +201,9 @@ if njit is not None:                                   # module-level kernels: n
     def equations(q, u, data, work):
         """Mass matrix M (n, n) and forcing f (n,) of ``M du/dt = f`` at (q, u). Fills in ``work``
         (:class:`.compiled.CompiledEquations`) per blade the shared partials Z (B, 6 + k, n) and the blade frame
-        (B, 3, 3); the apex position (3,); the hub centre of mass's partial velocities (3, n); rows of (5, 3): the
-        hub's bias acceleration, its offset from the apex, the rotor's bias angular acceleration, the shaft axis and
-        the apex's bias acceleration, all earth components; per blade its ``A = sum m G^T G`` (B, 6 + k, 6 + k) and
+        (B, 3, 3); the apex position (3,); the hub centre of mass's partial velocities (3, n); rows of (4, 3): the
+        hub's bias acceleration, its offset from the apex, the rotor's bias angular acceleration and the shaft axis,
+        all earth components; per blade its ``A = sum m G^T G`` (B, 6 + k, 6 + k) and
         ``F = sum G^T m (g - a_bias)`` (B, 6 + k) over its nodes, from their modal integrals
         (:mod:`.compiled_invariants`), in the frame of the integrals (:func:`.compiled_invariants.pitched_frame`):
         the blade's gravity and inertial loads at accelerations ``Z du`` are then ``F - A T^T Z du`` there (the
@@ -275,8 +275,6 @@ if njit is not None:                                   # module-level kernels: n
                     hub_w[0, r] = a[r]
                     hub_w[1, r] = top_r[r] + rho[r] - apex_w[r]
         # blades: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade], summed by the modal integrals
-        for r in range(3):
-            hub_w[4, r] = apex_a[r]
         kb = b_across.shape[0]
         g, w, al = np.zeros(3), np.zeros(3), np.zeros(3)
         for b in range(b_rotations.shape[0]):
