@@ -78,7 +78,8 @@ def inverse_pairs(K: sp.spmatrix, M: sp.spmatrix, n_modes: int) -> tuple[NDArray
         with warnings.catch_warnings():
             warnings.simplefilter("error", spla.MatrixRankWarning)
             try:
-                mu, vectors = spla.eigsh(K, k=k, M=M, sigma=0.0, which="LM")
+                start = np.random.default_rng(0).standard_normal(n)     # ARPACK's own start moves with every call
+                mu, vectors = spla.eigsh(K, k=k, M=M, sigma=0.0, which="LM", v0=start)
             except (RuntimeError, spla.MatrixRankWarning, spla.ArpackError) as error:   # incl. no convergence
                 raise la.LinAlgError(str(error)) from None
         mu = 1.0 / mu
