@@ -5,10 +5,12 @@
 The shipped NREL 5MW deck with ROSCO (cases/nrel5mw/NRELOffshrBsline5MW_Onshore_ROSCO.fst, 16 m/s, from 10 deg of
 pitch) is built and run for 0.1 s by the command (the kernels compiled or loaded from numba's cache); then, at its
 initial state, each part is called ``--calls`` times in a compiled loop (no Python between calls) and its mean time
-printed: the state rate with the BEM solved (the first right-hand side of an ABM4 interval), with the BEM's
-induction held (the predicted end), with an output row; and its pieces: the structural equations (the Kane model's
-quadrature points named: the blades' now enter through their modal integrals), the aerodynamic loads with the BEM
-solved and held, of these the aerodynamic nodes' kinematics and wind, the solve of the mass matrix, the
+printed: the state rate with the BEM solved (the first right-hand side of an ABM4 interval) from scratch (each
+node's previous solution cleared: Brent's first trial at the Betz rotor's angle) and from the nodes' roots at that
+state (the first trial already the root: the lower bound of a run's solve, which starts from the previous right-hand
+side's roots), with the BEM's induction held (the predicted end), with an output row; and its pieces: the
+structural equations (the Kane model's quadrature points named: the blades' now enter through their modal
+integrals), the aerodynamic loads with the BEM solved and held, of these the aerodynamic nodes' kinematics and wind, the solve of the mass matrix, the
 pitch set on the BEM's arrays, the controller library's call. Markdown table; the load average is printed, as the
 machine may be shared.
 """
@@ -37,9 +39,11 @@ def loops():
     from bladefem.models.turbine.pitching import set_pitch
 
     @njit
-    def rate_loop(n, rate, kernels, x, q0, u0, index, data, work, hub, row, held):
+    def rate_loop(n, rate, kernels, x, q0, u0, index, data, work, hub, row, held, cold):
         total = 0.0
         for _ in range(n):
+            if cold:
+                work[1][6][:, :, 0] = 0.0              # no previous solution: Brent's first trial at Betz's angle
             work[1][13][2] = held
             total += rate(kernels, 1.0, x, q0, u0, index, data, work, hub, row)[0]
             work[1][13][2] = 0.0
@@ -53,9 +57,11 @@ def loops():
         return total
 
     @njit
-    def aero_loop(n, q, u, structure, aero, work, held):
+    def aero_loop(n, q, u, structure, aero, work, held, cold):
         f = np.zeros(q.shape[0])
         for _ in range(n):
+            if cold:
+                work[1][6][:, :, 0] = 0.0
             work[1][13][2] = held
             add_aero(f, q, u, structure, aero, work[0], work[1], 1.0)
             work[1][13][2] = 0.0
@@ -124,18 +130,22 @@ def main() -> None:
         rate, kernels = functions(True)
         channels = compiled.outputs(times[:1], x[None], q0, u0, index).shape[1]
         common = (rate, kernels, x, q0, u0, index, compiled.loaded, work, float(compiled.hub_radius))
-        rows.append(("state rate, the BEM solved", timed(calls, rate_loop, *common, np.zeros(0), 0.0)))
-        rows.append(("state rate, the BEM's induction held", timed(calls, rate_loop, *common, np.zeros(0), 1.0)))
-        rows.append(("state rate, the BEM solved, with an output row",
-                     timed(calls, rate_loop, *common, np.zeros(channels), 0.0)))
+        rows.append(("state rate, the BEM solved from scratch", timed(calls, rate_loop, *common, np.zeros(0), 0.0,
+                                                                     True)))
+        rows.append(("state rate, the BEM solved from each node's root at this state",
+                     timed(calls, rate_loop, *common, np.zeros(0), 0.0, False)))
+        rows.append(("state rate, the BEM's induction held", timed(calls, rate_loop, *common, np.zeros(0), 1.0,
+                                                                   False)))
+        rows.append(("state rate, the BEM solved from scratch, with an output row",
+                     timed(calls, rate_loop, *common, np.zeros(channels), 0.0, True)))
         points = structure[7].shape[0] * structure[10].shape[0] + structure[3].shape[0]
         rows.append((f"structural equations ({structure[10].shape[0]} x {structure[7].shape[0]} blade and "
                      f"{structure[3].shape[0]} tower quadrature points: {points})",
                      timed(calls, structure_loop, q0, u0, structure, work[0])))
-        rows.append((f"aerodynamic loads, the BEM solved ({structure[10].shape[0]} x {aero[2].shape[0]} nodes)",
-                     timed(calls, aero_loop, q0, u0, structure, aero, work, 0.0)))
+        rows.append((f"aerodynamic loads, the BEM solved from scratch ({structure[10].shape[0]} x "
+                     f"{aero[2].shape[0]} nodes)", timed(calls, aero_loop, q0, u0, structure, aero, work, 0.0, True)))
         rows.append(("aerodynamic loads, the induction held", timed(calls, aero_loop, q0, u0, structure, aero, work,
-                                                                   1.0)))
+                                                                   1.0, False)))
         rows.append(("of these, the aerodynamic nodes' motion, axes and wind",
                      timed(calls, kinematics_loop, q0, u0, structure, aero, work)))
         M, f = compiled(q0, u0)

@@ -109,8 +109,9 @@ def test_guaranteed_convergence():
     """Ning's method finds a root wherever the BEM equations have one: 4000 random operating points (both signs of
     the inflow, tiny and large speed ratios, any twist, high solidity, loss on) all return either a valid angle
     with |R(phi)| below the tolerance (or a bracket of 1e-13 rad) or AeroDyn's fallback flagged invalid, never NaN;
-    and a previous solution as guess gives the same root: kept where it still solves the equations (AeroDyn's
-    BEMT_UnCoupledSolve), else the search from scratch (no search near the guess, which can follow another root)."""
+    and a previous solution as guess (Brent's first trial in the momentum region) gives the same root: 1e-3 rad
+    off, the same angle to 1e-9 rad at every node (this polar's stall leaves no node a second root near its own),
+    the root itself kept exactly."""
     rng = np.random.default_rng(7)
     alpha = np.radians(np.linspace(-180, 180, 361))
     polar = Polar(alpha, 1.2 * np.sin(2 * alpha), 0.02 + 1.2 * np.sin(alpha) ** 2, -0.1 * np.sin(alpha))
@@ -138,8 +139,9 @@ def test_guaranteed_convergence():
         assert abs(f[0]) < 1e-9 or not f[3], (i, f)
     warm = np.empty_like(out)
     solve_nodes(*args, out[:, 0] + 1e-3 * ones, *plane, warm)          # a previous solution that is no root any more
-    np.testing.assert_array_equal(warm, out)
-    solve_nodes(*args, out[:, 0], *plane, warm)                          # the root itself (AeroDyn keeps it)
+    np.testing.assert_allclose(warm[:, 0], out[:, 0], rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(warm[:, 12], out[:, 12])
+    solve_nodes(*args, out[:, 0], *plane, warm)                          # the root itself
     np.testing.assert_array_equal(warm[valid, 0], out[valid, 0])
 
 
@@ -161,11 +163,11 @@ def test_pure_python_path_matches_compiled(deck):
 
 @pytest.mark.parametrize("formulation", [1, 2])
 def test_first_trial_finds_the_same_root(deck, formulation):
-    """Brent's method started at the Betz rotor's inflow angle (the solve's first trial in the momentum region) and
+    """Brent's method started at the Betz rotor's inflow angle (the solve's first trial without a guess) and
     from the bracket's ends alone find the same root of every NREL 5MW node, to the residual tolerance, from
     cut-in to cut-out at the pitch of the operating schedule, with the blade moving in and against the flow (vx
-    and vy of +-20 %) and canted and toed sections (BEM_Mod 2): the first trial is a point computed from the node's
-    inputs alone, so the solution stays independent of the path."""
+    and vy of +-20 %) and canted and toed sections (BEM_Mod 2); and so does a first trial 0.02 rad either side of
+    the root, already evaluated (a previous right-hand side's solution: the solve's first trial in a run)."""
     from bladefem.aero.bem import EDGE, PREDICTED_FACTOR, brent, framed_residual, section_frame
     rotor = deck.rotor()
     options = BEMOptions(formulation=formulation).vector()
@@ -188,9 +190,15 @@ def test_first_trial_finds_the_same_root(deck, formulation):
                 assert lo < first < hi
                 if (f_lo > 0) == (f_hi > 0):
                     continue
-                ends = brent(lo, hi, f_lo, f_hi, *args, math.nan)
-                started = brent(lo, hi, f_lo, f_hi, *args, first)
+                unknown = (math.nan, 0.0, 0.0, False)
+                ends = brent(lo, hi, f_lo, f_hi, *args, math.nan, unknown)
+                started = brent(lo, hi, f_lo, f_hi, *args, first, unknown)
                 assert started[0] == pytest.approx(ends[0], abs=1e-8), (speed, i)
                 assert abs(framed_residual(started[0], *args)[0]) <= 5e-10
+                for step in (-0.02, 0.02):                    # a previous solution, evaluated as the solve does
+                    guess = min(max(ends[0] + step, 2 * EDGE), hi - EDGE)
+                    warm = brent(lo, hi, f_lo, f_hi, *args, guess, framed_residual(guess, *args))
+                    assert warm[0] == pytest.approx(ends[0], abs=1e-8), (speed, i, step)
+                    assert abs(framed_residual(warm[0], *args)[0]) <= 5e-10
                 checked += 1
     assert checked >= 5 * 3 * 14

@@ -100,11 +100,12 @@ def framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, ch
 
 @kernel
 def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
-          coefs, start, count, options, frame, first):
+          coefs, start, count, options, frame, first, first_known):
     """Root of the residual in [lo, hi] (f_lo, f_hi of opposite signs) by Brent's method (inverse quadratic
     interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad.
     ``frame``: the node's :func:`section_frame`; ``first``: the first trial point, inside (lo, hi) (nan: Brent's
-    own step from the ends). Returns (phi, a, a', valid) at the root."""
+    own step from the ends); ``first_known``: (R, a, a', valid) there if evaluated already (R nan: not).
+    Returns (phi, a, a', valid) at the root."""
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
             options, frame)
     tolerance = options[TOLERANCE]
@@ -126,7 +127,6 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
             break
         if math.isfinite(first):
             d = e = first - b
-            first = math.nan
         elif abs(e) >= step_tolerance and abs(fa) > abs(fb):
             s = fb / fa
             if a == c:
@@ -145,8 +145,12 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
         else:
             d = e = half
         a, fa = b, fb
-        b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
-        fb, induced_a, induced_ap, valid = framed_residual(b, *args)
+        if math.isfinite(first) and math.isfinite(first_known[0]):
+            b, (fb, induced_a, induced_ap, valid) = first, first_known
+        else:
+            b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
+            fb, induced_a, induced_ap, valid = framed_residual(b, *args)
+        first = math.nan
         at_b = True
     if not at_b:
         _, induced_a, induced_ap, valid = framed_residual(b, *args)
@@ -154,11 +158,11 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
 
 
 @kernel
-def search_intervals(vx, guess):
+def search_intervals(vx, angle):
     """The three phi intervals of Ning's method in AeroDyn's order (lower ends, upper ends): the momentum region
-    first, then the propeller brake and the region beyond pi/2 (the one nearer the guess first)."""
+    first, then the propeller brake and the region beyond pi/2 (the one nearer ``angle`` first, rad)."""
     q, h = math.pi / 4.0, math.pi / 2.0
-    near_zero = -q < guess < q
+    near_zero = -q < angle < q
     if vx > 0.0:
         first = (EDGE, h - EDGE)
         brake, beyond = (-q, -EDGE), (h + EDGE, math.pi - EDGE)
@@ -175,16 +179,19 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
                        start, count, options, guess, geometry):
     """(phi, valid, a, a'): the inflow angle solving the BEM equations (rad) and the induction there.
 
-    As AeroDyn's ``BEMT_UnCoupledSolve``: a finite ``guess`` (the previous solution) is returned if it still
-    satisfies the equations to the tolerance with a valid induction; otherwise Ning's three intervals are searched
-    (ordered by the guess, else by the geometric angle) and Brent's method runs on the first with a sign change, in
-    the momentum region first trying the inflow angle of a Betz rotor (:data:`PREDICTED_FACTOR`, a point computed
-    from the node's inputs alone: the secant from the ends lands near pi/2 and bisections follow; 15 % fewer
-    residual evaluations per solve on the NREL 5MW at rated wind, the same root to the tolerance).
-    There is no search near the guess: where the equations have several roots (a blade tip in the propeller-brake
-    region, stall) a bracket next to the previous root follows that root and the loads then depend on the path
-    (BEM_Mod 1 lost 14-29 % of the NREL 5MW's loads that way). Without a valid BEM solution: the geometric angle
-    atan2(vx cos(cant), vy), valid False and zero induction (as AeroDyn)."""
+    As AeroDyn's ``BEMT_UnCoupledSolve``, Ning's three intervals are searched (ordered by the geometric angle) and
+    Brent's method runs on the first with a sign change. In the momentum region Brent's first trial is a finite
+    ``guess`` inside the interval (the node's solution at the previous right-hand side: 24 % fewer residual
+    evaluations per solve on the NREL 5MW at rated wind, 7.0 to 5.3), else the inflow angle of a Betz rotor
+    (:data:`PREDICTED_FACTOR`, a point computed from the node's inputs alone: the secant from the ends lands near
+    pi/2 and bisections follow).
+    The guess never chooses the interval: the ends of each are evaluated first, so a root in another region is not
+    followed (a bracket next to the previous root did, and BEM_Mod 1 lost 14-29 % of the NREL 5MW's loads). Only
+    where the momentum region holds several roots (stall) can the first trial pick among them: the root nearest
+    the previous one, as a stalled section keeps its branch (docs/turbine-aero.md#speed).
+    Unlike AeroDyn a guess that still solves the equations is not returned before the intervals are searched: a
+    guess in the propeller-brake region would be kept though the momentum region has a root. Without a valid BEM
+    solution: the geometric angle atan2(vx cos(cant), vy), valid False and zero induction (as AeroDyn)."""
     if abs(vx) < ZERO_VELOCITY:
         return 0.0, True, 0.0, 0.0
     if abs(vy) < ZERO_VELOCITY:
@@ -194,13 +201,7 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
             options, frame)
     tolerance = options[TOLERANCE]
-    if math.isfinite(guess) and abs(guess) > EDGE and abs(abs(guess) - math.pi / 2.0) > EDGE:
-        f_guess, a, ap, valid = framed_residual(guess, *args)
-        if abs(f_guess) < tolerance and valid:
-            return guess, True, a, ap
-    else:
-        guess = math.atan2(vx, vy)
-    lows, highs = search_intervals(vx, guess)
+    lows, highs = search_intervals(vx, math.atan2(vx, vy))
     for i in range(3):
         lo, hi = lows[i], highs[i]
         f_lo, a_lo, ap_lo, valid_lo = framed_residual(lo, *args)
@@ -213,10 +214,15 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
         elif abs(f_hi) < tolerance and valid_hi:
             return hi, True, a_hi, ap_hi
         if (f_lo > 0.0) != (f_hi > 0.0):
-            first = math.atan2(vx * cos_cant * PREDICTED_FACTOR, vy) if i == 0 else math.nan
+            first, known = math.nan, (math.nan, 0.0, 0.0, False)
+            if i == 0 and min(lo, hi) < guess < max(lo, hi):
+                first = guess
+                known = framed_residual(guess, *args)
+            elif i == 0:
+                first = math.atan2(vx * cos_cant * PREDICTED_FACTOR, vy)
             if not min(lo, hi) < first < max(lo, hi):
                 first = math.nan
-            phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args, first)
+            phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args, first, known)
             if valid:
                 return phi, True, a, ap
     return math.atan2(vx * cos_cant, vy), False, 0.0, 0.0

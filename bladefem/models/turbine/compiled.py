@@ -173,6 +173,11 @@ class CompiledEquations:
         self.loaded, self.all_work = (data, aero, law), (self.work, self.state)
         self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`joined`
 
+    def forget_solutions(self) -> None:
+        """Clear the nodes' last BEM solutions (Brent's first trial at the next solve, :func:`bladefem.aero.bem.
+        solve_inflow_angle`): a run starts from the node's inputs alone, whatever ran before on this model."""
+        self.state[6][...] = 0.0
+
     def _parallel(self, entry: str, helper: tuple = ()) -> Callable[[], None]:
         """Before a cold first call of ``entry``: its kernels compiled on two processes where a core is free
         (:func:`.parallel_compile.compile_in_parallel`), ``helper``'s jobs too in the second one."""

@@ -258,8 +258,8 @@ if njit is not None:                                   # module-level kernels: n
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, q_axial, q_tangential = \
                         wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p],
                                         scalars[1], r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p],
-                                        knots, values, coefs, start, count, options, scalars[0], math.nan, cant,
-                                        toe, drdz, wake[b, p, 2], wake[b, p, 3])
+                                        knots, values, coefs, start, count, options, scalars[0], out_w[b, p, 0],
+                                        cant, toe, drdz, wake[b, p, 2], wake[b, p, 3])
                     quasi[b, p, 0], quasi[b, p, 1] = q_axial, q_tangential
                     if vx != 0.0:
                         disk_induction += disk_weight[p] * q_axial / vx
@@ -274,7 +274,7 @@ if njit is not None:                                   # module-level kernels: n
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
                         vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p], scalars[1],
                         r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start,
-                        count, options, scalars[0], math.nan, cant, toe, drdz)
+                        count, options, scalars[0], out_w[b, p, 0], cant, toe, drdz)
                     quasi[b, p, 0], quasi[b, p, 1] = a * vx, ap * vy
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl

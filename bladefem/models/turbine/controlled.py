@@ -51,6 +51,7 @@ class Controlled:
         self.compiled = self.model.fast_equations()
         if not hasattr(self.compiled, "integrate"):
             raise RuntimeError("a controlled simulation needs numba (pip install numba; unset BLADEFEM_NO_NUMBA)")
+        self.compiled.forget_solutions()
         self.pitcher = CompiledPitch(self.model, self.compiled)
         self.law = self.compiled.law
         self.law[:] = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]

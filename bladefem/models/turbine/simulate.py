@@ -203,6 +203,8 @@ def simulate(system: FreeSystem, duration: float, dt_output: float = 0.05, rtol:
     """
     times = output_times(duration, dt_output)
     compiled = system.model.fast_equations()
+    if hasattr(compiled, "forget_solutions"):
+        compiled.forget_solutions()
     if method == "auto":
         method = auto_method(system.model)
     limit = divergence_limits(system)
