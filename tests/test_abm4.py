@@ -117,3 +117,24 @@ def test_abm4_refused_where_a_mode_would_grow(capsys):
                  "--method", "ABM4", "--controller-dt", "0.05", "--quiet"])
     err = capsys.readouterr().err
     assert code == 2 and "--method" in err and "ABM4" in err and "Traceback" not in err
+
+
+@pytest.mark.skipif(bool(os.environ.get("BLADEFEM_NO_NUMBA")), reason="the compiled forcing needs numba")
+def test_initial_modes_from_the_compiled_forcing_equal_the_numpy_ones():
+    """The eigenvalues that choose ABM4 and RK4's step (``initial_modes``: central differences of the compiled
+    forcing, each BEM solve from scratch) equal those of the numpy forcing, also after the model ran elsewhere (its
+    nodes' roots then at another state): within 1e-6 of the largest eigenvalue (measured 6e-10; the solves started
+    from the last perturbation's roots, which agree only to the BEM's tolerance, left 2.8e-4)."""
+    from bladefem.builders.turbine_deck import read_turbine_deck
+    from bladefem.models.turbine import FreeSystem, TurbineModel
+    from bladefem.models.turbine.linearize import state_matrix
+    from bladefem.models.turbine.simulate import initial_modes
+    deck = read_turbine_deck(CASE / "NRELOffshrBsline5MW_Onshore.fst", wind_speed=11.4, rpm=12.1, pitch=0.0)
+    model = TurbineModel(deck.params, aero=deck.aero, generator=deck.generator)
+    q, u = np.zeros(model.n), np.zeros(model.n)
+    u[model.dofs.index("generator_azimuth")] = 12.1 * np.pi / 30
+    system = FreeSystem(model, np.ones(model.n, dtype=bool), q, u)
+    model.fast_equations()(q + 0.01, u)
+    compiled = np.sort_complex(initial_modes(system)[0])
+    numpy = np.sort_complex(np.linalg.eigvals(state_matrix(system, q, u)))
+    np.testing.assert_allclose(compiled, numpy, rtol=0, atol=1e-6 * np.abs(numpy).max())
