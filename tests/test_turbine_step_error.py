@@ -15,18 +15,11 @@ import numpy as np
 import pytest
 
 from bladefem.cli import main
+from simulation_table import table
 
 ROOT = Path(__file__).resolve().parents[1]
 DECK = ROOT / "cases" / "nrel5mw" / "NRELOffshrBsline5MW_Onshore.fst"
 REFERENCE = json.loads((ROOT / "tests" / "data" / "openfast" / "step_error.json").read_text())
-
-
-def table(path: Path) -> dict[str, np.ndarray]:
-    """bladefem's output table by channel name without the unit suffix (``GenPwr_kW`` -> ``GenPwr``)."""
-    lines = path.read_text().splitlines()
-    names = [name.rsplit("_", 1)[0] for name in lines[0].split(",")]
-    data = np.loadtxt(lines[1:], delimiter=",")
-    return {name: data[:, j] for j, name in enumerate(names)}
 
 
 @pytest.fixture(scope="module")

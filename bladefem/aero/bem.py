@@ -216,8 +216,7 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
         if (f_lo > 0.0) != (f_hi > 0.0):
             first, known = math.nan, (math.nan, 0.0, 0.0, False)
             if i == 0 and min(lo, hi) < guess < max(lo, hi):
-                first = guess
-                known = framed_residual(guess, *args)
+                first, known = guess, framed_residual(guess, *args)
             elif i == 0:
                 first = math.atan2(vx * cos_cant * PREDICTED_FACTOR, vy)
             if not min(lo, hi) < first < max(lo, hi):

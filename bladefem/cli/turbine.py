@@ -120,10 +120,8 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", action="store_true", help="--linearize or --campbell results as JSON")
     parser.add_argument("--dt", type=float, default=None, help="output interval of --simulate, s (default 0.05)")
     parser.add_argument("--rtol", type=float, default=None,
-                        help="relative tolerance of --simulate (default 1e-6; the absolute tolerance is 0.1 times it; "
-                             "on the NREL 5MW's torque-law deck 1e-5 takes 0.7 times the right-hand sides, its errors "
-                             "still below OpenFAST's own at its DT, docs/turbine-aero.md#speed; with a controller "
-                             "library --rtol selects DP54)")
+                        help="relative tolerance of --simulate (default 1e-6, absolute 0.1 times it; 1e-5: 0.7 times "
+                             "the work, docs/turbine-aero.md#speed; with a controller library it selects DP54)")
     parser.add_argument("--method", choices=("auto", "DP853", "DP54", "RK45", "DOP853", "RK4", "ABM4"),
                         default=None,
                         help="time integrator: auto (with numba the compiled Dormand-Prince 8(5,3), or 5(4) with "

@@ -5,7 +5,7 @@ is not needed to use the JSON file).
 
 The deck is ``cases/nrel5mw/NRELOffshrBsline5MW_Onshore.fst`` as shipped (11.4 m/s steady wind, ServoDyn's torque
 law, all ElastoDyn DOFs on, ``DT`` 0.00625 s, ElastoDyn's ABM4, outputs every 0.05 s), brought to v5's layout by
-``make_openfast_v5.to_v5`` with the output lists of ``make_openfast_v5.extend_outputs``; ``TMax`` 100 s. The second
+``make_openfast_v5.prepare`` (the v5 layout, the extended output lists); ``TMax`` 100 s. The second
 run sets ``DT`` 0.003125 s (AeroDyn and ServoDyn follow the glue code's step: ``DTAero`` and ``DT`` "default").
 For every channel of :data:`CHANNELS`: the largest absolute difference of the two runs over the 100 s (the output
 times are the same) and the standard deviation of the finer run over 20-100 s (the channel's scale).
@@ -16,7 +16,6 @@ times are the same) and the standard deviation of the finer run over 20-100 s (t
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -25,7 +24,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from make_aeroturbine import read_out  # noqa: E402
-from make_openfast_v5 import CASE, FST, OPENFAST, extend_outputs, set_value, to_v5  # noqa: E402
+from make_openfast_v5 import FST, OPENFAST, prepare  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 #: OpenFAST's steps: the deck's and half of it, s
@@ -36,12 +35,7 @@ CHANNELS = ("OoPDefl1", "IPDefl1", "TTDspFA", "TTDspSS", "RotSpeed", "GenPwr", "
 
 
 def run(executable: str, folder: Path, step: str) -> dict[str, np.ndarray]:
-    case = folder / f"dt_{step}"
-    shutil.copytree(CASE, case)
-    to_v5(case)
-    extend_outputs(case)
-    set_value(case / FST, "TMax", "100")
-    set_value(case / FST, "DT", step)
+    case = prepare(folder / f"dt_{step}", {}, {FST: {"TMax": "100", "DT": step}})
     subprocess.run([executable, FST], cwd=case, check=True, stdout=subprocess.DEVNULL)
     return read_out(case / FST.replace(".fst", ".out"))[0]
 
