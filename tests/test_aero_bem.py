@@ -166,9 +166,9 @@ def test_first_trial_finds_the_same_root(deck, formulation):
     """Brent's method started at the Betz rotor's inflow angle (the solve's first trial without a guess) and
     from the bracket's ends alone find the same root of every NREL 5MW node, to the residual tolerance, from
     cut-in to cut-out at the pitch of the operating schedule, with the blade moving in and against the flow (vx
-    and vy of +-20 %) and canted and toed sections (BEM_Mod 2); and so does a first trial 0.02 rad either side of
-    the root, already evaluated (a previous right-hand side's solution: the solve's first trial in a run)."""
-    from bladefem.aero.bem import EDGE, PREDICTED_FACTOR, brent, framed_residual, section_frame
+    and vy of +-20 %) and canted and toed sections (BEM_Mod 2); and so does the search next to a previous root
+    1e-4 and 0.02 rad either side of it (a previous right-hand side's root: where a run's solve starts)."""
+    from bladefem.aero.bem import EDGE, PREDICTED_FACTOR, brent, framed_residual, local_root, section_frame
     rotor = deck.rotor()
     options = BEMOptions(formulation=formulation).vector()
     z = rotor.hub_radius + rotor.span
@@ -190,15 +190,14 @@ def test_first_trial_finds_the_same_root(deck, formulation):
                 assert lo < first < hi
                 if (f_lo > 0) == (f_hi > 0):
                     continue
-                unknown = (math.nan, 0.0, 0.0, False)
-                ends = brent(lo, hi, f_lo, f_hi, *args, math.nan, unknown)
-                started = brent(lo, hi, f_lo, f_hi, *args, first, unknown)
+                ends = brent(lo, hi, f_lo, f_hi, *args, math.nan)
+                started = brent(lo, hi, f_lo, f_hi, *args, first)
                 assert started[0] == pytest.approx(ends[0], abs=1e-8), (speed, i)
                 assert abs(framed_residual(started[0], *args)[0]) <= 5e-10
-                for step in (-0.02, 0.02):                    # a previous solution, evaluated as the solve does
+                for step in (-0.02, -1e-4, 1e-4, 0.02):       # a previous solution next to the root
                     guess = min(max(ends[0] + step, 2 * EDGE), hi - EDGE)
-                    warm = brent(lo, hi, f_lo, f_hi, *args, guess, framed_residual(guess, *args))
-                    assert warm[0] == pytest.approx(ends[0], abs=1e-8), (speed, i, step)
+                    warm = local_root(guess, lo, hi, 1.0, args)
+                    assert warm[3] and warm[0] == pytest.approx(ends[0], abs=1e-8), (speed, i, step)
                     assert abs(framed_residual(warm[0], *args)[0]) <= 5e-10
                 checked += 1
     assert checked >= 5 * 3 * 14

@@ -57,6 +57,13 @@ A_MIN, A_MAX, AP_MIN, AP_MAX = -1.0, 1.5, -1.0, 1.0
 #: Brent's first trial point in the momentum region is atan2(vx cos(cant) PREDICTED_FACTOR, vy), the inflow angle at
 #: the axial induction a = 1/3 of an ideal rotor (Betz), without tangential induction.
 PREDICTED_FACTOR = 2.0 / 3.0
+#: The search next to a node's previous root (:func:`local_root`): its first step is this many times the Newton step
+#: of a unit slope (the residual's slope dR/dphi at the NREL 5MW's roots from cut-in to cut-out: 0.89 to 6.95,
+#: median 1.27, so the step mostly overshoots the root and brackets it), and so is each secant step after it, at
+#: most :data:`LOCAL_GROWTH` times the step before, in at most :data:`LOCAL_TRIALS` trials.
+LOCAL_OVERSHOOT = 1.5
+LOCAL_GROWTH = 4.0
+LOCAL_TRIALS = 4
 #: Number of values :func:`node_loads` returns.
 NODE_OUTPUTS = 13
 
@@ -100,12 +107,11 @@ def framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, ch
 
 @kernel
 def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
-          coefs, start, count, options, frame, first, first_known):
+          coefs, start, count, options, frame, first):
     """Root of the residual in [lo, hi] (f_lo, f_hi of opposite signs) by Brent's method (inverse quadratic
     interpolation, secant and bisection); stops at |R| <= tolerance or a bracket narrower than 1e-13 rad.
     ``frame``: the node's :func:`section_frame`; ``first``: the first trial point, inside (lo, hi) (nan: Brent's
-    own step from the ends); ``first_known``: (R, a, a', valid) there if evaluated already (R nan: not).
-    Returns (phi, a, a', valid) at the root."""
+    own step from the ends). Returns (phi, a, a', valid) at the root."""
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
             options, frame)
     tolerance = options[TOLERANCE]
@@ -145,16 +151,48 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
         else:
             d = e = half
         a, fa = b, fb
-        if math.isfinite(first) and math.isfinite(first_known[0]):
-            b, (fb, induced_a, induced_ap, valid) = first, first_known
-        else:
-            b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
-            fb, induced_a, induced_ap, valid = framed_residual(b, *args)
+        b += d if abs(d) > step_tolerance else math.copysign(step_tolerance, half)
+        fb, induced_a, induced_ap, valid = framed_residual(b, *args)
         first = math.nan
         at_b = True
     if not at_b:
         _, induced_a, induced_ap, valid = framed_residual(b, *args)
     return b, induced_a, induced_ap, valid
+
+
+@kernel
+def local_root(guess, lo, hi, rising, args):
+    """(phi, a, a', found): a root of the residual next to ``guess`` (a node's root at the previous right-hand
+    side, inside the momentum interval (lo, hi), rad), ``args`` those of :func:`framed_residual` after phi.
+
+    The guess is evaluated and kept if it solves the equations; else a step of :data:`LOCAL_OVERSHOOT` times the
+    Newton step of a unit slope (``rising``: +1 where the residual rises with phi through its root, vx > 0; -1 for
+    the mirrored interval) looks for a sign change, then secant steps (each at most :data:`LOCAL_GROWTH` times the
+    one before, within (lo, hi)), :data:`LOCAL_TRIALS` trials in all; Brent's method solves the bracket found. Not
+    found (no bracket, or an invalid root): ``found`` False, the solve starts from scratch."""
+    tolerance = args[13][TOLERANCE]
+    f_p, a_p, ap_p, valid_p = framed_residual(guess, *args)
+    if abs(f_p) <= tolerance:
+        return guess, a_p, ap_p, valid_p
+    p = guess
+    step = -LOCAL_OVERSHOOT * rising * f_p
+    for _ in range(LOCAL_TRIALS):
+        q = min(max(p + step, lo), hi)
+        if q == p:
+            break
+        f_q, a_q, ap_q, valid_q = framed_residual(q, *args)
+        if abs(f_q) <= tolerance:
+            return q, a_q, ap_q, valid_q
+        if (f_q > 0.0) != (f_p > 0.0):
+            low, high, f_low, f_high = (p, q, f_p, f_q) if p < q else (q, p, f_q, f_p)
+            return brent(low, high, f_low, f_high, *args, math.nan)
+        if f_q == f_p:
+            break
+        secant = -LOCAL_OVERSHOOT * f_q * (q - p) / (f_q - f_p)
+        growth = LOCAL_GROWTH * abs(q - p)
+        step = min(max(secant, -growth), growth)
+        p, f_p = q, f_q
+    return guess, 0.0, 0.0, False
 
 
 @kernel
@@ -179,19 +217,19 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
                        start, count, options, guess, geometry):
     """(phi, valid, a, a'): the inflow angle solving the BEM equations (rad) and the induction there.
 
-    As AeroDyn's ``BEMT_UnCoupledSolve``, Ning's three intervals are searched (ordered by the geometric angle) and
-    Brent's method runs on the first with a sign change. In the momentum region Brent's first trial is a finite
-    ``guess`` inside the interval (the node's solution at the previous right-hand side: 24 % fewer residual
-    evaluations per solve on the NREL 5MW at rated wind, 7.0 to 5.3), else the inflow angle of a Betz rotor
+    A finite ``guess`` inside the momentum interval (the node's valid root at the previous right-hand side) is
+    searched from first (:func:`local_root`): the root bracketed next to it, in the momentum region only, 3.6
+    residual evaluations a solve over the NREL 5MW's 100 s torque-law run against 5.4 from the interval's ends
+    (docs/turbine-aero.md#speed). As AeroDyn keeps a previous solution that still solves the equations, this keeps
+    a momentum-region root next to the previous one where the region holds several (stall: a stalled section keeps
+    its branch). A guess elsewhere is not searched from (a bracket next to a propeller-brake root kept BEM_Mod 1's
+    nodes there though the momentum region had a root, and lost 14-29 % of the NREL 5MW's loads).
+    Without a guess, or without a root next to it, the solve starts from scratch as AeroDyn's
+    ``BEMT_UnCoupledSolve``: Ning's three intervals are searched (ordered by the geometric angle) and Brent's
+    method runs on the first with a sign change, in the momentum region from the inflow angle of a Betz rotor
     (:data:`PREDICTED_FACTOR`, a point computed from the node's inputs alone: the secant from the ends lands near
-    pi/2 and bisections follow).
-    The guess never chooses the interval: the ends of each are evaluated first, so a root in another region is not
-    followed (a bracket next to the previous root did, and BEM_Mod 1 lost 14-29 % of the NREL 5MW's loads). Only
-    where the momentum region holds several roots (stall) can the first trial pick among them: the root nearest
-    the previous one, as a stalled section keeps its branch (docs/turbine-aero.md#speed).
-    Unlike AeroDyn a guess that still solves the equations is not returned before the intervals are searched: a
-    guess in the propeller-brake region would be kept though the momentum region has a root. Without a valid BEM
-    solution: the geometric angle atan2(vx cos(cant), vy), valid False and zero induction (as AeroDyn)."""
+    pi/2 and bisections follow). Without a valid BEM solution: the geometric angle atan2(vx cos(cant), vy), valid
+    False and zero induction (as AeroDyn)."""
     if abs(vx) < ZERO_VELOCITY:
         return 0.0, True, 0.0, 0.0
     if abs(vy) < ZERO_VELOCITY:
@@ -202,6 +240,11 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
             options, frame)
     tolerance = options[TOLERANCE]
     lows, highs = search_intervals(vx, math.atan2(vx, vy))
+    momentum_lo, momentum_hi = min(lows[0], highs[0]), max(lows[0], highs[0])
+    if momentum_lo < guess < momentum_hi:
+        phi, a, ap, found = local_root(guess, momentum_lo, momentum_hi, math.copysign(1.0, vx), args)
+        if found:
+            return phi, True, a, ap
     for i in range(3):
         lo, hi = lows[i], highs[i]
         f_lo, a_lo, ap_lo, valid_lo = framed_residual(lo, *args)
@@ -214,14 +257,10 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
         elif abs(f_hi) < tolerance and valid_hi:
             return hi, True, a_hi, ap_hi
         if (f_lo > 0.0) != (f_hi > 0.0):
-            first, known = math.nan, (math.nan, 0.0, 0.0, False)
-            if i == 0 and min(lo, hi) < guess < max(lo, hi):
-                first, known = guess, framed_residual(guess, *args)
-            elif i == 0:
-                first = math.atan2(vx * cos_cant * PREDICTED_FACTOR, vy)
+            first = math.atan2(vx * cos_cant * PREDICTED_FACTOR, vy) if i == 0 else math.nan
             if not min(lo, hi) < first < max(lo, hi):
                 first = math.nan
-            phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args, first, known)
+            phi, a, ap, valid = brent(lo, hi, f_lo, f_hi, *args, first)
             if valid:
                 return phi, True, a, ap
     return math.atan2(vx * cos_cant, vy), False, 0.0, 0.0

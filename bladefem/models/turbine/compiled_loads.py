@@ -117,6 +117,14 @@ if njit is not None:                                   # module-level kernels: n
         return omega
 
     @njit(cache=True)
+    def previous_root(row):
+        """Where a node's solve starts (:func:`bladefem.aero.bem.solve_inflow_angle`): its root at the solve before
+        (``row``: that solve's outputs); nan (from scratch) where that solve found no valid root: its fallback angle
+        lies in the momentum region, and a root bracketed next to it would be kept though Ning's search from scratch
+        finds none (the momentum region's ends of one sign, an even number of roots there)."""
+        return row[0] if row[12] != 0.0 else math.nan
+
+    @njit(cache=True)
     def projected_inflow(rho_w, b, p, rel, normal, tangent, span, R, shaft, polar, pitch):
         """(vx, vy, cant, toe, twist, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`)
         for its bent section's axes ``normal``, ``tangent``, ``span`` (pitched by ``pitch``, rad), which are turned
@@ -143,40 +151,37 @@ if njit is not None:                                   # module-level kernels: n
                 vx += rel[r] * normal[r]
                 vy -= rel[r] * tangent[r]
             return vx, vy, 0.0, 0.0, twist - pitch, 1.0
-        z_l, y_l = np.zeros(3), np.zeros(3)
         j = max(p, 1)
         rho, prev = rho_w[b, j], rho_w[b, j - 1]
         along, step_along = 0.0, 0.0
         for r in range(3):
             along += rho_w[b, p, r] * shaft[r]
             step_along += (rho[r] - prev[r]) * shaft[r]
-        size, step, step_projected = 0.0, 0.0, 0.0
+        step, step_projected = 0.0, 0.0
         for r in range(3):
-            z_l[r] = rho_w[b, p, r] - along * shaft[r]
-            size += z_l[r] ** 2
             step += (rho[r] - prev[r]) ** 2
             step_projected += (rho[r] - prev[r] - step_along * shaft[r]) ** 2
+        # z_l: the node's radial direction (rotor plane), y_l = z_l x shaft; scalars, no arrays per node
+        z0, z1, z2 = (rho_w[b, p, 0] - along * shaft[0], rho_w[b, p, 1] - along * shaft[1],
+                      rho_w[b, p, 2] - along * shaft[2])
+        size = z0 * z0 + z1 * z1 + z2 * z2
         if size == 0.0:                   # a node on the shaft (hub radius 0): the section's span axis points out
             span_along = span[0] * shaft[0] + span[1] * shaft[1] + span[2] * shaft[2]
-            for r in range(3):
-                z_l[r] = span[r] - span_along * shaft[r]
-                size += z_l[r] ** 2
+            z0, z1, z2 = span[0] - span_along * shaft[0], span[1] - span_along * shaft[1], \
+                span[2] - span_along * shaft[2]
+            size = z0 * z0 + z1 * z1 + z2 * z2
         size = math.sqrt(size)
-        for r in range(3):
-            z_l[r] /= size
-        cross(z_l, shaft, y_l)
-        vx, vy = 0.0, 0.0
-        m11, m12, m13, m21, m22, m23, m31 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-        for r in range(3):
-            vx += rel[r] * shaft[r]
-            vy += rel[r] * y_l[r]
-            m11 += normal[r] * shaft[r]
-            m12 += normal[r] * y_l[r]
-            m13 += normal[r] * z_l[r]
-            m21 -= tangent[r] * shaft[r]
-            m22 -= tangent[r] * y_l[r]
-            m23 -= tangent[r] * z_l[r]
-            m31 += span[r] * shaft[r]
+        z0, z1, z2 = z0 / size, z1 / size, z2 / size
+        y0, y1, y2 = z1 * shaft[2] - z2 * shaft[1], z2 * shaft[0] - z0 * shaft[2], z0 * shaft[1] - z1 * shaft[0]
+        vx = rel[0] * shaft[0] + rel[1] * shaft[1] + rel[2] * shaft[2]
+        vy = rel[0] * y0 + rel[1] * y1 + rel[2] * y2
+        m11 = normal[0] * shaft[0] + normal[1] * shaft[1] + normal[2] * shaft[2]
+        m12 = normal[0] * y0 + normal[1] * y1 + normal[2] * y2
+        m13 = normal[0] * z0 + normal[1] * z1 + normal[2] * z2
+        m21 = -(tangent[0] * shaft[0] + tangent[1] * shaft[1] + tangent[2] * shaft[2])
+        m22 = -(tangent[0] * y0 + tangent[1] * y1 + tangent[2] * y2)
+        m23 = -(tangent[0] * z0 + tangent[1] * z1 + tangent[2] * z2)
+        m31 = span[0] * shaft[0] + span[1] * shaft[1] + span[2] * shaft[2]
         toe, cant, twist = euler_angles(m11, m12, m13, m21, m22, m23, m31)
         c, s = math.cos(twist), math.sin(twist)
         for r in range(3):
@@ -258,8 +263,8 @@ if njit is not None:                                   # module-level kernels: n
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, q_axial, q_tangential = \
                         wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p],
                                         scalars[1], r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p],
-                                        knots, values, coefs, start, count, options, scalars[0], out_w[b, p, 0],
-                                        cant, toe, drdz, wake[b, p, 2], wake[b, p, 3])
+                                        knots, values, coefs, start, count, options, scalars[0],
+                                        previous_root(out_w[b, p]), cant, toe, drdz, wake[b, p, 2], wake[b, p, 3])
                     quasi[b, p, 0], quasi[b, p, 1] = q_axial, q_tangential
                     if vx != 0.0:
                         disk_induction += disk_weight[p] * q_axial / vx
@@ -274,7 +279,7 @@ if njit is not None:                                   # module-level kernels: n
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
                         vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p], scalars[1],
                         r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start,
-                        count, options, scalars[0], out_w[b, p, 0], cant, toe, drdz)
+                        count, options, scalars[0], previous_root(out_w[b, p]), cant, toe, drdz)
                     quasi[b, p, 0], quasi[b, p, 1] = a * vx, ap * vy
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl
