@@ -98,9 +98,9 @@ if njit is not None:                                   # module-level kernels: n
     def dp54_interval(rate, kernels, t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, K, rtol, atol,
                       limit, tableau, q0, u0, index, data, work, hub_radius):
         """Dormand-Prince 5(4) from t to t_end (first step the whole interval, the error control of
-        :func:`.compiled_integrators.dp54_chunk`): the output rows ``times[next_out:]`` up to t_end (those within
-        1e-9 ``spacing`` of t_end take the end state) from the dense output; the end's load channels in
-        ``end_row``. Returns (x, derivative at the end, next_out, right-hand sides, status, offending index)."""
+        :func:`.compiled_integrators.dp54_chunk`): the output rows ``times[next_out:]`` before t_end (by more than
+        1e-9 ``spacing``: a row at t_end is the next interval's, after the controller's call) from the dense
+        output; the end's load channels in ``end_row``. Returns (x, derivative at the end, next_out, right-hand sides, status, offending index)."""
         A, B, C, E, P = tableau
         store_row(K, 0, f0)
         count = 0
@@ -131,11 +131,6 @@ if njit is not None:                                   # module-level kernels: n
                     store_row(out, next_out, y)
                     rate(kernels, times[next_out], y, q0, u0, index, data, work, hub_radius, loads[next_out])
                     next_out += 1
-                if last:
-                    while next_out < times.shape[0] and times[next_out] <= t_end + near:
-                        store_row(out, next_out, new)
-                        store_row(loads, next_out, end_row)
-                        next_out += 1
                 t = t_new
                 x = new
                 store_row(K, 0, K[6])
@@ -153,9 +148,9 @@ if njit is not None:                                   # module-level kernels: n
         load row is the right-hand side that starts the next step; the BEM solved at each step's start (``f0`` for
         the first: solved there with the interval's commands) and its induced velocities held over the other three
         stages (AeroDyn solves once per step too; without the dynamic wake, whose states carry the induction); the
-        rows within 1e-9 ``spacing`` of t_end take the end state and the end's load channels (``end_row``, with the
-        derivative there, one more right-hand side). Returns (x, derivative at the end, next_out, right-hand sides,
-        status, offending index) as :func:`dp54_interval` does."""
+        end's load channels in ``end_row``, with the derivative there (one more right-hand side). Returns (x,
+        derivative at the end, next_out, right-hand sides, status, offending index) as :func:`dp54_interval`
+        does."""
         near = 1e-9 * spacing
         store_row(K, 0, f0)
         count = 0
@@ -188,12 +183,7 @@ if njit is not None:                                   # module-level kernels: n
             count += 1
             next_out += 1
         f_end = rate(kernels, t_end, x, q0, u0, index, data, work, hub_radius, end_row)
-        count += 1
-        while next_out < times.shape[0] and times[next_out] <= t_end + near:
-            store_row(out, next_out, x)
-            store_row(loads, next_out, end_row)
-            next_out += 1
-        return x, f_end, next_out, count, 0, -1
+        return x, f_end, next_out, count + 1, 0, -1
 
     @njit(cache=True)
     def abm4_interval(rate, kernels, t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, history, limit,
@@ -201,8 +191,7 @@ if njit is not None:                                   # module-level kernels: n
         """One step of Adams-Bashforth-Moulton from t to t_end (ElastoDyn's ED_ABM4): the predictor from the
         derivatives at t (``f0``, with the interval's commands) and at the three boundaries before (``history``),
         the rate at the predicted end with the BEM's induction of ``f0``'s solve held (its load channels in
-        ``end_row``: what the next call measures), the corrector. The rows within 1e-9 ``spacing`` of t_end take
-        the corrected state and its load channels (one more right-hand side). Returns as :func:`dp54_interval`."""
+        ``end_row``: what the next call measures), the corrector. Returns as :func:`dp54_interval`."""
         h = t_end - t
         n = x.shape[0]
         P, C = ABM4_PREDICTOR, ABM4_CORRECTOR
@@ -217,17 +206,31 @@ if njit is not None:                                   # module-level kernels: n
         new = np.empty(n)
         for i in range(n):
             new[i] = x[i] + h * (C[0] * f_end[i] + C[1] * f0[i] + C[2] * history[0, i] + C[3] * history[1, i])
-        count = 1
         bad = check_state(new, limit)
         if bad >= 0:
-            return new, f_end, next_out, count, 1 if not np.isfinite(new[bad]) else 2, bad
-        near = 1e-9 * spacing
-        while next_out < times.shape[0] and times[next_out] <= t_end + near:
-            store_row(out, next_out, new)
-            rate(kernels, t_end, new, q0, u0, index, data, work, hub_radius, loads[next_out])
-            count += 1
-            next_out += 1
-        return new, f_end, next_out, count, 0, -1
+            return new, f_end, next_out, 1, 1 if not np.isfinite(new[bad]) else 2, bad
+        return new, f_end, next_out, 1, 0, -1
+
+    @njit(cache=True)
+    def call_controller(t, x, rate_x, row, commands, q0, u0, index, data, pitching, function, records, buffers,
+                        turbine, constants):
+        """The controller's call at t with the state ``x``, its derivative ``rate_x`` and load channels ``row``: its
+        demands held (``commands`` = pitch, torque, updated; the pitch set on the kernels' arrays, the torque on
+        the law). Returns 0 or the status of a failed call."""
+        structure, aero, law = data
+        fill(records, t, x, rate_x, row, commands[0], commands[1], q0, u0, index, turbine, constants)
+        if call_library(function, records, buffers) < 0:
+            return FAILED
+        if records[54] != 0.0 or records[55] != 0.0:
+            return OVERRIDE
+        pitch, torque = np.float64(records[44]), np.float64(records[46])
+        if not (np.isfinite(pitch) and np.isfinite(torque)):
+            return NOT_FINITE
+        if pitch != commands[0]:
+            set_pitch(pitch, pitching[0], pitching[1], structure, aero)
+        commands[0], commands[1] = pitch, torque
+        law[2] = torque
+        return 0
 
     @njit(cache=True)
     def controlled_chunk(rate, kernels, k, boundaries, x, rate_x, row, commands, call_first, times, out, loads, held,
@@ -236,38 +239,39 @@ if njit is not None:                                   # module-level kernels: n
         """Controller intervals from ``k`` on until ``budget`` right-hand sides are spent or the run ends: at each, the
         controller called (but for the first interval of a call without ``call_first``: its commands set
         already) with the state ``x``, its derivative ``rate_x`` and load channels ``row`` (updated in place
-        to the interval's end), its demands held (``commands`` = pitch, torque, updated), the interval
-        integrated (``rate``, given ``kernels``: the state rate and the kernels it calls, as first-class
-        functions or as dispatchers, :mod:`.compiled_calls`; :func:`dp54_interval`; :func:`rk4_interval`
-        where ``step`` is positive; :func:`abm4_interval` where ``taken[0]``, the boundaries whose
-        derivatives ``history`` holds, newest first, is at least :data:`ABM4_HISTORY`, the interval whole
-        and no output row inside it; ``taken[0]`` negative: no ABM4), the pitch of each output row in
-        ``held``. ``pitching`` = (base pitch, reference arrays) of :func:`.pitching.pitch_arrays`. Returns
-        (next interval, its start time, next output row, right-hand sides, status, offending index)."""
-        structure, aero, law = data
+        to the interval's end), its demands held (``commands`` = pitch, torque, updated), an output row at the
+        interval's start written from the derivative there (after the call: a zero-order hold's value at its
+        switching time is the new one, as the first row's), the interval integrated (``rate``, given
+        ``kernels``: the state rate and the kernels it calls, as first-class functions or as dispatchers,
+        :mod:`.compiled_calls`; :func:`dp54_interval`; :func:`rk4_interval` where ``step`` is positive;
+        :func:`abm4_interval` where ``taken[0]``, the boundaries whose derivatives ``history`` holds, newest
+        first, is at least :data:`ABM4_HISTORY`, the interval whole and no output row inside it; ``taken[0]``
+        negative: no ABM4), the pitch of each output row in ``held``; at the run's end the controller called
+        once more for the last row. ``pitching`` = (base pitch, reference arrays) of
+        :func:`.pitching.pitch_arrays`. Returns (next interval, its start time, next output row, right-hand
+        sides, status, offending index)."""
         count = 0
         t = boundaries[k]
+        spacing = boundaries[1] - boundaries[0]
+        near = 1e-9 * spacing
+        controls = (q0, u0, index, data, pitching, function, records, buffers, turbine, constants)
         while k < boundaries.shape[0] - 1 and count < budget:
             t, end = boundaries[k], boundaries[k + 1]
             if call_first:
-                fill(records, t, x, rate_x, row, commands[0], commands[1], q0, u0, index, turbine, constants)
-                if call_library(function, records, buffers) < 0:
-                    return k, t, next_out, count, FAILED, -1
-                if records[54] != 0.0 or records[55] != 0.0:
-                    return k, t, next_out, count, OVERRIDE, -1
-                pitch, torque = np.float64(records[44]), np.float64(records[46])
-                if not (np.isfinite(pitch) and np.isfinite(torque)):
-                    return k, t, next_out, count, NOT_FINITE, -1
-                if pitch != commands[0]:
-                    set_pitch(pitch, pitching[0], pitching[1], structure, aero)
-                commands[0], commands[1] = pitch, torque
-                law[2] = torque
+                status = call_controller(t, x, rate_x, row, commands, *controls)
+                if status:
+                    return k, t, next_out, count, status, -1
             call_first = True
-            f0 = rate(kernels, t, x, q0, u0, index, data, work, hub_radius, row[:0])
+            if next_out < times.shape[0] and times[next_out] <= t + near:
+                store_row(out, next_out, x)
+                held[next_out] = commands[0]
+                f0 = rate(kernels, t, x, q0, u0, index, data, work, hub_radius, loads[next_out])
+                next_out += 1
+            else:
+                f0 = rate(kernels, t, x, q0, u0, index, data, work, hub_radius, row[:0])
             first = next_out
-            spacing = boundaries[1] - boundaries[0]
-            inner = next_out < times.shape[0] and times[next_out] < end - 1e-9 * spacing
-            if taken[0] >= ABM4_HISTORY and not inner and abs(end - t - spacing) <= 1e-9 * spacing:
+            inner = next_out < times.shape[0] and times[next_out] < end - near
+            if taken[0] >= ABM4_HISTORY and not inner and abs(end - t - spacing) <= near:
                 new, f_end, next_out, used, status, bad = abm4_interval(
                     rate, kernels, t, x, f0, end, spacing, times, out, loads, next_out, row, history, limit, q0, u0,
                     index, data, work, hub_radius)
@@ -293,4 +297,13 @@ if njit is not None:                                   # module-level kernels: n
                 rate_x[i] = f_end[i]
             k += 1
             t = end
+        if k == boundaries.shape[0] - 1 and next_out < times.shape[0] and times[next_out] <= t + near:
+            status = call_controller(t, x, rate_x, row, commands, *controls)      # the last row's commands
+            if status:
+                return k, t, next_out, count, status, -1
+            store_row(out, next_out, x)
+            held[next_out] = commands[0]
+            rate(kernels, t, x, q0, u0, index, data, work, hub_radius, loads[next_out])
+            next_out += 1
+            count += 1
         return k, t, next_out, count, 0, -1

@@ -5,8 +5,10 @@ call (zero-order hold: ServoDyn with ``DLL_Ramp`` False), the equations integrat
 Each interval ``[t_k, t_k + DLL_DT]`` is one call of the compiled adaptive integrator (Dormand-Prince 5(4)) with
 the pitch set on the kernels' arrays (:mod:`.pitching`) and the generator torque held (the torque-law vector of
 :func:`.control.law_torque` with a rated speed of zero: the demanded torque at every positive speed). The output rows
-that fall in the interval are taken from the integrator's dense output; the pitch of a row is the one held over its
-interval. Needs numba (the numpy equations would take hours for a controlled run).
+that fall inside the interval are taken from the integrator's dense output, with the pitch held over it; a row at
+a call's time is taken after the call, with its new demands (a zero-order hold's value at its switching time; the
+run's last row has one more call at the end). Needs numba (the numpy equations would take hours for a controlled
+run).
 """
 
 from __future__ import annotations
@@ -161,7 +163,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
     states, loads, pitch = [x], [], []
     end_loads = end_rate = None
     history, known = np.zeros((ABM4_HISTORY, len(x))), 0
-    evaluations, row = 0, 1
+    evaluations, row = 0, 0
     t = 0.0
 
     def steps(start: float, end: float, row_times, rows, row_loads, count: int):
@@ -171,17 +173,34 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
         error.result = finish(run, system, times[:len(states)], states, loads, pitch, evaluations)
         return error
 
+    def boundary_row(t: float, k: int) -> None:
+        """The controller's call at the boundary t, and the output row there after it (a zero-order hold's value
+        at its switching time is the new one)."""
+        nonlocal row
+        measured = run.measure(t, x, end_loads, end_rate, controller.setup.individual)
+        commands = controller.call(t, measured)
+        run.apply(t, commands.pitch, commands.torque)
+        if row < len(times) and times[row] <= t + 1e-9 * step:
+            if k:
+                states.append(x)
+            loads.append(compiled.outputs(times[row:row + 1], x[None], system.q0, system.u0, system.index)[0])
+            pitch.append(run.pitcher.pitch)
+            watch(row, row + 1)
+            row += 1
+
+    def watch(first: int, last: int) -> None:
+        u = np.tile(system.u0, (last - first, 1))
+        u[:, system.index] = np.asarray(states[first:last])[:, system.size:2 * system.size]
+        reason = monitor.rows(times[first:last], u, np.asarray(loads[first:last]))
+        if reason:
+            raise stop(SimulationStopped(*reason))
+
     try:
         for k in range(len(boundaries) - 1):
             t, end = float(boundaries[k]), float(boundaries[k + 1])
-            measured = run.measure(t, x, end_loads, end_rate, controller.setup.individual)
-            commands = controller.call(t, measured)
-            run.apply(t, commands.pitch, commands.torque)
-            if k == 0:
-                loads.append(compiled.outputs(times[:1], x[None], system.q0, system.u0, system.index)[0])
-                pitch.append(run.pitcher.pitch)
+            boundary_row(t, k)
             last = row
-            while last < len(times) and times[last] <= end + 1e-9 * step:
+            while last < len(times) and times[last] < end - 1e-9 * step:
                 last += 1
             inner = times[row:last]
             chunk = np.concatenate([[t], inner[inner < end - 1e-9 * step], [end]])
@@ -189,7 +208,7 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             if method == "ABM4":
                 first = compiled.rate(t, x, system.q0, system.u0, system.index)
                 if known >= ABM4_HISTORY and len(chunk) == 2 and abs(end - t - step) <= 1e-9 * step:
-                    out, measured = abm4_interval(system, compiled, t, end, x, first, history, limit, last - row)
+                    out, measured = abm4_interval(system, compiled, t, end, x, first, history, limit)
                 else:
                     out = rk4_interval(system, compiled, chunk, x, rk4_step, limit, last - row, first)
                 history, known = np.concatenate([first[None], history[:-1]]), known + 1
@@ -218,14 +237,14 @@ def simulate_controlled(system: FreeSystem, controller: DisconController, durati
             loads.extend(out.loads[1:1 + (last - row)])
             pitch.extend([run.pitcher.pitch] * len(taken))
             if len(taken):
-                u = np.tile(system.u0, (len(taken), 1))
-                u[:, system.index] = np.asarray(taken)[:, system.size:2 * system.size]
-                reason = monitor.rows(times[row:last], u, np.asarray(loads[-len(taken):]))
-                if reason:
-                    raise stop(SimulationStopped(*reason))
+                watch(row, last)
             row = last
             if progress is not None:
                 progress(end)
+        t = float(boundaries[-1])
+        if row < len(times):
+            boundary_row(t, len(boundaries) - 1)                 # the last row's commands
+            evaluations += 1
     except ControllerError as error:
         if len(loads) == 0:                          # the first call: the library or its input file is bad
             raise InputError(str(error), file=controller.setup.infile, field="DLL_InFile") from None
@@ -294,7 +313,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
             call_first, evaluations = True, evaluations + count
             pitcher.pitch = float(held_commands[0])
             controller.pitch_command[:] = held_commands[0]
-            run.last_call = float(boundaries[max(k - 1, 0)]) if not status else float(t)
+            run.last_call = float(t) if status or k == len(boundaries) - 1 else float(boundaries[max(k - 1, 0)])
             if status in (1, 2, 3):
                 error = diverged(system, int(bad), t, status, "ABM4" if multistep else "RK4" if rk4_step > 0 else "DP54")
                 error.result = result(rows)

@@ -92,12 +92,12 @@ def rk4_interval(system: FreeSystem, compiled, chunk: NDArray, x: NDArray, step:
 
 
 def abm4_interval(system: FreeSystem, compiled, t: float, end: float, x: NDArray, first: NDArray,
-                  history: NDArray, limit: NDArray, rows: int) -> tuple[Integration, NDArray]:
+                  history: NDArray, limit: NDArray) -> tuple[Integration, NDArray]:
     """One ABM4 step from ``t`` to ``end`` (the twin of :func:`.compiled_control.abm4_interval`): the predictor from
     ``first`` (the derivative at t, evaluated already) and ``history`` (at the three boundaries before, newest
     first), the derivative and load channels at the predicted end with the BEM's induction of ``first``'s solve
-    held (returned as the Integration's ``rate`` and the second value: what the next call measures), the corrector;
-    the load channels of the corrected state if ``rows`` (an output row at ``end``)."""
+    held (returned as the Integration's ``rate`` and the second value: what the next call measures), the
+    corrector."""
     q0, u0, index, hold = system.q0, system.u0, system.index, compiled.state[13]
     h = end - t
     predicted = x + h * (ABM4_PREDICTOR[0] * first + ABM4_PREDICTOR[1:] @ history)
@@ -111,6 +111,4 @@ def abm4_interval(system: FreeSystem, compiled, t: float, end: float, x: NDArray
     if bad.size:
         status = 1 if not np.isfinite(new[bad[0]]) else 2
         return Integration(states, loads, 1, 1, status, float(end), int(bad[0])), measured
-    if rows:
-        loads[1] = compiled.outputs(np.array([end]), new[None], q0, u0, index)[0]
-    return Integration(states, loads, 2, 1 + rows, rate=rate), measured
+    return Integration(states, loads, 2, 1, rate=rate), measured
