@@ -219,3 +219,23 @@ def test_model_reduction_example_runs(tmp_path):
     full, reduced = data[:, 1], data[:, 2]
     assert np.ptp(full) > 1e-3 and np.ptp(reduced) > 1e-4 and not np.allclose(full, reduced, atol=1e-4)
     assert math.isfinite(float(text.split("RMS of the difference between the two histories: ")[1].split(" m")[0]))
+
+
+def test_the_turbine_command_holds_blas_to_one_thread(monkeypatch):
+    """The turbine command's matrices are small, and OpenBLAS's threads only spin on the other core
+    (bladefem/cli/threads.py): while it runs, every loaded BLAS library is held to one thread (here from a limit of
+    two), and the limit is given back after it."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+    seen = []
+
+    def build_model(args):
+        seen.extend(info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas")
+        raise InputError("stopped after the limit was seen")
+
+    monkeypatch.setattr(turbine_cli, "build_model", build_model)
+    with threadpool_limits(limits=2, user_api="blas"):
+        with pytest.raises(InputError, match="stopped after the limit was seen"):
+            run(MAIN, "--linearize")
+        after = [info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas"]
+    assert seen and set(seen) == {1}
+    assert after and set(after) == {2}

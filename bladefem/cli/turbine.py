@@ -31,6 +31,7 @@ from .aeroelastic import (
 )
 from .aeroelastic import wind_speeds as wind_speeds_type
 from .options import check_output, check_turbine_bounds, emit, positive, rpm_sweep
+from .threads import one_blas_thread
 from .wind_options import add_wind_options, apply_wind, check_wind_options
 
 if TYPE_CHECKING:
@@ -143,7 +144,7 @@ def add_parser(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     add_wind_options(parser)
     add_aeroelastic_options(parser)
-    parser.set_defaults(run=run)
+    parser.set_defaults(run=one_blas_thread(run))
 
 
 def check_options(args: argparse.Namespace) -> None:
