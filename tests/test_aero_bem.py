@@ -196,7 +196,7 @@ def test_first_trial_finds_the_same_root(deck, formulation):
                 assert abs(framed_residual(started[0], *args)[0]) <= 5e-10
                 for step in (-0.02, -1e-4, 1e-4, 0.02):       # a previous solution next to the root
                     guess = min(max(ends[0] + step, 2 * EDGE), hi - EDGE)
-                    warm = local_root(guess, lo, hi, 1.0, args)
+                    warm = local_root(guess, lo, hi, 1.0, 5e-10, args)
                     assert warm[3] and warm[0] == pytest.approx(ends[0], abs=1e-8), (speed, i, step)
                     assert abs(framed_residual(warm[0], *args)[0]) <= 5e-10
                 checked += 1

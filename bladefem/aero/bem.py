@@ -161,16 +161,16 @@ def brent(lo, hi, f_lo, f_hi, vx, vy, solidity, theta, tip_constant, hub_constan
 
 
 @kernel
-def local_root(guess, lo, hi, rising, args):
-    """(phi, a, a', found): a root of the residual next to ``guess`` (a node's root at the previous right-hand
-    side, inside the momentum interval (lo, hi), rad), ``args`` those of :func:`framed_residual` after phi.
+def local_root(guess, lo, hi, rising, tolerance, args):
+    """(phi, a, a', found): a root of the residual (|R| <= ``tolerance``, or Brent's bracket) next to ``guess``
+    (a node's root at the previous right-hand side, inside the momentum interval (lo, hi), rad), ``args`` those of
+    :func:`framed_residual` after phi.
 
     The guess is evaluated and kept if it solves the equations; else a step of :data:`LOCAL_OVERSHOOT` times the
     Newton step of a unit slope (``rising``: +1 where the residual rises with phi through its root, vx > 0; -1 for
     the mirrored interval) looks for a sign change, then secant steps (each at most :data:`LOCAL_GROWTH` times the
     one before, within (lo, hi)), :data:`LOCAL_TRIALS` trials in all; Brent's method solves the bracket found. Not
     found (no bracket, or an invalid root): ``found`` False, the solve starts from scratch."""
-    tolerance = args[13][TOLERANCE]
     f_p, a_p, ap_p, valid_p = framed_residual(guess, *args)
     if abs(f_p) <= tolerance:
         return guess, a_p, ap_p, valid_p
@@ -242,7 +242,7 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     lows, highs = search_intervals(vx, math.atan2(vx, vy))
     momentum_lo, momentum_hi = min(lows[0], highs[0]), max(lows[0], highs[0])
     if momentum_lo < guess < momentum_hi:
-        phi, a, ap, found = local_root(guess, momentum_lo, momentum_hi, math.copysign(1.0, vx), args)
+        phi, a, ap, found = local_root(guess, momentum_lo, momentum_hi, math.copysign(1.0, vx), tolerance, args)
         if found:
             return phi, True, a, ap
     for i in range(3):
