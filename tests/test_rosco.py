@@ -116,15 +116,17 @@ def test_rosco_steady_operation_against_openfast(steady, wind):
 def test_rosco_start_transient_follows_openfast(steady, wind):
     """The first 60 s from the schedule's rotor speed and pitch (the controller's filters, wind-speed estimator and
     integrators settling, the rotor and blades swinging up), bladefem against OpenFAST every 0.1 s: rotor speed within
-    0.05 rpm, pitch within 0.2 deg, and every channel that moves correlated above 0.99 with OpenFAST's (measured
-    at 8-16 m/s: 0.017, 0.028, 0.014 rpm; 0.063, 0.069 deg; correlations 0.991 to 0.9998)."""
+    0.05 rpm, pitch within 0.05 deg, and every channel that moves correlated above 0.99 with OpenFAST's (measured
+    at 8-20 m/s: 0.004 to 0.011 rpm; 0.0035, 0.026, 0.009 deg above 8 m/s; correlations 0.997 to 0.99999). The
+    pitch bound holds a row at a controller call to the call's new demand, as OpenFAST's rows are: with the demand
+    held over the interval before (one interval late) the pitch differed by 0.062 deg at 11.4 m/s."""
     history = json.loads(TRANSIENT.read_text())["cases"][wind]
     ours = steady[1][wind]
     times = np.array(history["Time"])
     for name in ("RotSpeed", "BldPitch1", "GenPwr", "RotThrust", "OoPDefl1"):
         mine, theirs = np.interp(times, ours["Time"], ours[name]), np.array(history[name])
         if name in ("RotSpeed", "BldPitch1"):
-            assert np.max(np.abs(mine - theirs)) < (0.05 if name == "RotSpeed" else 0.2), name
+            assert np.max(np.abs(mine - theirs)) < 0.05, name
         if np.ptp(theirs) > 0:
             a, b = mine - mine.mean(), theirs - theirs.mean()
             assert a @ b / np.sqrt((a @ a) * (b @ b)) > 0.99, name
