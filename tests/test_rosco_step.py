@@ -46,9 +46,10 @@ def test_peaks_and_settled_values_follow_openfast(step):
 
 
 def test_time_histories_follow_openfast(step):
-    """Every 0.1 s from 0 to 100 s: rotor speed within 0.05 rpm (the start-transient test's bound; measured 0.019),
-    pitch within 0.5 deg (measured 0.18 deg, during the fastest pitching), and the root-mean-square difference of
-    every channel below 1 % of its range over the run (measured at most 0.29 %, the tip deflection)."""
+    """Every 0.1 s from 0 to 100 s: rotor speed within 0.05 rpm (the start-transient test's bound; measured 0.029),
+    pitch within 0.5 deg (measured 0.25 deg, during the fastest pitching; 0.27 when a row at a controller call
+    held the demand before the call), and the root-mean-square difference of every channel below 1 % of its range
+    over the run (measured at most 0.48 %, the tip deflection)."""
     ours, theirs = step[0], step[1]
     time = np.array(theirs["Time"])
     for name, _ in CHANNELS:
