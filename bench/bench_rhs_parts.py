@@ -6,13 +6,12 @@ The shipped NREL 5MW deck with ROSCO (cases/nrel5mw/NRELOffshrBsline5MW_Onshore_
 pitch) is built and run for 0.1 s by the command (the kernels compiled or loaded from numba's cache); then, at its
 initial state, each part is called ``--calls`` times in a compiled loop (no Python between calls) and its mean time
 printed: the state rate with the BEM solved (the first right-hand side of an ABM4 interval) from scratch (each
-node's previous solution cleared: Brent's first trial at the Betz rotor's angle) and from the nodes' roots at that
-state (the first trial already the root: the lower bound of a run's solve, which starts from the previous right-hand
-side's roots), with the BEM's induction held (the predicted end), with an output row; and its pieces: the
-structural equations (the Kane model's quadrature points named: the blades' now enter through their modal
-integrals), the aerodynamic loads with the BEM solved and held, of these the aerodynamic nodes' kinematics and wind, the solve of the mass matrix, the
-pitch set on the BEM's arrays, the controller library's call. Markdown table; the load average is printed, as the
-machine may be shared.
+node's previous solution cleared) and from the nodes' roots at that state (each kept at once: the lower bound of a
+run's solve, which searches next to the previous right-hand side's roots), with the BEM's induction held (the
+predicted end), with an output row; and its pieces: the structural equations (the Kane model's quadrature points
+named: the blades' now enter through their modal integrals), the aerodynamic loads with the BEM solved and held, of
+these the aerodynamic nodes' kinematics and wind, the solve of the mass matrix, the pitch set on the BEM's arrays,
+the controller library's call. Markdown table; the load average is printed, as the machine may be shared.
 """
 
 from __future__ import annotations
@@ -43,7 +42,7 @@ def loops():
         total = 0.0
         for _ in range(n):
             if cold:
-                work[1][6][:, :, 0] = 0.0              # no previous solution: Brent's first trial at Betz's angle
+                work[1][6][...] = 0.0                  # no previous solution (as forget_solutions): from scratch
             work[1][13][2] = held
             total += rate(kernels, 1.0, x, q0, u0, index, data, work, hub, row)[0]
             work[1][13][2] = 0.0
@@ -61,7 +60,7 @@ def loops():
         f = np.zeros(q.shape[0])
         for _ in range(n):
             if cold:
-                work[1][6][:, :, 0] = 0.0
+                work[1][6][...] = 0.0
             work[1][13][2] = held
             add_aero(f, q, u, structure, aero, work[0], work[1], 1.0)
             work[1][13][2] = 0.0

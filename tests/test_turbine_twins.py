@@ -8,7 +8,7 @@ before it and at the box's wrap), ServoDyn's torque law (or none: CompServo 0), 
 --elastodyn-compatible, --pitch-deg, --no-aero, --no-gravity, --no-damping, a locked generator, a yawed nacelle.
 
 Each compiled model is called first at another state, then at the state compared, once with its nodes' roots at
-the other state as Brent's first trials (a run's right-hand sides) and once from scratch: a solution that
+the other state as where each solve starts (a run's right-hand sides) and once from scratch: a solution that
 depended on the previous call beyond the BEM's tolerance (the warm start that took the NREL 5MW's blade tips into
 the propeller-brake root with BEM_Mod 1, 14-29 % low loads) shows as a difference of the first (:data:`WARM_START`).
 From scratch both paths solve the same BEM equations by the same kernel from the same inputs (which differ by
@@ -150,7 +150,7 @@ def test_compiled_equals_numpy_for_every_option(tmp_path, name):
     compiled(q_before, u_before)
     compiled.derivative(0.0, FreeSystem(model, free, q_before, u_before).initial_state(), q_before, u_before,
                         system.index)
-    _, f_warm = compiled(q, u, t=t)                  # Brent's first trials: the roots at the other state
+    _, f_warm = compiled(q, u, t=t)                  # each solve starting from the roots at the other state
     compiled.forget_solutions()
     M, f = model.equations(q, u, t=t)
     Mc, fc = compiled(q, u, t=t)

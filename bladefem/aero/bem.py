@@ -218,8 +218,8 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     """(phi, valid, a, a'): the inflow angle solving the BEM equations (rad) and the induction there.
 
     A finite ``guess`` inside the momentum interval (the node's valid root at the previous right-hand side) is
-    searched from first (:func:`local_root`): the root bracketed next to it, in the momentum region only, 3.6
-    residual evaluations a solve over the NREL 5MW's 100 s torque-law run against 5.4 from the interval's ends
+    searched from first (:func:`local_root`): the root bracketed next to it, in the momentum region only, 3.44
+    residual evaluations a solve over the NREL 5MW's 100 s torque-law run against 5.31 from the interval's ends
     (docs/turbine-aero.md#speed). As AeroDyn keeps a previous solution that still solves the equations, this keeps
     a momentum-region root next to the previous one where the region holds several (stall: a stalled section keeps
     its branch). A guess elsewhere is not searched from (a bracket next to a propeller-brake root kept BEM_Mod 1's

@@ -174,8 +174,9 @@ class CompiledEquations:
         self._calls: dict[str, tuple] = {}             # kernel name -> (kernel, functions), :meth:`joined`
 
     def forget_solutions(self) -> None:
-        """Clear the nodes' last BEM solutions (Brent's first trial at the next solve, :func:`bladefem.aero.bem.
-        solve_inflow_angle`): a run starts from the node's inputs alone, whatever ran before on this model."""
+        """Clear the nodes' last BEM solutions (where the next solve starts, :func:`.compiled_loads.previous_root`:
+        from scratch once cleared): a run starts from the node's inputs alone, whatever ran before on this
+        model."""
         self.state[6][...] = 0.0
 
     def _parallel(self, entry: str, helper: tuple = ()) -> Callable[[], None]:

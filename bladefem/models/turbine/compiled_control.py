@@ -100,7 +100,8 @@ if njit is not None:                                   # module-level kernels: n
         """Dormand-Prince 5(4) from t to t_end (first step the whole interval, the error control of
         :func:`.compiled_integrators.dp54_chunk`): the output rows ``times[next_out:]`` before t_end (by more than
         1e-9 ``spacing``: a row at t_end is the next interval's, after the controller's call) from the dense
-        output; the end's load channels in ``end_row``. Returns (x, derivative at the end, next_out, right-hand sides, status, offending index)."""
+        output; the end's load channels in ``end_row``. Returns (x, derivative at the end, next_out, right-hand
+        sides, status, offending index)."""
         A, B, C, E, P = tableau
         store_row(K, 0, f0)
         count = 0
@@ -186,12 +187,13 @@ if njit is not None:                                   # module-level kernels: n
         return x, f_end, next_out, count + 1, 0, -1
 
     @njit(cache=True)
-    def abm4_interval(rate, kernels, t, x, f0, t_end, spacing, times, out, loads, next_out, end_row, history, limit,
-                      q0, u0, index, data, work, hub_radius):
+    def abm4_interval(rate, kernels, t, x, f0, t_end, next_out, end_row, history, limit, q0, u0, index, data, work,
+                      hub_radius):
         """One step of Adams-Bashforth-Moulton from t to t_end (ElastoDyn's ED_ABM4): the predictor from the
         derivatives at t (``f0``, with the interval's commands) and at the three boundaries before (``history``),
         the rate at the predicted end with the BEM's induction of ``f0``'s solve held (its load channels in
-        ``end_row``: what the next call measures), the corrector. Returns as :func:`dp54_interval`."""
+        ``end_row``: what the next call measures), the corrector. Writes no output row (``next_out`` returned as it
+        came). Returns as :func:`dp54_interval`."""
         h = t_end - t
         n = x.shape[0]
         P, C = ABM4_PREDICTOR, ABM4_CORRECTOR
@@ -273,8 +275,8 @@ if njit is not None:                                   # module-level kernels: n
             inner = next_out < times.shape[0] and times[next_out] < end - near
             if taken[0] >= ABM4_HISTORY and not inner and abs(end - t - spacing) <= near:
                 new, f_end, next_out, used, status, bad = abm4_interval(
-                    rate, kernels, t, x, f0, end, spacing, times, out, loads, next_out, row, history, limit, q0, u0,
-                    index, data, work, hub_radius)
+                    rate, kernels, t, x, f0, end, next_out, row, history, limit, q0, u0, index, data, work,
+                    hub_radius)
             elif step > 0.0:
                 new, f_end, next_out, used, status, bad = rk4_interval(
                     rate, kernels, t, x, f0, end, spacing, step, times, out, loads, next_out, row, K, limit, q0, u0,
