@@ -50,6 +50,16 @@ def wake_data(aero, blades: int) -> tuple:
     return (np.zeros(3) if settings is None else settings.vector(), weights, radius / radius.max())
 
 
+#: rows of the 3-vector scratch (``state[15]``) of the load kernels, which allocate nothing (compiled without
+#: reference counting: the atomic increments and decrements of each per-node array view took about a sixth of a
+#: right-hand side): the wind, the apex's velocity, the rotor's angular velocity, a beam node's offset, rate and
+#: bias, the node's motion in earth axes, omega x rho; the disk-averaged relative wind and its in-plane direction,
+#: a node force's arm x force, its moment, a blade's radial direction
+(WIND, APEX_VELOCITY, OMEGA, OFFSET, RATE, BIAS, MOVING, SPUN, MEAN, IN_PLANE, ARM, LOAD, RADIAL) = range(13)
+#: rows of the modal scratch (``state[17]``, 6 + k long): a blade's coordinates and rates, its lumped loads
+(BLADE_Q, BLADE_U, SHARED) = range(3)
+
+
 def aero_state(blades: int, nodes: int, modes: int) -> tuple:
     """Per node: offset from the apex rho, absolute velocity (B, Na, 3), R D (B, Na, 3, k), the bent section's
     normal and span axis (B, Na, 3; after the node solve the axes its loads act along), the relative wind
@@ -57,9 +67,11 @@ def aero_state(blades: int, nodes: int, modes: int) -> tuple:
     (:data:`HUB`); the dynamic wake's states and their rates (B, Na, 4), the quasi-steady induced velocities
     (B, Na, 2; without the dynamic wake those of the last BEM solve) and (states given: 1 or 0, tau1 in s, the
     induction held: 1 or 0); the bent section's direction of rotation (B, Na, 3; after the solve the tangential
-    load's axis)."""
+    load's axis); scratch: 3-vectors (13, 3, rows named above), a node's partials D (3, k), modal rows
+    (3, 6 + k), the nodes' distances from the shaft (B, Na) and the blades' largest (B,)."""
     shape = (blades, nodes, 3)
     return (np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 3, modes)), np.zeros(shape),
             np.zeros(shape), np.zeros(shape), np.zeros((blades, nodes, 13)), np.zeros(shape), np.zeros(shape),
             np.zeros(len(HUB)), np.zeros((blades, nodes, 4)), np.zeros((blades, nodes, 4)),
-            np.zeros((blades, nodes, 2)), np.zeros(3), np.zeros(shape))
+            np.zeros((blades, nodes, 2)), np.zeros(3), np.zeros(shape), np.zeros((13, 3)), np.zeros((3, modes)),
+            np.zeros((3, 6 + modes)), np.zeros((blades, nodes)), np.zeros(blades))

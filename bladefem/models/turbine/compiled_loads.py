@@ -37,37 +37,40 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.performance import induction_weight
     from ...aero.polar import curved_axes, euler_angles
     from ...aero.wind import point_wind
+    from .compiled_aero_arrays import (APEX_VELOCITY, ARM, BIAS, BLADE_Q, BLADE_U, IN_PLANE, LOAD, MEAN, MOVING,
+                                       OFFSET, OMEGA, RADIAL, RATE, SHARED, SPUN, WIND)
     from .compiled_kernels import beam_node
     from . import control
     from .compiled_kernels import equations as structural_equations
 
-    @njit(cache=True)
+    @njit(cache=True, _nrt=False)
     def cross(a, b, out):
         out[0] = a[1] * b[2] - a[2] * b[1]
         out[1] = a[2] * b[0] - a[0] * b[2]
         out[2] = a[0] * b[1] - a[1] * b[0]
 
-    @njit(cache=True)
+    @njit(cache=True, _nrt=False)
     def node_kinematics(q, u, data, aero, work, state, t):
         """Positions, velocities, R D, deflected normals and span axes, relative wind (at time t) of every
-        aerodynamic node."""
+        aerodynamic node; the rotor's angular velocity in the scratch's row ``OMEGA``. Like every kernel here
+        that runs per node, it allocates nothing and counts no references (its arrays: the state's scratch)."""
         b_columns = data[9]
         across, short, axial, offset, slope = aero[0], aero[1], aero[2], aero[3], aero[4]
         params, table, grid, curve = aero[19], aero[20], aero[21], aero[25]
         cos_pitch, sin_pitch = math.cos(aero[26][0]), math.sin(aero[26][0])
-        wind = np.zeros(3)
         Z_w, frame_w, apex_w = work[0], work[1], work[2]
         rho_w, vel_w, RD_w, normal_w, span_w, rel_w = state[0], state[1], state[2], state[3], state[4], state[5]
         tangent_w = state[14]
         n, k = q.shape[0], across.shape[0]
-        apex_v, omega = np.zeros(3), np.zeros(3)
+        vectors, D, modal = state[15], state[16], state[17]
+        wind, apex_v, omega, d, rate = vectors[WIND], vectors[APEX_VELOCITY], vectors[OMEGA], vectors[OFFSET], \
+            vectors[RATE]
+        bias, moving, wr, qb, ub = vectors[BIAS], vectors[MOVING], vectors[SPUN], modal[BLADE_Q], modal[BLADE_U]
         for r in range(3):
+            apex_v[r], omega[r] = 0.0, 0.0
             for c in range(n):
                 apex_v[r] += Z_w[0, r, c] * u[c]
                 omega[r] += Z_w[0, 3 + r, c] * u[c]
-        D = np.zeros((3, k))
-        d, rate, bias, moving, wr = np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)
-        qb, ub = np.empty(k), np.empty(k)
         for b in range(frame_w.shape[0]):
             R = frame_w[b]
             for i in range(k):
@@ -114,9 +117,8 @@ if njit is not None:                                   # module-level kernels: n
                 for r in range(3):
                     vel_w[b, p, r] = apex_v[r] + wr[r] + moving[r]
                     rel_w[b, p, r] = wind[r] - vel_w[b, p, r]
-        return omega
 
-    @njit(cache=True)
+    @njit(cache=True, _nrt=False)
     def previous_root(row):
         """Where a node's solve starts (:func:`bladefem.aero.bem.solve_inflow_angle`): its root at the solve before
         (``row``: that solve's outputs); nan (from scratch) where that solve found no valid root: its fallback angle
@@ -124,7 +126,7 @@ if njit is not None:                                   # module-level kernels: n
         finds none (the momentum region's ends of one sign, an even number of roots there)."""
         return row[0] if row[12] != 0.0 else math.nan
 
-    @njit(cache=True)
+    @njit(cache=True, _nrt=False)
     def projected_inflow(rho_w, b, p, rel, normal, tangent, span, R, shaft, polar, pitch):
         """(vx, vy, cant, toe, twist, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`)
         for its bent section's axes ``normal``, ``tangent``, ``span`` (pitched by ``pitch``, rad), which are turned
@@ -191,7 +193,7 @@ if njit is not None:                                   # module-level kernels: n
         drdz = math.sqrt(step_projected) / math.sqrt(step) if step > 0.0 else 0.0
         return vx, vy, cant, toe, twist - pitch, drdz
 
-    @njit(cache=True)
+    @njit(cache=True, _nrt=False)
     def add_aero(f, q, u, data, aero, work, state, t):
         """f += the generalized aerodynamic forces at (q, u) and time t; fills ``state`` (loads, solutions, rotor
         summary)."""
@@ -206,7 +208,10 @@ if njit is not None:                                   # module-level kernels: n
         rho_w, RD_w, normal_w, span_w, rel_w, out_w, force_w, moment_w, hub = state[0], state[2], state[3], \
             state[4], state[5], state[6], state[7], state[8], state[9]
         tangent_w = state[14]
-        omega = node_kinematics(q, u, data, aero, work, state, t)
+        node_kinematics(q, u, data, aero, work, state, t)
+        vectors, shared, r_local, tip = state[15], state[17][SHARED], state[18], state[19]
+        omega, mean, in_plane, arm, load, radial = vectors[OMEGA], vectors[MEAN], vectors[IN_PLANE], vectors[ARM], \
+            vectors[LOAD], vectors[RADIAL]
         B, k = frame_w.shape[0], RD_w.shape[3]
         wake_parameters, disk_weight, ratio0 = aero[22], aero[23], aero[24]
         wake, wake_rate, quasi, wake_flag = state[10], state[11], state[12], state[13]
@@ -214,7 +219,7 @@ if njit is not None:                                   # module-level kernels: n
         held = wake_flag[2] != 0.0 and not lagging
         disk_induction = 0.0
         # disk averages (AeroDyn's DiskAvgValues): relative wind, skew angle and direction, tip-speed ratio
-        mean = np.zeros(3)
+        mean[0], mean[1], mean[2] = 0.0, 0.0, 0.0
         for b in range(B):
             for p in range(nodes):
                 for r in range(3):
@@ -222,7 +227,6 @@ if njit is not None:                                   # module-level kernels: n
         along = mean[0] * shaft[0] + mean[1] * shaft[1] + mean[2] * shaft[2]
         size = math.sqrt(mean[0] ** 2 + mean[1] ** 2 + mean[2] ** 2)
         chi0 = math.acos(min(max(along / size, -1.0), 1.0)) if size > 0.0 else 0.0
-        in_plane = np.zeros(3)
         norm = 0.0
         for r in range(3):
             in_plane[r] = mean[r] - along * shaft[r]
@@ -230,9 +234,8 @@ if njit is not None:                                   # module-level kernels: n
         norm = math.sqrt(norm)
         for r in range(3):
             in_plane[r] = in_plane[r] / norm if norm > 1e-12 * max(size, 1.0) else 0.0
-        r_local = np.zeros((B, nodes))
-        tip = np.zeros(B)
         for b in range(B):
+            tip[b] = 0.0
             for p in range(nodes):
                 rho = rho_w[b, p]
                 axial = rho[0] * shaft[0] + rho[1] * shaft[1] + rho[2] * shaft[2]
@@ -240,14 +243,14 @@ if njit is not None:                                   # module-level kernels: n
                                               + (rho[2] - axial * shaft[2]) ** 2, 0.0))
                 tip[b] = max(tip[b], r_local[b, p])
         speed = omega[0] * shaft[0] + omega[1] * shaft[1] + omega[2] * shaft[2]
-        max_radius = tip.max()
+        max_radius = 0.0
+        for b in range(B):
+            max_radius = max(max_radius, tip[b])
         tsr = speed * max_radius / along if along != 0.0 else 0.0
         weight = induction_weight(tsr)
         thrust, torque = 0.0, 0.0
-        arm, load = np.zeros(3), np.zeros(3)
         for b in range(B):
             R = frame_w[b]
-            radial = np.zeros(3)
             axial = R[0, 0] * shaft[0] + R[1, 0] * shaft[1] + R[2, 0] * shaft[2]
             length = 0.0
             for r in range(3):
@@ -286,7 +289,8 @@ if njit is not None:                                   # module-level kernels: n
                 row[7], row[8], row[9], row[10], row[11] = cd, cm, fn, ft, m
                 row[12] = 1.0 if valid else 0.0
             # lumped loads: forces by virtual work of linear loads (tridiagonal), moments by the trapezoidal rule
-            shared = np.zeros(6 + k)
+            for i in range(6 + k):
+                shared[i] = 0.0
             for p in range(nodes):
                 for r in range(3):
                     value = 0.0
@@ -320,7 +324,7 @@ if njit is not None:                                   # module-level kernels: n
             wake_flag[1] = wake_derivatives(wake, quasi, wake_rate, wake_parameters, ratio0, r_local, max_radius,
                                             disk_induction, along, state[1], rel_w, shaft, options[FORMULATION])
 
-    @njit(cache=True)
+    @njit(cache=True, _nrt=False)
     def wake_derivatives(wake, quasi, rate, parameters, ratio0, r_local, max_radius, disk_induction, along, velocity,
                          relative, shaft, formulation):
         """The rates of the dynamic wake's states into ``rate``; returns tau1 (s). The disk wind: the relative
