@@ -16,6 +16,9 @@ njit = cached_njit()
 COLUMNS = ("root_oop", "root_ip", "shaft_thrust", "shaft_torque", "generator_torque", "aero_thrust", "aero_torque",
            "aero_power", "tsr", "cp", "ct", "disk_velocity", "skew", "aero_work", "damping_power", "tower_base_x",
            "tower_base_y")
+#: the leading columns a controller's call measures (:func:`.compiled_control.fill`: root moments, shaft torque):
+#: a row of this length gets only these, without the power, damping and tower-base channels
+MEASURED = 5
 
 if njit is not None:
     from .compiled_state import free_accelerations, full_state
@@ -40,8 +43,9 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True)
     def output_row(q, u, M, f, index, data, work, hub_radius, blade, out):
-        """Fill ``out`` with the :data:`COLUMNS` at (q, u), given the equations ``M du/dt = f`` there (whose kernel
-        has just left that state's motion and loads in ``work``). Root moments of ``blade``: ``sum (r - r_root) x
+        """Fill ``out`` with the :data:`COLUMNS` at (q, u) (the first :data:`MEASURED` where it is that short),
+        given the equations ``M du/dt = f`` there (whose kernel has just left that state's motion and loads in
+        ``work``). Root moments of ``blade``: ``sum (r - r_root) x
         (m (g - a) + F_aero) + M_aero`` in the blade frame (out-of-plane positive for downwind loads, in-plane for
         loads toward the leading edge); shaft loads: the force and the moment about the apex of the rotor's (hub and
         blades) gravity, d'Alembert and aerodynamic loads, along the shaft; generator torque: the law's, plus whatever
@@ -123,6 +127,8 @@ if njit is not None:                                   # module-level kernels: n
             speed += generator[c] * u[c]
             residual += M[g_index, c] * du[c]
         out[4] = law_torque(law, speed) - residual / generator[g_index]
+        if out.shape[0] <= MEASURED:
+            return
         for i in range(8):
             out[5 + i] = summary[i]
         power = 0.0

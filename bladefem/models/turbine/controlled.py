@@ -267,6 +267,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     sides) the new rows are watched, progress told and Ctrl-C looked for."""
     from .compiled import _dp54_tableau
     from .compiled_control import FAILED, OVERRIDE, controlled_chunk
+    from .compiled_outputs import MEASURED
     from .watch import BUDGET, interruptible
     system, compiled, model = run.system, run.compiled, run.model
     x = system.initial_state().astype(float)
@@ -282,7 +283,7 @@ def compiled_loop(run: Controlled, controller: DisconController, times: NDArray,
     loads = np.full((len(times), first.shape[1]), np.nan)
     loads[0] = first[0]
     held = np.full(len(times), run.pitcher.pitch)
-    rate, row, held_commands = np.zeros(len(x)), np.zeros(loads.shape[1]), np.array([run.pitcher.pitch, run.torque])
+    rate, row, held_commands = np.zeros(len(x)), np.zeros(MEASURED), np.array([run.pitcher.pitch, run.torque])
     function, buffers = controller.library.raw()
     constant = controller.constant_records()
     p = model.params
