@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .induction import critical_induction, framed_induction, framed_loss, loss_factor, plane_coefficients
+from .induction import critical_induction, framed_induction, framed_loss, framed_plane_coefficients, loss_factor
 from .options import (
     FORMULATION,
     HUB_LOSS,
@@ -45,7 +45,7 @@ from .options import (
     TOLERANCE,
     USE_CM,
 )
-from .polar import framed_angle, framed_coefficients, section_angle
+from .polar import framed_coefficients, section_inflow
 from .polars import polar_lookup
 
 #: A velocity component below this counts as zero (AeroDyn's VelocityIsZero), m/s.
@@ -94,13 +94,14 @@ def framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, ch
     s, c = math.sin(phi), math.cos(phi)
     if options[FORMULATION] != 2.0:
         cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
-        cn, ct = plane_coefficients(phi, cl, cd, options)
+        cn, ct = framed_plane_coefficients(s, c, cl, cd, options)
         loss = framed_loss(phi, s, c, tip_constant, hub_constant, options, 1.0)
         return framed_induction(phi, s, c, vx, vy, solidity, cn, ct, loss, frame[9], options)
     cant, toe, drdz, cb, sb, ct_, st, cw, sw, critical = frame
-    alpha = framed_angle(phi, s, c, cant, toe, cb, sb, ct_, st) - theta
-    cl, cd, _ = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
-    cn, ct = framed_coefficients(alpha, cl, cd, options, cw, sw, cb, sb, ct_, st)
+    inflow, sin_inflow, cos_inflow = section_inflow(phi, s, c, cant, toe, cb, sb, ct_, st)
+    cl, cd, _ = polar_lookup(inflow - theta, airfoil, knots, values, coefs, start, count)
+    cn, ct = framed_coefficients(cos_inflow * cw + sin_inflow * sw, sin_inflow * cw - cos_inflow * sw, cl, cd,
+                                 options, cw, sw, cb, sb, ct_, st)
     loss = framed_loss(phi, s, c, tip_constant, hub_constant, options, cb)
     return framed_induction(phi, s, c, vx * cb, vy, solidity, cn * drdz, ct, loss, critical, options)
 
@@ -363,14 +364,14 @@ def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, st
     sees W from (vx cos(cant) (1 - a), vy (1 + a')) at its own angle (:func:`bladefem.aero.polar.section_angle`),
     and fn, ft act along its untwisted chord normal and against y' (AeroDyn's loads in the airfoil frame turned
     back by the section's orientation)."""
-    x, y = vx * math.cos(cant) * (1.0 - a), vy * (1.0 + ap)
+    cb = math.cos(cant)
+    x, y = vx * cb * (1.0 - a), vy * (1.0 + ap)
     phi = math.atan2(x, y) if (x != 0.0 or y != 0.0) else 0.0
-    inflow = section_angle(phi, cant, toe)
+    inflow, s, c = section_inflow(phi, x, y, cant, toe, cb, math.sin(cant), math.cos(toe), math.sin(toe))
     alpha = inflow - theta
     cl, cd, cm = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
     w = math.sqrt(x * x + y * y)
     q = 0.5 * air_density * w * w
-    s, c = math.sin(inflow), math.cos(inflow)
     fn = q * chord * (cl * c + cd * s)
     ft = q * chord * (cl * s - cd * c)
     m = q * chord * chord * cm if options[USE_CM] != 0.0 else 0.0

@@ -74,19 +74,33 @@ def framed_angle(phi, sin_phi, cos_phi, cant, toe, cb, sb, ct, st):
 
 
 @kernel
+def section_inflow(phi, x, y, cant, toe, cb, sb, ct, st):
+    """(angle, sine, cosine) of :func:`framed_angle` of phi = atan2(x, y) for the inflow of components (x, y), the
+    sine and cosine from the components (the atan2's arguments scaled to unit length: no trigonometric call);
+    (phi, 0, 1) where both are zero."""
+    plane = cant == 0.0 and toe == 0.0
+    if not plane:
+        x, y = cb * x + sb * st * y * cb, ct * y * cb
+    size = math.sqrt(x * x + y * y)
+    if size == 0.0:
+        return phi, 0.0, 1.0
+    return phi if plane else math.atan2(x, y), x / size, y / size
+
+
+@kernel
 def polar_coefficients(alpha, theta, cant, toe, cl, cd, options):
     """(Cx, Cy): the section's force coefficients along x_l (normal to the rotor plane) and along -y_l (in the
     plane, towards the leading edge) for cl, cd at the angle of attack alpha, the chord turned by theta, drag only
     with AIDrag (normal to the chord) / TIDrag (along it), as AeroDyn's momentum balance takes them."""
-    return framed_coefficients(alpha, cl, cd, options, math.cos(theta), math.sin(theta), math.cos(cant),
-                               math.sin(cant), math.cos(toe), math.sin(toe))
+    return framed_coefficients(math.cos(alpha), math.sin(alpha), cl, cd, options, math.cos(theta), math.sin(theta),
+                               math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe))
 
 
 @kernel
-def framed_coefficients(alpha, cl, cd, options, cw, sw, cb, sb, ct, st):
-    """:func:`polar_coefficients` with cos and sin of theta (w), the cant (b) and the toe (t) given."""
-    cn = cl * math.cos(alpha) + (cd * math.sin(alpha) if options[AI_DRAG] != 0.0 else 0.0)
-    ca = -cl * math.sin(alpha) + (cd * math.cos(alpha) if options[TI_DRAG] != 0.0 else 0.0)
+def framed_coefficients(cos_alpha, sin_alpha, cl, cd, options, cw, sw, cb, sb, ct, st):
+    """:func:`polar_coefficients` with cos and sin of alpha, theta (w), the cant (b) and the toe (t) given."""
+    cn = cl * cos_alpha + (cd * sin_alpha if options[AI_DRAG] != 0.0 else 0.0)
+    ca = -cl * sin_alpha + (cd * cos_alpha if options[TI_DRAG] != 0.0 else 0.0)
     # chord normal x_s = cos(theta) x' - sin(theta) y', chord y_s = sin(theta) x' + cos(theta) y'
     cx = cb * (cn * cw + ca * sw)
     cy = -(cn * (cw * sb * st - sw * ct) + ca * (sw * sb * st + cw * ct))
@@ -127,13 +141,20 @@ def euler_angles(m11, m12, m13, m21, m22, m23, m31):
     ``EulerExtract`` of M = R(theta_z) R(theta_y) R(theta_x), toe = theta_x, cant = theta_y, twist = -theta_z) from
     the entries M_ij = (section axis i) . (reference axis j), the section axes (chord normal x', towards the trailing
     edge y', span z') untwisted by the aerodynamic twist."""
+    toe, cant, twist, _, _ = euler_turn(m11, m12, m13, m21, m22, m23, m31)
+    return toe, cant, twist
+
+
+@kernel
+def euler_turn(m11, m12, m13, m21, m22, m23, m31):
+    """(toe, cant, twist, cos twist, sin twist) of :func:`euler_angles`, the twist's cosine and sine from the
+    entries (theta_z = atan2(-m21, m11): cos = m11 / c_y, sin = -m21 / c_y, c_y = |(m11, m21)| > 0, the cosine of
+    the cant; no trigonometric call)."""
     cy = math.sqrt(m11 * m11 + m21 * m21)
     if cy < 1e-14:                                       # gimbal lock: the span along the reference x axis
-        return math.atan2(m23, m22), math.atan2(m31, cy), 0.0
-    tz = math.atan2(-m21, m11)
-    cz, sz = math.cos(tz), math.sin(tz)
-    cy = math.copysign(cy, -m21 / sz) if abs(cz) < 1e-14 else math.copysign(cy, m11 / cz)
-    return math.atan2(sz * m13 + cz * m23, sz * m12 + cz * m22), math.atan2(m31, cy), -tz
+        return math.atan2(m23, m22), math.atan2(m31, cy), 0.0, 1.0, 0.0
+    cz, sz = m11 / cy, -m21 / cy
+    return math.atan2(sz * m13 + cz * m23, sz * m12 + cz * m22), math.atan2(m31, cy), -math.atan2(-m21, m11), cz, -sz
 
 
 @dataclass(frozen=True)

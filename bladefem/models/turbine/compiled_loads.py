@@ -35,7 +35,7 @@ if njit is not None:                                   # module-level kernels: n
     from ...aero.dynamic_wake import BLEND, MODEL, time_constant, wake_node_loads, wake_rates
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
-    from ...aero.polar import curved_axes, euler_angles
+    from ...aero.polar import curved_axes, euler_angles, euler_turn
     from ...aero.wind import point_wind
     from .compiled_aero_arrays import (APEX_VELOCITY, ARM, BIAS, BLADE_Q, BLADE_U, IN_PLANE, LOAD, MEAN, MOVING,
                                        OFFSET, OMEGA, RADIAL, RATE, SHARED, SPUN, WIND)
@@ -184,8 +184,7 @@ if njit is not None:                                   # module-level kernels: n
         m22 = -(tangent[0] * y0 + tangent[1] * y1 + tangent[2] * y2)
         m23 = -(tangent[0] * z0 + tangent[1] * z1 + tangent[2] * z2)
         m31 = span[0] * shaft[0] + span[1] * shaft[1] + span[2] * shaft[2]
-        toe, cant, twist = euler_angles(m11, m12, m13, m21, m22, m23, m31)
-        c, s = math.cos(twist), math.sin(twist)
+        toe, cant, twist, c, s = euler_turn(m11, m12, m13, m21, m22, m23, m31)
         for r in range(3):
             n, t = normal[r], tangent[r]
             normal[r] = c * n - s * t
