@@ -152,7 +152,8 @@ def test_modal_integrals_equal_the_sums_over_the_nodes():
     (:func:`pitched_frame`) equal the turned shapes' sums."""
     if os.environ.get("BLADEFEM_NO_NUMBA"):
         pytest.skip("compiled kernels switched off")
-    from bladefem.models.turbine.compiled_invariants import blade_inertia, blade_invariants, pitched_frame
+    from bladefem.models.turbine.compiled_invariants import (blade_inertia, blade_invariants, pitched_frame,
+                                                             scratch_size)
     rng = np.random.default_rng(2)
     k, P = 3, 9
     across, S = rng.normal(size=(k, P, 3)), rng.normal(size=(k, k, P))
@@ -177,7 +178,8 @@ def test_modal_integrals_equal_the_sums_over_the_nodes():
         return A, F
 
     A, F = np.zeros((6 + k, 6 + k)), np.zeros(6 + k)
-    blade_inertia(blade_invariants(across, S, axial, m), q, u, g, w, al, A, F)
+    scratch = np.empty(scratch_size(k))
+    blade_inertia(blade_invariants(across, S, axial, m), q, u, g, w, al, A, F, scratch)
     A_ref, F_ref = node_sums(across)
     np.testing.assert_allclose(A, A_ref, rtol=0, atol=1e-13 * np.abs(A_ref).max())
     np.testing.assert_allclose(F, F_ref, rtol=0, atol=1e-13 * np.abs(F_ref).max())
@@ -187,7 +189,7 @@ def test_modal_integrals_equal_the_sums_over_the_nodes():
     Q = pitched_frame(np.eye(3), np.array([c, s]))
     T = np.eye(6 + k)
     T[:3, :3] = T[3:6, 3:6] = Q
-    blade_inertia(blade_invariants(across, S, axial, m), q, u, Q.T @ g, Q.T @ w, Q.T @ al, A, F)
+    blade_inertia(blade_invariants(across, S, axial, m), q, u, Q.T @ g, Q.T @ w, Q.T @ al, A, F, scratch)
     A_ref, F_ref = node_sums(turned)
     np.testing.assert_allclose(T @ A @ T.T, A_ref, rtol=0, atol=1e-13 * np.abs(A_ref).max())
     np.testing.assert_allclose(T @ F, F_ref, rtol=0, atol=1e-13 * np.abs(F_ref).max())

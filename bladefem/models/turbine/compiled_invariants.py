@@ -66,42 +66,47 @@ def upper(table: NDArray) -> NDArray:
 if njit is not None:                                   # module-level kernels: numba caches them on disk
 
     @njit(cache=True)
-    def contract(table, vector):
-        """table (r, c) @ vector (c,) by loops."""
-        out = np.zeros(table.shape[0])
+    def scratch_size(k):
+        """Length of :func:`blade_inertia`'s scratch for k shapes (its sums, in the order it takes them)."""
+        nz, nx = 1 + k + k * (k + 1) // 2, 1 + k
+        return nz + nx + k * k + 3 + 6 + 9 + 3 * k + 9 * k + 3 * k * (3 * k + 1) // 2 + 9 * k * k + 3 + k + 9 \
+            + 3 * k + 3 + 9
+
+    @njit(cache=True, _nrt=False)
+    def contract(table, vector, out):
+        """out = table (r, c) @ vector (c,) by loops."""
         for r in range(table.shape[0]):
             value = 0.0
             for c in range(table.shape[1]):
                 value += table[r, c] * vector[c]
             out[r] = value
-        return out
 
-    @njit(cache=True)
-    def outer(a, b):
-        """The flattened outer product a (x) b."""
-        out = np.empty(a.shape[0] * b.shape[0])
-        for i in range(a.shape[0]):
-            for j in range(b.shape[0]):
-                out[i * b.shape[0] + j] = a[i] * b[j]
-        return out
+    @njit(cache=True, _nrt=False)
+    def contract_outer(table, a, b, out):
+        """out = table (r, len(a) len(b)) @ (a (x) b), the outer product flattened in C order, without forming it."""
+        nb = b.shape[0]
+        for r in range(table.shape[0]):
+            value = 0.0
+            for i in range(a.shape[0]):
+                partial = 0.0
+                for j in range(nb):
+                    partial += table[r, i * nb + j] * b[j]
+                value += a[i] * partial
+            out[r] = value
 
-    @njit(cache=True)
-    def unfold(values, n):
-        """The symmetric (n, n) matrix of its upper triangle's rows ``values`` (:func:`upper`)."""
-        out = np.empty((n, n))
+    @njit(cache=True, _nrt=False)
+    def unfold(values, out):
+        """The symmetric matrix ``out`` (n, n) of its upper triangle's rows ``values`` (:func:`upper`)."""
         row = 0
-        for a in range(n):
-            for b in range(a, n):
+        for a in range(out.shape[0]):
+            for b in range(a, out.shape[0]):
                 out[a, b] = out[b, a] = values[row]
                 row += 1
-        return out
 
-    @njit(cache=True)
-    def monomials(q):
-        """(zeta, xi) of :mod:`this module <.compiled_invariants>` at q."""
+    @njit(cache=True, _nrt=False)
+    def monomials(q, zeta, xi):
+        """(zeta, xi) of :mod:`this module <.compiled_invariants>` at q, into ``zeta`` and ``xi``."""
         k = q.shape[0]
-        zeta = np.empty(1 + k + k * (k + 1) // 2)
-        xi = np.empty(1 + k)
         zeta[0] = xi[0] = 1.0
         column = 1 + k
         for i in range(k):
@@ -109,40 +114,74 @@ if njit is not None:                                   # module-level kernels: n
             for j in range(i, k):
                 zeta[column] = q[i] * q[j]
                 column += 1
-        return zeta, xi
 
-    @njit(cache=True)
-    def blade_inertia(invariants, q, u, g, w, al, A, F):
+    @njit(cache=True, _nrt=False)
+    def blade_inertia(invariants, q, u, g, w, al, A, F, scratch):
         """One blade's ``A = sum_p m G_p^T G_p`` and ``F = sum_p G_p^T m (g - a_p)`` in its own frame, from its
         :func:`blade_invariants`, for ``G_p = [I, -[d_p]x, D_p]`` over (translation, rotation, shape coordinates):
         ``g`` gravity less the apex's bias acceleration, ``w`` and ``al`` the blade frame's angular velocity and
         bias angular acceleration, all in the blade's components; the nodes' bias acceleration
         ``a_p = al x d + w x (w x d) + 2 w x D u - (u^T S_p u) e_x`` (the axial shortening's). A (6 + k, 6 + k)
-        and F (6 + k,) are overwritten."""
+        and F (6 + k,) are overwritten; its sums go to ``scratch`` (:func:`scratch_size`): it allocates nothing."""
         mass, I1, I2, I3, I4, I5, I6, I7, I8, _ = invariants
         k = q.shape[0]
-        zeta, xi = monomials(q)
-        s1 = contract(I1, zeta)                               # sum m d
-        dd = unfold(contract(I2, outer(zeta, zeta)), 3)       # sum m d d^T
-        SD = contract(I3, xi)                                 # sum m D (3, k), flat (r, i)
-        T = contract(I4, outer(xi, zeta))                     # sum m D[r, i] d[s], flat (r, i, s)
-        U = unfold(contract(I5, outer(xi, xi)), 3 * k)        # sum m D[r, i] D[s, j] at (r k + i, s k + j)
-        uu = outer(u, u)
-        sigma_d = contract(I6, outer(uu, zeta))               # sum m (u^T S u) d
-        sigma_D = contract(I7, outer(uu, xi))                 # sum m (u^T S u) D[0, :]
+        nz, nx = 1 + k + k * (k + 1) // 2, 1 + k
+        pairs = 3 * k * (3 * k + 1) // 2
+        at = 0
+        zeta = scratch[at:at + nz]
+        at += nz
+        xi = scratch[at:at + nx]
+        at += nx
+        uu = scratch[at:at + k * k]
+        at += k * k
+        s1 = scratch[at:at + 3]                               # sum m d
+        at += 3
+        dd_upper = scratch[at:at + 6]
+        at += 6
+        dd = scratch[at:at + 9].reshape((3, 3))               # sum m d d^T
+        at += 9
+        SD = scratch[at:at + 3 * k]                           # sum m D (3, k), flat (r, i)
+        at += 3 * k
+        T = scratch[at:at + 9 * k]                            # sum m D[r, i] d[s], flat (r, i, s)
+        at += 9 * k
+        U_upper = scratch[at:at + pairs]
+        at += pairs
+        U = scratch[at:at + 9 * k * k].reshape((3 * k, 3 * k))   # sum m D[r, i] D[s, j] at (r k + i, s k + j)
+        at += 9 * k * k
+        sigma_d = scratch[at:at + 3]                          # sum m (u^T S u) d
+        at += 3
+        sigma_D = scratch[at:at + k]                          # sum m (u^T S u) D[0, :]
+        at += k
+        J = scratch[at:at + 9].reshape((3, 3))                # sum m (|d|^2 I - d d^T)
+        at += 9
+        cross_d = scratch[at:at + 3 * k].reshape((3, k))      # sum m d x D[:, i]
+        at += 3 * k
+        rate_sum = scratch[at:at + 3]                         # sum m D u
+        at += 3
+        H = scratch[at:at + 9].reshape((3, 3))                # sum m (D u) d^T
+        monomials(q, zeta, xi)
+        for i in range(k):
+            for j in range(k):
+                uu[i * k + j] = u[i] * u[j]
+        contract(I1, zeta, s1)
+        contract_outer(I2, zeta, zeta, dd_upper)
+        unfold(dd_upper, dd)
+        contract(I3, xi, SD)
+        contract_outer(I4, xi, zeta, T)
+        contract_outer(I5, xi, xi, U_upper)
+        unfold(U_upper, U)
+        contract_outer(I6, uu, zeta, sigma_d)
+        contract_outer(I7, uu, xi, sigma_D)
         sigma = 0.0
         for i in range(k):
             for j in range(k):
                 sigma += I8[i, j] * u[i] * u[j]
         trace = dd[0, 0] + dd[1, 1] + dd[2, 2]
-        J = np.empty((3, 3))                                  # sum m (|d|^2 I - d d^T)
         for r in range(3):
+            rate_sum[r] = 0.0
             for s in range(3):
                 J[r, s] = (trace if r == s else 0.0) - dd[r, s]
-        X = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])       # w x
-        cross_d = np.empty((3, k))                            # sum m d x D[:, i]
-        rate_sum = np.zeros(3)                                # sum m D u
-        H = np.zeros((3, 3))                                  # sum m (D u) d^T
+                H[r, s] = 0.0
         for i in range(k):
             for r in range(3):
                 rate_sum[r] += SD[r * k + i] * u[i]
@@ -176,21 +215,28 @@ if njit is not None:                                   # module-level kernels: n
         for r in range(6 + k):
             for s in range(r):
                 A[r, s] = A[s, r]
-        # forcing: sum G^T m (g - a_p), the parts of a_p in turn
-        ws1 = cross3(w, s1)
-        Jw = np.zeros(3)
-        for r in range(3):
-            for s in range(3):
-                Jw[r] += J[r, s] * w[s]
-        translation = cross3(al, s1) + cross3(w, ws1) + 2.0 * cross3(w, rate_sum)
-        rotation = cross3(s1, g) - cross3(w, Jw)
+        # forcing: sum G^T m (g - a_p), the parts of a_p in turn (the cross products written out: no arrays)
+        ws0, ws1_, ws2 = w[1] * s1[2] - w[2] * s1[1], w[2] * s1[0] - w[0] * s1[2], w[0] * s1[1] - w[1] * s1[0]
+        Jw0 = J[0, 0] * w[0] + J[0, 1] * w[1] + J[0, 2] * w[2]
+        Jw1 = J[1, 0] * w[0] + J[1, 1] * w[1] + J[1, 2] * w[2]
+        Jw2 = J[2, 0] * w[0] + J[2, 1] * w[1] + J[2, 2] * w[2]
+        translation0 = (al[1] * s1[2] - al[2] * s1[1]) + (w[1] * ws2 - w[2] * ws1_) \
+            + 2.0 * (w[1] * rate_sum[2] - w[2] * rate_sum[1])
+        translation1 = (al[2] * s1[0] - al[0] * s1[2]) + (w[2] * ws0 - w[0] * ws2) \
+            + 2.0 * (w[2] * rate_sum[0] - w[0] * rate_sum[2])
+        translation2 = (al[0] * s1[1] - al[1] * s1[0]) + (w[0] * ws1_ - w[1] * ws0) \
+            + 2.0 * (w[0] * rate_sum[1] - w[1] * rate_sum[0])
+        rotation0 = (s1[1] * g[2] - s1[2] * g[1]) - (w[1] * Jw2 - w[2] * Jw1)
+        rotation1 = (s1[2] * g[0] - s1[0] * g[2]) - (w[2] * Jw0 - w[0] * Jw2)
+        rotation2 = (s1[0] * g[1] - s1[1] * g[0]) - (w[0] * Jw1 - w[1] * Jw0)
         trace_H = H[0, 0] + H[1, 1] + H[2, 2]
         for r in range(3):
-            F[r] = mass * g[r] - translation[r]
-            rotation[r] -= 2.0 * trace_H * w[r]
+            rotation = rotation0 if r == 0 else (rotation1 if r == 1 else rotation2)
+            F[r] = mass * g[r] - (translation0 if r == 0 else (translation1 if r == 1 else translation2))
+            rotation -= 2.0 * trace_H * w[r]
             for s in range(3):
-                rotation[r] += -J[r, s] * al[s] + 2.0 * H[r, s] * w[s]
-            F[3 + r] = rotation[r]
+                rotation += -J[r, s] * al[s] + 2.0 * H[r, s] * w[s]
+            F[3 + r] = rotation
         F[0] += sigma
         F[4] += sigma_d[2]
         F[5] -= sigma_d[1]
@@ -202,17 +248,13 @@ if njit is not None:                                   # module-level kernels: n
                 for s in range(3):
                     centripetal = w[r] * w[s] - (spin if r == s else 0.0)
                     value -= centripetal * T[(r * k + i) * 3 + s]
-                    if X[r, s] != 0.0:
+                    skew = 0.0 if r == s else ((w[3 - r - s] if (s - r) % 3 == 2 else -w[3 - r - s]))
+                    if skew != 0.0:
                         coriolis = 0.0
                         for j in range(k):
                             coriolis += U[r * k + i, s * k + j] * u[j]
-                        value -= 2.0 * X[r, s] * coriolis
+                        value -= 2.0 * skew * coriolis
             F[6 + i] = value
-
-    @njit(cache=True)
-    def cross3(a, b):
-        """a x b."""
-        return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
     @njit(cache=True)
     def to_blade(Z, R):

@@ -15,7 +15,7 @@ njit = cached_njit()
 
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
-    from .compiled_invariants import blade_inertia, pitched_frame, to_blade
+    from .compiled_invariants import blade_inertia, pitched_frame, scratch_size, to_blade
 
 
     @njit(cache=True)
@@ -277,6 +277,7 @@ if njit is not None:                                   # module-level kernels: n
         # blades: G_p = [I, -[rho]x, R D] with Z = [J_apex; W_rotor; E_blade], summed by the modal integrals
         kb = b_across.shape[0]
         g, w, al = np.zeros(3), np.zeros(3), np.zeros(3)
+        scratch = np.empty(scratch_size(kb))
         for b in range(b_rotations.shape[0]):
             Rb = np.zeros((3, 3))
             for r in range(3):
@@ -297,7 +298,7 @@ if njit is not None:                                   # module-level kernels: n
                     w[c] += Ri[r, c] * wL[r]
                     al[c] += Ri[r, c] * alL[r]
             A, F = blade_A[b], blade_F[b]
-            blade_inertia(b_invariants, qb, ub, g, w, al, A, F)
+            blade_inertia(b_invariants, qb, ub, g, w, al, A, F, scratch)
             Z = Z_w[b]
             store_block(Z, 0, 0, apex_J)
             store_block(Z, 3, 0, WL)
