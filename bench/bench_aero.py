@@ -33,7 +33,8 @@ import numpy as np  # noqa: E402
 
 from bladefem.aero import Rotor, rotor_performance  # noqa: E402
 from bladefem.aero._jit import COMPILED, kernel  # noqa: E402
-from bladefem.aero.bem import NODE_OUTPUTS, node_loads, plane_geometry, section_loads, solve_nodes  # noqa: E402
+from bladefem.aero.bem import NODE_OUTPUTS, node_loads, plane_geometry, solve_nodes  # noqa: E402
+from bladefem.aero.section import section_loads  # noqa: E402
 from bladefem.aero.kinematics import rigid_rotor  # noqa: E402
 from bladefem.aero.polars import pack_polars  # noqa: E402
 from bladefem.builders.openfast_fst import read_openfast_deck  # noqa: E402
@@ -87,7 +88,8 @@ def main() -> None:
     inner = slice(1, -1)
     rotor = Rotor(**{**full.__dict__, "span": full.span[inner], "chord": full.chord[inner],
                      "twist": full.twist[inner], "airfoil": full.airfoil[inner], "curve": full.curve[inner],
-                     "sweep": full.sweep[inner]})
+                     "sweep": full.sweep[inner],
+                     "curve_angle": None if full.curve_angle is None else full.curve_angle[inner]})
     kin = rigid_rotor(rotor, deck.inflow, 12.1 * math.pi / 30, np.zeros(1))
     table, options = pack_polars(rotor.polars), rotor.options.vector()
     n = 9                                                   # mid-span node of blade 1

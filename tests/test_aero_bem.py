@@ -168,7 +168,8 @@ def test_first_trial_finds_the_same_root(deck, formulation):
     cut-in to cut-out at the pitch of the operating schedule, with the blade moving in and against the flow (vx
     and vy of +-20 %) and canted and toed sections (BEM_Mod 2); and so does the search next to a previous root
     1e-4 and 0.02 rad either side of it (a previous right-hand side's root: where a run's solve starts)."""
-    from bladefem.aero.bem import EDGE, PREDICTED_FACTOR, brent, framed_residual, local_root, section_frame
+    from bladefem.aero.bem import (EDGE, PREDICTED_FACTOR, angle_geometry, brent, framed_residual, local_root,
+                                   section_frame)
     rotor = deck.rotor()
     options = BEMOptions(formulation=formulation).vector()
     z = rotor.hub_radius + rotor.span
@@ -181,12 +182,13 @@ def test_first_trial_finds_the_same_root(deck, formulation):
             for i in range(1, len(z) - 1):
                 vx, vy = speed * scale_x, rpm * math.pi / 30 * z[i] * scale_y
                 theta = rotor.twist[i] + math.radians(pitch)
-                frame = section_frame(theta, 0.0, (cant, toe, 1.0) if formulation == 2 else (0.0, 0.0, 1.0))
+                frame = section_frame(theta, 0.0, angle_geometry(cant, toe, 1.0) if formulation == 2
+                                      else angle_geometry(0.0, 0.0, 1.0))
                 args = (vx, vy, 3 * rotor.chord[i] / (2 * math.pi * z[i]), theta, tip_c[i], hub_c[i], 0.0,
                         int(rotor.airfoil[i]), *table, options, frame)
                 lo, hi = EDGE, math.pi / 2 - EDGE
                 f_lo, f_hi = framed_residual(lo, *args)[0], framed_residual(hi, *args)[0]
-                first = math.atan2(vx * frame[3] * PREDICTED_FACTOR, vy)
+                first = math.atan2(vx * frame[0] * PREDICTED_FACTOR, vy)
                 assert lo < first < hi
                 if (f_lo > 0) == (f_hi > 0):
                     continue

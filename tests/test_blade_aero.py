@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from bladefem.aero import BEMOptions, Polar, Rotor
-from bladefem.aero.bem import section_loads
+from bladefem.aero.section import section_loads
 from bladefem.aero.polars import pack_polars
 from bladefem.assembly import assemble_blade
 from bladefem.cli import main

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from bladefem.aero.polar import bent_axes, euler_angles, euler_turn, section_angle, section_inflow
+from bladefem.aero.polar import bent_axes, euler_angles, euler_frame, section_angle, section_inflow
 
 
 @pytest.mark.parametrize("v, w", [(0.0, 0.0), (0.0, 0.15), (0.02, 0.0), (0.015, 0.17), (-0.3, 0.5), (0.8, -0.6)])
@@ -50,14 +50,16 @@ def test_euler_angles_invert_the_nwtc_construction(toe, cant, twist):
 
 @pytest.mark.parametrize("toe, cant, twist", [(0.0, 0.0, 0.0), (0.01, 0.17, 0.001), (-0.3, 0.5, 1.2),
                                               (2.0, -1.0, -2.5), (0.4, math.pi / 2, 0.0)])
-def test_euler_turn_gives_the_twist_cosine_and_sine_without_trigonometry(toe, cant, twist):
-    """euler_turn's angles are euler_angles' (the same kernel), and its twist cosine and sine (from the matrix
-    entries) equal cos and sin of the twist to 1e-15."""
+def test_euler_frame_gives_the_cosines_and_sines_without_trigonometry(toe, cant, twist):
+    """euler_frame's twist is euler_angles', and its cosines and sines of the twist, the cant and the toe (from the
+    matrix entries) equal cos and sin of euler_angles' angles to 1e-15, gimbal lock included."""
     M = euler_construct(toe, cant, twist)
     entries = (M[0, 0], M[0, 1], M[0, 2], M[1, 0], M[1, 1], M[1, 2], M[2, 0])
-    turned = euler_turn(*entries)
-    assert turned[:3] == euler_angles(*entries)
-    np.testing.assert_allclose(turned[3:], (math.cos(turned[2]), math.sin(turned[2])), rtol=0, atol=1e-15)
+    frame = euler_frame(*entries)
+    toe_angle, cant_angle, twist_angle = euler_angles(*entries)
+    assert frame[0] == twist_angle
+    expected = [f(angle) for angle in (twist_angle, cant_angle, toe_angle) for f in (math.cos, math.sin)]
+    np.testing.assert_allclose(frame[1:], expected, rtol=0, atol=1e-15)
 
 
 def test_section_inflow_is_the_section_angle_with_its_sine_and_cosine():
@@ -69,9 +71,7 @@ def test_section_inflow_is_the_section_angle_with_its_sine_and_cosine():
         x, y = rng.normal(size=2) * rng.uniform(0.1, 80.0)
         cant, toe = (0.0, 0.0) if rng.uniform() < 0.3 else tuple(rng.uniform(-0.4, 0.4, size=2))
         phi = math.atan2(x, y)
-        cb, sb, ct, st = math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe)
-        angle, sine, cosine = section_inflow(phi, x, y, cant, toe, cb, sb, ct, st)
+        angle, sine, cosine = section_inflow(phi, x, y, math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe))
         assert abs(angle - section_angle(phi, cant, toe)) <= 1e-15 * max(1.0, abs(angle))
         np.testing.assert_allclose((sine, cosine), (math.sin(angle), math.cos(angle)), rtol=0, atol=1e-15)
-    assert section_inflow(0.3, 0.0, 0.0, 0.1, 0.2, math.cos(0.1), math.sin(0.1), math.cos(0.2), math.sin(0.2)) == \
-        (0.3, 0.0, 1.0)
+    assert section_inflow(0.3, 0.0, 0.0, math.cos(0.1), math.sin(0.1), math.cos(0.2), math.sin(0.2)) == (0.3, 0.0, 1.0)

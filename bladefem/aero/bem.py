@@ -43,9 +43,9 @@ from .options import (
     SKEW_REDISTRIBUTION,
     TIP_LOSS,
     TOLERANCE,
-    USE_CM,
 )
 from .polar import framed_coefficients, section_inflow
+from .section import framed_section_loads
 from .polars import polar_lookup
 
 #: A velocity component below this counts as zero (AeroDyn's VelocityIsZero), m/s.
@@ -75,16 +75,24 @@ def residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, air
     at the section's own angle (:mod:`bladefem.aero.polar`) with the momentum balance on vx cos(cant) and the
     normal coefficient times dr/dz. ``geometry`` = (cant, toe, dr/dz) of the node (0, 0, 1: a plane section)."""
     return framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values,
-                           coefs, start, count, options, section_frame(theta, chi0, geometry))
+                           coefs, start, count, options, section_frame(theta, chi0, angle_geometry(*geometry)))
+
+
+@kernel
+def angle_geometry(cant, toe, drdz):
+    """A node's geometry as the solve takes it, (cos and sin of the cant, cos and sin of the toe, dr/dz), from its
+    angles (rad): the cant and the toe enter the BEM only through their cosines and sines, which the compiled loads
+    take from the section's axes without an angle (:func:`bladefem.aero.polar.euler_frame`)."""
+    return math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe), drdz
 
 
 @kernel
 def section_frame(theta, chi0, geometry):
-    """What the residual of one node takes at every angle, computed once a solve: (cant, toe, dr/dz, cos and sin
-    of the cant, the toe and theta, a_c of the polar formulation's thrust curve)."""
-    cant, toe, drdz = geometry
-    return (cant, toe, drdz, math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe), math.cos(theta),
-            math.sin(theta), critical_induction(chi0))
+    """What the residual of one node takes at every angle, computed once a solve, for its ``geometry``
+    (:func:`angle_geometry`): (cos and sin of the cant and the toe, dr/dz, cos and sin of theta, a_c of the polar
+    formulation's thrust curve)."""
+    cb, sb, ct, st, drdz = geometry
+    return cb, sb, ct, st, drdz, math.cos(theta), math.sin(theta), critical_induction(chi0)
 
 
 @kernel
@@ -96,9 +104,9 @@ def framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, ch
         cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
         cn, ct = framed_plane_coefficients(s, c, cl, cd, options)
         loss = framed_loss(phi, s, c, tip_constant, hub_constant, options, 1.0)
-        return framed_induction(phi, s, c, vx, vy, solidity, cn, ct, loss, frame[9], options)
-    cant, toe, drdz, cb, sb, ct_, st, cw, sw, critical = frame
-    inflow, sin_inflow, cos_inflow = section_inflow(phi, s, c, cant, toe, cb, sb, ct_, st)
+        return framed_induction(phi, s, c, vx, vy, solidity, cn, ct, loss, frame[7], options)
+    cb, sb, ct_, st, drdz, cw, sw, critical = frame
+    inflow, sin_inflow, cos_inflow = section_inflow(phi, s, c, cb, sb, ct_, st)
     cl, cd, _ = polar_lookup(inflow - theta, airfoil, knots, values, coefs, start, count)
     cn, ct = framed_coefficients(cos_inflow * cw + sin_inflow * sw, sin_inflow * cw - cos_inflow * sw, cl, cd,
                                  options, cw, sw, cb, sb, ct_, st)
@@ -236,7 +244,7 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     if abs(vy) < ZERO_VELOCITY:
         return math.copysign(math.pi / 2.0, vx), True, 0.0, 0.0
     frame = section_frame(theta, chi0, geometry)
-    cos_cant = frame[3]
+    cos_cant = frame[0]
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
             options, frame)
     tolerance = options[TOLERANCE]
@@ -300,49 +308,62 @@ def node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blad
     phi_solved is the root of the BEM equations (keep it as the next guess), phi the inflow angle after the skew
     correction.
     """
+    return framed_node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0,
+                             skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options,
+                             air_density, guess, angle_geometry(cant, toe, drdz))
+
+
+@kernel
+def framed_node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0,
+                      skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density,
+                      guess, geometry):
+    """:func:`node_loads` for the node's :func:`angle_geometry`."""
     phi_solved, valid, fixed, a, ap = node_induction(vx, vy, r_local, chord, theta, tip_constant, hub_constant,
                                                      n_blades, chi0, airfoil, knots, values, coefs, start, count,
-                                                     options, guess, cant, toe, drdz)
+                                                     options, guess, geometry)
     a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m = induced_loads(
         vx, vy, a, ap, phi_solved, valid, fixed, chord, theta, tip_constant, hub_constant, tip_ratio, chi0,
-        skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, cant, toe)
+        skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, geometry)
     return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid
 
 
 @kernel
 def node_induction(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, chi0, airfoil, knots,
-                   values, coefs, start, count, options, guess, cant, toe, drdz):
-    """The quasi-steady induction of one node before the skew redistribution and the low tip-speed-ratio blend
-    (the dynamic wake's input, AeroDyn's ``calculate_Inductions_from_BEMT``): (phi_solved, valid, fixed, a, a'),
-    a and a' within AeroDyn's limits; ``fixed``: a node at the tip or hub with loss (no flow through it, a = 1)."""
+                   values, coefs, start, count, options, guess, geometry):
+    """The quasi-steady induction of one node (its :func:`angle_geometry`) before the skew redistribution and the
+    low tip-speed-ratio blend (the dynamic wake's input, AeroDyn's ``calculate_Inductions_from_BEMT``):
+    (phi_solved, valid, fixed, a, a'), a and a' within AeroDyn's limits; ``fixed``: a node at the tip or hub with
+    loss (no flow through it, a = 1)."""
     solidity = n_blades * chord / (2.0 * math.pi * r_local)
     fixed = ((options[TIP_LOSS] != 0.0 and tip_constant == 0.0)
              or (options[HUB_LOSS] != 0.0 and hub_constant == 0.0))
     if options[INDUCTION] == 0.0:
-        return math.atan2(vx * math.cos(cant), vy), True, False, 0.0, 0.0
+        return math.atan2(vx * geometry[0], vy), True, False, 0.0, 0.0
     if fixed:
-        return math.atan2(vx * math.cos(cant), vy), True, True, 1.0, 0.0
+        return math.atan2(vx * geometry[0], vy), True, True, 1.0, 0.0
     phi_solved, valid, a, ap = solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0,
                                                   airfoil, knots, values, coefs, start, count, options, guess,
-                                                  (cant, toe, drdz))
+                                                  geometry)
     return phi_solved, valid, False, min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
 
 
 @kernel
 def induced_loads(vx, vy, a, ap, phi_solved, valid, fixed, chord, theta, tip_constant, hub_constant, tip_ratio,
                   chi0, skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density,
-                  cant, toe):
-    """The loads of a node with the induction a, a' (quasi-steady or filtered by the dynamic wake) after the skewed-
-    wake redistribution (for a valid solution with both velocities nonzero) and the low tip-speed-ratio blend
-    (a fixed node keeps a = 1): (a, a', phi, alpha, W, cl, cd, cm, fn, ft, m) as :func:`node_loads`."""
+                  geometry):
+    """The loads of a node (its :func:`angle_geometry`) with the induction a, a' (quasi-steady or filtered by the
+    dynamic wake) after the skewed-wake redistribution (for a valid solution with both velocities nonzero) and
+    the low tip-speed-ratio blend (a fixed node keeps a = 1): (a, a', phi, alpha, W, cl, cd, cm, fn, ft, m) as
+    :func:`node_loads`."""
     if options[INDUCTION] != 0.0 and not fixed:
         if valid and abs(vx) >= ZERO_VELOCITY and abs(vy) >= ZERO_VELOCITY:
             if options[SKEW_REDISTRIBUTION] != 0.0:
-                loss = loss_factor(phi_solved, tip_constant, hub_constant, options, math.cos(cant))
+                loss = loss_factor(phi_solved, tip_constant, hub_constant, options, geometry[0])
                 a = skewed_wake(a, loss, chi0, tip_ratio, skew_cos, options)
         a, ap = a * induction_weight, ap * induction_weight
-    phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs,
-                                                         start, count, options, air_density, cant, toe)
+    phi, alpha, w, cl, cd, cm, fn, ft, m = framed_section_loads(
+        vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options, air_density, geometry[0],
+        geometry[1], geometry[2], geometry[3])
     return a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m
 
 
@@ -353,29 +374,6 @@ def filtered_induction(vx, vy, axial, tangential):
     a = axial / vx if vx != 0.0 else 0.0
     ap = tangential / vy if vy != 0.0 else 0.0
     return min(max(a, A_MIN), A_MAX), min(max(ap, AP_MIN), AP_MAX)
-
-
-@kernel
-def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options, air_density,
-                  cant, toe):
-    """Loads of a blade section for given induction factors a, a' (no solve): (phi, alpha, W, cl, cd, cm, fn, ft, m)
-    as in :func:`node_loads`; drag always included. About a tenth of a node solve: for right-hand sides evaluated
-    between two solves with the induction held. A canted or toed section (cant, toe in rad, polar formulation)
-    sees W from (vx cos(cant) (1 - a), vy (1 + a')) at its own angle (:func:`bladefem.aero.polar.section_angle`),
-    and fn, ft act along its untwisted chord normal and against y' (AeroDyn's loads in the airfoil frame turned
-    back by the section's orientation)."""
-    cb = math.cos(cant)
-    x, y = vx * cb * (1.0 - a), vy * (1.0 + ap)
-    phi = math.atan2(x, y) if (x != 0.0 or y != 0.0) else 0.0
-    inflow, s, c = section_inflow(phi, x, y, cant, toe, cb, math.sin(cant), math.cos(toe), math.sin(toe))
-    alpha = inflow - theta
-    cl, cd, cm = polar_lookup(alpha, airfoil, knots, values, coefs, start, count)
-    w = math.sqrt(x * x + y * y)
-    q = 0.5 * air_density * w * w
-    fn = q * chord * (cl * c + cd * s)
-    ft = q * chord * (cl * s - cd * c)
-    m = q * chord * chord * cm if options[USE_CM] != 0.0 else 0.0
-    return phi, alpha, w, cl, cd, cm, fn, ft, m
 
 
 @kernel

@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._jit import kernel
-from .bem import filtered_induction, induced_loads, node_induction
+from .bem import angle_geometry, filtered_induction, induced_loads, node_induction
 from .options import INDUCTION
 
 #: Oye's blending constant k (AeroDyn's ``k_0ye``)
@@ -125,15 +125,25 @@ def wake_node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n
     """:func:`bladefem.aero.bem.node_loads` with the dynamic wake's induced velocities ``axial``, ``tangential``
     (m/s) in place of the quasi-steady ones: the same 13 outputs, then the quasi-steady induced velocities (a vx,
     a' vy) of the node (the filters' input)."""
+    return framed_wake_node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio,
+                                  chi0, skew_cos, induction_weight, airfoil, knots, values, coefs, start, count,
+                                  options, air_density, guess, angle_geometry(cant, toe, drdz), axial, tangential)
+
+
+@kernel
+def framed_wake_node_loads(vx, vy, r_local, chord, theta, tip_constant, hub_constant, n_blades, tip_ratio, chi0,
+                           skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options,
+                           air_density, guess, geometry, axial, tangential):
+    """:func:`wake_node_loads` for the node's :func:`bladefem.aero.bem.angle_geometry`."""
     phi_solved, valid, fixed, a_qs, ap_qs = node_induction(vx, vy, r_local, chord, theta, tip_constant,
                                                            hub_constant, n_blades, chi0, airfoil, knots, values,
-                                                           coefs, start, count, options, guess, cant, toe, drdz)
+                                                           coefs, start, count, options, guess, geometry)
     a, ap = a_qs, ap_qs
     if options[INDUCTION] != 0.0 and not fixed:
         a, ap = filtered_induction(vx, vy, axial, tangential)
     a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m = induced_loads(
         vx, vy, a, ap, phi_solved, valid, fixed, chord, theta, tip_constant, hub_constant, tip_ratio, chi0,
-        skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, cant, toe)
+        skew_cos, induction_weight, airfoil, knots, values, coefs, start, count, options, air_density, geometry)
     return phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, a_qs * vx, ap_qs * vy
 
 

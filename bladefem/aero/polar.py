@@ -74,11 +74,11 @@ def framed_angle(phi, sin_phi, cos_phi, cant, toe, cb, sb, ct, st):
 
 
 @kernel
-def section_inflow(phi, x, y, cant, toe, cb, sb, ct, st):
-    """(angle, sine, cosine) of :func:`framed_angle` of phi = atan2(x, y) for the inflow of components (x, y), the
-    sine and cosine from the components (the atan2's arguments scaled to unit length: no trigonometric call);
-    (phi, 0, 1) where both are zero."""
-    plane = cant == 0.0 and toe == 0.0
+def section_inflow(phi, x, y, cb, sb, ct, st):
+    """(angle, sine, cosine) of :func:`framed_angle` of phi = atan2(x, y) for the inflow of components (x, y) at a
+    section of cant b and toe t (their cosines and sines), the sine and cosine from the components (the atan2's
+    arguments scaled to unit length: no trigonometric call); (phi, 0, 1) where both are zero."""
+    plane = sb == 0.0 and st == 0.0 and cb > 0.0 and ct > 0.0      # cant and toe 0
     if not plane:
         x, y = cb * x + sb * st * y * cb, ct * y * cb
     size = math.sqrt(x * x + y * y)
@@ -141,20 +141,28 @@ def euler_angles(m11, m12, m13, m21, m22, m23, m31):
     ``EulerExtract`` of M = R(theta_z) R(theta_y) R(theta_x), toe = theta_x, cant = theta_y, twist = -theta_z) from
     the entries M_ij = (section axis i) . (reference axis j), the section axes (chord normal x', towards the trailing
     edge y', span z') untwisted by the aerodynamic twist."""
-    toe, cant, twist, _, _ = euler_turn(m11, m12, m13, m21, m22, m23, m31)
-    return toe, cant, twist
+    cy = math.sqrt(m11 * m11 + m21 * m21)
+    if cy < 1e-14:                                       # gimbal lock: the span along the reference x axis
+        return math.atan2(m23, m22), math.atan2(m31, cy), 0.0
+    cz, sz = m11 / cy, -m21 / cy
+    return math.atan2(sz * m13 + cz * m23, sz * m12 + cz * m22), math.atan2(m31, cy), -math.atan2(-m21, m11)
 
 
 @kernel
-def euler_turn(m11, m12, m13, m21, m22, m23, m31):
-    """(toe, cant, twist, cos twist, sin twist) of :func:`euler_angles`, the twist's cosine and sine from the
-    entries (theta_z = atan2(-m21, m11): cos = m11 / c_y, sin = -m21 / c_y, c_y = |(m11, m21)| > 0, the cosine of
-    the cant; no trigonometric call)."""
+def euler_frame(m11, m12, m13, m21, m22, m23, m31):
+    """(twist, cos twist, sin twist, cos cant, sin cant, cos toe, sin toe) of :func:`euler_angles`, each cosine
+    and sine from the entries (the arguments of the angle's atan2 scaled to unit length; theta_z = atan2(-m21,
+    m11): cos = m11 / c_y, sin = -m21 / c_y, c_y = |(m11, m21)|): the cant and the toe enter the BEM only through
+    their cosines and sines (:func:`bladefem.aero.bem.angle_geometry`), so no arctangent is taken for them."""
     cy = math.sqrt(m11 * m11 + m21 * m21)
+    cant = math.sqrt(m31 * m31 + cy * cy)
     if cy < 1e-14:                                       # gimbal lock: the span along the reference x axis
-        return math.atan2(m23, m22), math.atan2(m31, cy), 0.0, 1.0, 0.0
+        toe = math.sqrt(m23 * m23 + m22 * m22)
+        return 0.0, 1.0, 0.0, cy / cant, m31 / cant, m22 / toe, m23 / toe
     cz, sz = m11 / cy, -m21 / cy
-    return math.atan2(sz * m13 + cz * m23, sz * m12 + cz * m22), math.atan2(m31, cy), -math.atan2(-m21, m11), cz, -sz
+    x, y = sz * m12 + cz * m22, sz * m13 + cz * m23
+    toe = math.sqrt(x * x + y * y)
+    return -math.atan2(-m21, m11), cz, -sz, cy / cant, m31 / cant, x / toe, y / toe
 
 
 @dataclass(frozen=True)

@@ -138,7 +138,7 @@ def parked_point(rotor: Rotor, wind_speed: float, yaw: float, azimuth: float, pi
     kinematics = rigid_rotor(rotor, Inflow(wind_speed, height), 0.0, np.array([azimuth]), yaw, pitch)
     cant, toe = kinematics.cant[0, 0], kinematics.toe[0, 0]
     x, y = kinematics.vx[0, 0] * np.cos(cant), kinematics.vy[0, 0]
-    # the inflow in the section's own plane (bladefem.aero.bem.section_loads, no induction): the polar
+    # the inflow in the section's own plane (bladefem.aero.section.section_loads, no induction): the polar
     # projection's canted or toed section sees its own angle; the legacy projection's, atan2(vx, vy)
     inflow = np.vectorize(section_angle, otypes=[float])(np.arctan2(x, y), cant, toe)
     X, Y = np.hypot(x, y) * np.sin(inflow), np.hypot(x, y) * np.cos(inflow)

@@ -16,8 +16,8 @@ then use their induced velocities and leave the states' rates there), :func:`sto
 dx/dt; a state vector without them (or a call of the equations alone) gives the quasi-steady loads. Without them
 each node solve leaves its induced velocities (vx a, vy a') in the state, and with the hold flag set (the third of
 ``state[13]``) the nodes take those instead of solving (a frozen wake, as
-:meth:`.frozen_wake.SectionAero.generalized`: the section loads of :func:`bladefem.aero.bem.section_loads` at the
-new inflow), for the stages of a step between two solves.
+:meth:`.frozen_wake.SectionAero.generalized`: the section loads of :func:`bladefem.aero.section.section_loads` at
+the new inflow), for the stages of a step between two solves.
 """
 
 from __future__ import annotations
@@ -31,11 +31,12 @@ from ...numba_cache import cached_njit
 njit = cached_njit()
 
 if njit is not None:                                   # module-level kernels: numba caches them on disk
-    from ...aero.bem import node_loads, section_loads
-    from ...aero.dynamic_wake import BLEND, MODEL, time_constant, wake_node_loads, wake_rates
+    from ...aero.bem import framed_node_loads
+    from ...aero.section import framed_section_loads
+    from ...aero.dynamic_wake import BLEND, MODEL, framed_wake_node_loads, time_constant, wake_rates
     from ...aero.options import FORMULATION
     from ...aero.performance import induction_weight
-    from ...aero.polar import curved_axes, euler_angles, euler_turn
+    from ...aero.polar import curved_axes, euler_frame
     from ...aero.wind import point_wind
     from .compiled_aero_arrays import (APEX_VELOCITY, ARM, BIAS, BLADE_Q, BLADE_U, IN_PLANE, LOAD, MEAN, MOVING,
                                        OFFSET, OMEGA, RADIAL, RATE, SHARED, SPUN, WIND)
@@ -128,11 +129,12 @@ if njit is not None:                                   # module-level kernels: n
 
     @njit(cache=True, _nrt=False)
     def projected_inflow(rho_w, b, p, rel, normal, tangent, span, R, shaft, polar, pitch):
-        """(vx, vy, cant, toe, twist, dr/dz) of node p of blade b (the twin of :func:`bladefem.aero.polar.projection`)
-        for its bent section's axes ``normal``, ``tangent``, ``span`` (pitched by ``pitch``, rad), which are turned
-        in place into the axes its loads act along: the legacy projection against the unturned, unpitched blade
-        (frame ``R``), or (``polar``) AeroDyn's local polar frame; ``twist`` is what the orientation adds to the
-        pitch."""
+        """(vx, vy, cos cant, sin cant, cos toe, sin toe, twist, dr/dz) of node p of blade b (the twin of
+        :func:`bladefem.aero.polar.projection`; the cant and toe as :func:`bladefem.aero.bem.angle_geometry` gives
+        them) for its bent section's axes ``normal``, ``tangent``, ``span`` (pitched by ``pitch``, rad), which
+        are turned in place into the axes its loads act along: the legacy projection against the unturned, unpitched
+        blade (frame ``R``), or (``polar``) AeroDyn's local polar frame; ``twist`` is what the orientation adds to
+        the pitch."""
         if not polar:
             m11, m12, m13, m21, m22, m23, m31 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             for r in range(3):
@@ -143,8 +145,7 @@ if njit is not None:                                   # module-level kernels: n
                 m22 += tangent[r] * R[r, 1]
                 m23 -= tangent[r] * R[r, 0]
                 m31 += span[r] * R[r, 2]
-            _, cant, twist = euler_angles(m11, m12, m13, m21, m22, m23, m31)
-            c, s = math.cos(cant), math.sin(cant)
+            twist, _, _, c, s, _, _ = euler_frame(m11, m12, m13, m21, m22, m23, m31)
             vx, vy = 0.0, 0.0
             for r in range(3):
                 normal[r] = c * R[r, 2] - s * R[r, 0]
@@ -152,7 +153,7 @@ if njit is not None:                                   # module-level kernels: n
                 tangent[r] = R[r, 1]
                 vx += rel[r] * normal[r]
                 vy -= rel[r] * tangent[r]
-            return vx, vy, 0.0, 0.0, twist - pitch, 1.0
+            return vx, vy, 1.0, 0.0, 1.0, 0.0, twist - pitch, 1.0
         j = max(p, 1)
         rho, prev = rho_w[b, j], rho_w[b, j - 1]
         along, step_along = 0.0, 0.0
@@ -184,13 +185,13 @@ if njit is not None:                                   # module-level kernels: n
         m22 = -(tangent[0] * y0 + tangent[1] * y1 + tangent[2] * y2)
         m23 = -(tangent[0] * z0 + tangent[1] * z1 + tangent[2] * z2)
         m31 = span[0] * shaft[0] + span[1] * shaft[1] + span[2] * shaft[2]
-        toe, cant, twist, c, s = euler_turn(m11, m12, m13, m21, m22, m23, m31)
+        twist, c, s, cb, sb, ct, st = euler_frame(m11, m12, m13, m21, m22, m23, m31)
         for r in range(3):
             n, t = normal[r], tangent[r]
             normal[r] = c * n - s * t
             tangent[r] = s * n + c * t
         drdz = math.sqrt(step_projected) / math.sqrt(step) if step > 0.0 else 0.0
-        return vx, vy, cant, toe, twist - pitch, drdz
+        return vx, vy, cb, sb, ct, st, twist - pitch, drdz
 
     @njit(cache=True, _nrt=False)
     def add_aero(f, q, u, data, aero, work, state, t):
@@ -258,30 +259,31 @@ if njit is not None:                                   # module-level kernels: n
             skew_cos = (radial[0] * in_plane[0] + radial[1] * in_plane[1] + radial[2] * in_plane[2]) / math.sqrt(
                 length)
             for p in range(nodes):
-                vx, vy, cant, toe, twist, drdz = projected_inflow(rho_w, b, p, rel_w[b, p], normal_w[b, p],
-                                                                  tangent_w[b, p], span_w[b, p], R, shaft,
-                                                                  options[FORMULATION] == 2.0, aero[26][0])
+                vx, vy, cb, sb, ct, st, twist, drdz = projected_inflow(
+                    rho_w, b, p, rel_w[b, p], normal_w[b, p], tangent_w[b, p], span_w[b, p], R, shaft,
+                    options[FORMULATION] == 2.0, aero[26][0])
                 if lagging:
                     phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid, q_axial, q_tangential = \
-                        wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p],
-                                        scalars[1], r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p],
-                                        knots, values, coefs, start, count, options, scalars[0],
-                                        previous_root(out_w[b, p]), cant, toe, drdz, wake[b, p, 2], wake[b, p, 3])
+                        framed_wake_node_loads(vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p],
+                                               hub_c[p], scalars[1], r_local[b, p] / tip[b], chi0, skew_cos, weight,
+                                               airfoil[p], knots, values, coefs, start, count, options, scalars[0],
+                                               previous_root(out_w[b, p]), (cb, sb, ct, st, drdz), wake[b, p, 2],
+                                               wake[b, p, 3])
                     quasi[b, p, 0], quasi[b, p, 1] = q_axial, q_tangential
                     if vx != 0.0:
                         disk_induction += disk_weight[p] * q_axial / vx
                 elif held:                             # the induced velocities of the last solve (frozen wake)
                     a = quasi[b, p, 0] / vx if vx != 0.0 else 0.0
                     ap = quasi[b, p, 1] / vy if vy != 0.0 else 0.0
-                    phi, alpha, w, cl, cd, cm, fn, ft, m = section_loads(
+                    phi, alpha, w, cl, cd, cm, fn, ft, m = framed_section_loads(
                         vx, vy, a, ap, chord[p], theta[p] + twist, airfoil[p], knots, values, coefs, start, count,
-                        options, scalars[0], cant, toe)
+                        options, scalars[0], cb, sb, ct, st)
                     phi_solved, valid = out_w[b, p, 0], out_w[b, p, 12] != 0.0
                 else:
-                    phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = node_loads(
+                    phi_solved, a, ap, phi, alpha, w, cl, cd, cm, fn, ft, m, valid = framed_node_loads(
                         vx, vy, r_local[b, p], chord[p], theta[p] + twist, tip_c[p], hub_c[p], scalars[1],
                         r_local[b, p] / tip[b], chi0, skew_cos, weight, airfoil[p], knots, values, coefs, start,
-                        count, options, scalars[0], previous_root(out_w[b, p]), cant, toe, drdz)
+                        count, options, scalars[0], previous_root(out_w[b, p]), (cb, sb, ct, st, drdz))
                     quasi[b, p, 0], quasi[b, p, 1] = a * vx, ap * vy
                 row = out_w[b, p]
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6] = phi_solved, a, ap, phi, alpha, w, cl

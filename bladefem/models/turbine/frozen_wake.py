@@ -9,7 +9,7 @@ the structure moves (``BEMT.f90``, ``computeFrozenWake``), so a node's inflow is
 
 with ``vx``, ``vy`` the node's relative wind projected as in :mod:`bladefem.models.turbine.aero` (the same
 kinematics and projection, :func:`node_inflow`; with BEM_Mod 2 x is further scaled by cos(cant) and the section
-sees its own angle, ``ComputePhiWithInduction``), and the section loads of :func:`bladefem.aero.bem.section_loads`
+sees its own angle, ``ComputePhiWithInduction``), and the section loads of :func:`bladefem.aero.section.section_loads`
 at (x, y). The
 quasi-steady alternative re-solves the BEM for every perturbation (:func:`bladefem.models.turbine.aero.aero_loads`).
 
