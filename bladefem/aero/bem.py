@@ -248,12 +248,12 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
     args = (vx, vy, solidity, theta, tip_constant, hub_constant, chi0, airfoil, knots, values, coefs, start, count,
             options, frame)
     tolerance = options[TOLERANCE]
-    lows, highs = search_intervals(vx, math.atan2(vx, vy))
-    momentum_lo, momentum_hi = min(lows[0], highs[0]), max(lows[0], highs[0])
-    if momentum_lo < guess < momentum_hi:
+    momentum_lo, momentum_hi = (EDGE, math.pi / 2.0 - EDGE) if vx > 0.0 else (EDGE - math.pi / 2.0, -EDGE)
+    if momentum_lo < guess < momentum_hi:         # the momentum region of search_intervals
         phi, a, ap, found = local_root(guess, momentum_lo, momentum_hi, math.copysign(1.0, vx), tolerance, args)
         if found:
             return phi, True, a, ap
+    lows, highs = search_intervals(vx, math.atan2(vx, vy))
     for i in range(3):
         lo, hi = lows[i], highs[i]
         f_lo, a_lo, ap_lo, valid_lo = framed_residual(lo, *args)
