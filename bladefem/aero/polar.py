@@ -155,14 +155,14 @@ def euler_frame(m11, m12, m13, m21, m22, m23, m31):
     m11): cos = m11 / c_y, sin = -m21 / c_y, c_y = |(m11, m21)|): the cant and the toe enter the BEM only through
     their cosines and sines (:func:`bladefem.aero.bem.angle_geometry`), so no arctangent is taken for them."""
     cy = math.sqrt(m11 * m11 + m21 * m21)
-    cant = math.sqrt(m31 * m31 + cy * cy)
+    cant_size = math.sqrt(m31 * m31 + cy * cy)
     if cy < 1e-14:                                       # gimbal lock: the span along the reference x axis
-        toe = math.sqrt(m23 * m23 + m22 * m22)
-        return 0.0, 1.0, 0.0, cy / cant, m31 / cant, m22 / toe, m23 / toe
+        toe_size = math.sqrt(m23 * m23 + m22 * m22)
+        return 0.0, 1.0, 0.0, cy / cant_size, m31 / cant_size, m22 / toe_size, m23 / toe_size
     cz, sz = m11 / cy, -m21 / cy
     x, y = sz * m12 + cz * m22, sz * m13 + cz * m23
-    toe = math.sqrt(x * x + y * y)
-    return -math.atan2(-m21, m11), cz, -sz, cy / cant, m31 / cant, x / toe, y / toe
+    toe_size = math.sqrt(x * x + y * y)
+    return -math.atan2(-m21, m11), cz, -sz, cy / cant_size, m31 / cant_size, x / toe_size, y / toe_size
 
 
 @dataclass(frozen=True)
