@@ -33,7 +33,8 @@ def loops():
 
     from bladefem.models.turbine.compiled_control import call_library
     from bladefem.models.turbine.compiled_kernels import equations as structural
-    from bladefem.models.turbine.compiled_loads import add_aero, node_kinematics
+    from bladefem.models.turbine.compiled_loads import add_aero
+    from bladefem.models.turbine.compiled_node_motion import node_kinematics
     from bladefem.models.turbine.compiled_state import state_rate
     from bladefem.models.turbine.pitching import set_pitch
 

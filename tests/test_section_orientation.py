@@ -63,7 +63,7 @@ def test_euler_frame_gives_the_cosines_and_sines_without_trigonometry(toe, cant,
 
 
 def test_section_inflow_is_the_section_angle_with_its_sine_and_cosine():
-    """section_inflow(phi, x, y) for phi = atan2(x, y) is section_angle's angle (framed_angle's), and its sine and
+    """section_inflow(phi, x, y) for phi = atan2(x, y) is section_angle's angle, and its sine and
     cosine (the atan2's arguments scaled to unit length) are those of that angle, to 1e-15, for plane and for
     canted and toed sections, the polar frame's inflow of either sign; both components zero give (phi, 0, 1)."""
     rng = np.random.default_rng(5)

@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .induction import critical_induction, framed_induction, framed_loss, framed_plane_coefficients, loss_factor
+from .induction import critical_induction, framed_induction, framed_loss, loss_factor, plane_coefficients
 from .options import (
     FORMULATION,
     HUB_LOSS,
@@ -102,7 +102,7 @@ def framed_residual(phi, vx, vy, solidity, theta, tip_constant, hub_constant, ch
     s, c = math.sin(phi), math.cos(phi)
     if options[FORMULATION] != 2.0:
         cl, cd, _ = polar_lookup(phi - theta, airfoil, knots, values, coefs, start, count)
-        cn, ct = framed_plane_coefficients(s, c, cl, cd, options)
+        cn, ct = plane_coefficients(s, c, cl, cd, options)
         loss = framed_loss(phi, s, c, tip_constant, hub_constant, options, 1.0)
         return framed_induction(phi, s, c, vx, vy, solidity, cn, ct, loss, frame[7], options)
     cb, sb, ct_, st, drdz, cw, sw, critical = frame
@@ -249,7 +249,7 @@ def solve_inflow_angle(vx, vy, solidity, theta, tip_constant, hub_constant, chi0
             options, frame)
     tolerance = options[TOLERANCE]
     momentum_lo, momentum_hi = (EDGE, math.pi / 2.0 - EDGE) if vx > 0.0 else (EDGE - math.pi / 2.0, -EDGE)
-    if momentum_lo < guess < momentum_hi:         # the momentum region of search_intervals
+    if momentum_lo < guess < momentum_hi:         # the momentum region of search_intervals (its first)
         phi, a, ap, found = local_root(guess, momentum_lo, momentum_hi, math.copysign(1.0, vx), tolerance, args)
         if found:
             return phi, True, a, ap

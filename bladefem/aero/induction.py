@@ -137,15 +137,9 @@ def polar_axial_induction(phi, vx, k, loss, critical, high_induction):
 
 
 @kernel
-def plane_coefficients(phi, cl, cd, options):
+def plane_coefficients(sin_phi, cos_phi, cl, cd, options):
     """(cn, ct): the section's force coefficients normal to the rotor plane and in it (towards the leading edge) at
-    inflow angle phi, drag only with AIDrag / TIDrag (AeroDyn's Transform_ClCd_to_CxCy)."""
-    return framed_plane_coefficients(math.sin(phi), math.cos(phi), cl, cd, options)
-
-
-@kernel
-def framed_plane_coefficients(sin_phi, cos_phi, cl, cd, options):
-    """:func:`plane_coefficients` with sin and cos of phi given."""
+    the inflow angle phi (its sine and cosine), drag only with AIDrag / TIDrag (AeroDyn's Transform_ClCd_to_CxCy)."""
     s, c = sin_phi, cos_phi
     return cl * c + (cd * s if options[AI_DRAG] != 0.0 else 0.0), cl * s - (cd * c if options[TI_DRAG] != 0.0 else 0.0)
 

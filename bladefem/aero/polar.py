@@ -59,27 +59,17 @@ def section_angle(phi, cant, toe):
     arccosine's loss of precision near zero)."""
     if cant == 0.0 and toe == 0.0:
         return phi
-    return framed_angle(phi, math.sin(phi), math.cos(phi), cant, toe, math.cos(cant), math.sin(cant), math.cos(toe),
-                        math.sin(toe))
-
-
-@kernel
-def framed_angle(phi, sin_phi, cos_phi, cant, toe, cb, sb, ct, st):
-    """:func:`section_angle` with sin and cos of phi, the cant b and the toe t given (a root solve computes those of
-    the section once)."""
-    if cant == 0.0 and toe == 0.0:
-        return phi
-    s, c = sin_phi, cos_phi * cb                              # (sin phi_N, cos phi_N) times a positive factor
-    return math.atan2(cb * s + sb * st * c, ct * c)
+    return section_inflow(phi, math.sin(phi), math.cos(phi), math.cos(cant), math.sin(cant), math.cos(toe),
+                          math.sin(toe))[0]
 
 
 @kernel
 def section_inflow(phi, x, y, cb, sb, ct, st):
-    """(angle, sine, cosine) of :func:`framed_angle` of phi = atan2(x, y) for the inflow of components (x, y) at a
+    """(angle, sine, cosine) of :func:`section_angle` of phi = atan2(x, y) for the inflow of components (x, y) at a
     section of cant b and toe t (their cosines and sines), the sine and cosine from the components (the atan2's
     arguments scaled to unit length: no trigonometric call); (phi, 0, 1) where both are zero."""
     plane = sb == 0.0 and st == 0.0 and cb > 0.0 and ct > 0.0      # cant and toe 0
-    if not plane:
+    if not plane:                        # (sin phi_N, cos phi_N) times a positive factor, turned by the toe
         x, y = cb * x + sb * st * y * cb, ct * y * cb
     size = math.sqrt(x * x + y * y)
     if size == 0.0:

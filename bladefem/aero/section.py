@@ -19,10 +19,10 @@ def section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, st
                   cant, toe):
     """Loads of a blade section for given induction factors a, a' (no solve): (phi, alpha, W, cl, cd, cm, fn, ft, m)
     as in :func:`bladefem.aero.bem.node_loads`; drag always included. About a tenth of a node solve: for right-hand
-    sides evaluated between two solves with the induction held. A canted or toed section (cant, toe in rad, polar formulation)
-    sees W from (vx cos(cant) (1 - a), vy (1 + a')) at its own angle (:func:`bladefem.aero.polar.section_angle`),
-    and fn, ft act along its untwisted chord normal and against y' (AeroDyn's loads in the airfoil frame turned
-    back by the section's orientation)."""
+    sides evaluated between two solves with the induction held. A canted or toed section (cant, toe in rad, polar
+    formulation) sees W from (vx cos(cant) (1 - a), vy (1 + a')) at its own angle
+    (:func:`bladefem.aero.polar.section_angle`), and fn, ft act along its untwisted chord normal and against y'
+    (AeroDyn's loads in the airfoil frame turned back by the section's orientation)."""
     return framed_section_loads(vx, vy, a, ap, chord, theta, airfoil, knots, values, coefs, start, count, options,
                                 air_density, math.cos(cant), math.sin(cant), math.cos(toe), math.sin(toe))
 
